@@ -1,0 +1,88 @@
+#pragma once
+// Quadrature and root finding: thin wrappers over Boost.Math that return an error
+// estimate and throw NumericalError (saying what was tried) instead of returning
+// NaN.
+#include <fmt/format.h>
+
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <boost/math/quadrature/tanh_sinh.hpp>
+#include <boost/math/tools/roots.hpp>
+#include <boost/math/tools/toms748_solve.hpp>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string_view>
+
+#include "asperity/core/error.hpp"
+
+namespace asperity::core {
+
+struct Integral {
+  double value = 0.0;
+  double error = 0.0;  ///< estimate of the absolute error
+};
+
+/// Adaptive Gauss-Kronrod (G7/K15) of f over [a, b] (b may be +inf), to relative
+/// tolerance `rel_tol`. Use for smooth integrands; split at known kinks first.
+template <class F>
+Integral integrate(F f, double a, double b, double rel_tol = 1e-12, unsigned max_depth = 18,
+                   std::string_view what = "integral") {
+  if (!(a <= b)) {
+    throw NumericalError(fmt::format("{}: invalid interval [{}, {}]", what, a, b));
+  }
+  if (a == b) return {};
+  double error = 0.0;
+  const double value = boost::math::quadrature::gauss_kronrod<double, 15>::integrate(
+      f, a, b, max_depth, rel_tol, &error);
+  if (!std::isfinite(value)) {
+    throw NumericalError(fmt::format("{}: Gauss-Kronrod on [{}, {}] gave a non-finite value", what,
+                                     a, b));
+  }
+  return {value, error};
+}
+
+/// tanh-sinh quadrature of f over finite [a, b]; robust to integrable endpoint
+/// singularities and derivative singularities such as (1-x)^{1/2}.
+template <class F>
+Integral integrate_tanh_sinh(F f, double a, double b, double rel_tol = 1e-12,
+                             std::string_view what = "integral") {
+  if (!(a <= b)) {
+    throw NumericalError(fmt::format("{}: invalid interval [{}, {}]", what, a, b));
+  }
+  if (a == b) return {};
+  static const boost::math::quadrature::tanh_sinh<double> integrator(15);
+  double error = 0.0;
+  double l1 = 0.0;
+  const double value = integrator.integrate(f, a, b, rel_tol, &error, &l1);
+  if (!std::isfinite(value)) {
+    throw NumericalError(fmt::format("{}: tanh-sinh on [{}, {}] gave a non-finite value", what, a,
+                                     b));
+  }
+  return {value, error * std::max(1.0, l1)};
+}
+
+/// Root of f in [lo, hi] by TOMS 748; f(lo) and f(hi) must bracket a sign change.
+/// Converges to about `bits` binary digits of the root.
+template <class F>
+double find_root(F f, double lo, double hi, std::string_view what = "root", int bits = 50,
+                 std::uintmax_t max_iter = 200) {
+  double flo = f(lo);
+  double fhi = f(hi);
+  if (flo == 0.0) return lo;
+  if (fhi == 0.0) return hi;
+  if (!std::isfinite(flo) || !std::isfinite(fhi) || (flo > 0) == (fhi > 0)) {
+    throw NumericalError(fmt::format("{}: no sign change on [{:.6g}, {:.6g}] (f = {:.6g}, {:.6g})",
+                                     what, lo, hi, flo, fhi));
+  }
+  std::uintmax_t iters = max_iter;
+  const auto [a, b] = boost::math::tools::toms748_solve(
+      f, lo, hi, flo, fhi, boost::math::tools::eps_tolerance<double>(bits), iters);
+  if (iters >= max_iter) {
+    throw NumericalError(
+        fmt::format("{}: TOMS 748 did not converge in {} iterations on [{:.6g}, {:.6g}]", what,
+                    max_iter, lo, hi));
+  }
+  return 0.5 * (a + b);
+}
+
+}  // namespace asperity::core

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs every dependency of asperity on a fresh Debian 12 machine:
+# system packages with apt-get, Python packages with pip.
+# Idempotent: packages already present are left alone.
+set -euo pipefail
+
+apt_packages=(
+  build-essential cmake ninja-build pkg-config git
+  libboost-dev                # Boost.Math (quadrature, roots), Boost.Odeint
+  libkissfft-dev              # FFT for spectra and filtering
+  libcli11-dev                # CLI parsing
+  libtomlplusplus-dev         # case files
+  nlohmann-json3-dev          # JSON output
+  libfmt-dev                  # formatting
+  libzip-dev libpugixml-dev   # ISO 5436-2 X3P profiles
+  gnuplot-nox                 # CLI plots
+  libgtest-dev libgmock-dev googletest libbenchmark-dev
+  clang-format
+  python3-dev
+)
+
+missing=()
+for p in "${apt_packages[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo_cmd=""
+  [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+python3 -m pip install --quiet --disable-pip-version-check -r "$(dirname "$0")/../python/requirements.txt"

@@ -1,0 +1,29 @@
+// asperity: physics-based friction of bolted and clamped joints.
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <iostream>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "asperity: friction, tangential stiffness and energy per cycle of clamped joints from "
+      "materials, roughness and load (Eriten 2012), with no fitted friction coefficient."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "asperity 0.1.0");
+  std::function<int()> action;
+  asperity::cli::add_sphere_command(app, action);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;  // bad input: exit 2 like every other input error
+  }
+  return action ? action() : 2;
+}

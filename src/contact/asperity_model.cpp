@@ -1,0 +1,110 @@
+#include "asperity/contact/asperity_model.hpp"
+
+#include <fmt/format.h>
+
+#include "asperity/core/error.hpp"
+#include "asperity/core/validate.hpp"
+
+namespace asperity::contact {
+
+std::string_view to_string(ModelName m) {
+  switch (m) {
+    case ModelName::cfc: return "cfc";
+    case ModelName::ceb: return "ceb";
+    case ModelName::ke: return "ke";
+    case ModelName::bke: return "bke";
+  }
+  return "?";
+}
+
+ModelName parse_model_name(std::string_view name) {
+  for (auto m : kAllModels) {
+    if (name == to_string(m)) return m;
+  }
+  throw InvalidInput(fmt::format("model \"{}\" is unknown: allowed are cfc, ceb, ke, bke", name));
+}
+
+NormalLaw normal_law_of(ModelName m) {
+  switch (m) {
+    case ModelName::cfc: return NormalLaw::hertz;
+    case ModelName::ceb: return NormalLaw::ceb;
+    case ModelName::ke: return NormalLaw::ke;
+    case ModelName::bke: return NormalLaw::bke;
+  }
+  return NormalLaw::hertz;
+}
+
+FrictionLaw friction_law_of(ModelName m) {
+  switch (m) {
+    case ModelName::cfc: return FrictionLaw::cfc;
+    case ModelName::ceb: return FrictionLaw::ceb;
+    case ModelName::ke: return FrictionLaw::ke;
+    case ModelName::bke: return FrictionLaw::bke;
+  }
+  return FrictionLaw::cfc;
+}
+
+AsperityLaws::AsperityLaws(ModelName model, double nu, const FrictionParameters& params)
+    : model_(model), nu_(nu), params_(params) {
+  core::require_in_half_open("nu", nu, 0.0, 0.5);
+  params.validate();
+  if (model == ModelName::bke) (void)BkeConstants::for_poisson(nu);
+}
+
+double AsperityLaws::load_star(double w) const {
+  return normal_load_star(normal_law_of(model_), w, nu_);
+}
+double AsperityLaws::radius_star(double w) const {
+  return contact_radius_star(normal_law_of(model_), w, nu_);
+}
+double AsperityLaws::mu(double w) const {
+  return friction_coefficient(friction_law_of(model_), w, nu_, params_);
+}
+double AsperityLaws::interference_star(double P_star) const {
+  return contact::interference_star(normal_law_of(model_), P_star, nu_);
+}
+
+PartialSlipModel::PartialSlipModel(const ContactPair& pair, const AsperityLaws& laws,
+                                   double omega_star, double P)
+    : pair_(pair),
+      critical_(pair.critical()),
+      laws_(laws),
+      omega_star_(omega_star),
+      a_(critical_.a_c * laws.radius_star(omega_star)),
+      P_(P),
+      contact_(laws.mu(omega_star), P_, pair.G_star, a_) {}
+
+PartialSlipModel PartialSlipModel::from_load(const ContactPair& pair, ModelName model, double P,
+                                             const FrictionParameters& params) {
+  pair.validate();
+  core::require_positive("P", P);
+  AsperityLaws laws(model, pair.nu, params);
+  const double P_c = pair.critical().P_c;
+  return PartialSlipModel(pair, laws, laws.interference_star(P / P_c), P);
+}
+
+PartialSlipModel PartialSlipModel::from_interference_star(const ContactPair& pair, ModelName model,
+                                                          double omega_star,
+                                                          const FrictionParameters& params) {
+  pair.validate();
+  core::require_positive("omega_star", omega_star);
+  const AsperityLaws laws(model, pair.nu, params);
+  return PartialSlipModel(pair, laws, omega_star, pair.critical().P_c * laws.load_star(omega_star));
+}
+
+double PartialSlipModel::delta_scale() const {
+  return 3.0 * critical_.P_c / (16.0 * pair_.G_star * critical_.a_c);
+}
+
+double PartialSlipModel::energy_scale() const {
+  return critical_.P_c * critical_.P_c / (pair_.G_star * critical_.a_c);
+}
+
+std::vector<double> PartialSlipModel::energy_curve(const std::vector<double>& delta_max) const {
+  std::vector<double> out;
+  out.reserve(delta_max.size());
+  for (double d : delta_max) out.push_back(contact_.energy_per_cycle(d));
+  return out;
+}
+
+}  // namespace asperity::contact

@@ -1,0 +1,101 @@
+#include "asperity/contact/friction_law.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "asperity/contact/material.hpp"
+#include "asperity/contact/normal_law.hpp"
+#include "asperity/core/error.hpp"
+#include "asperity/core/validate.hpp"
+
+namespace asperity::contact {
+
+std::string_view to_string(FrictionLaw law) {
+  switch (law) {
+    case FrictionLaw::cfc: return "cfc";
+    case FrictionLaw::ceb: return "ceb";
+    case FrictionLaw::ke: return "ke";
+    case FrictionLaw::bke: return "bke";
+  }
+  return "?";
+}
+
+FrictionLaw parse_friction_law(std::string_view name) {
+  for (auto law : {FrictionLaw::cfc, FrictionLaw::ceb, FrictionLaw::ke, FrictionLaw::bke}) {
+    if (name == to_string(law)) return law;
+  }
+  throw InvalidInput(
+      fmt::format("friction law \"{}\" is unknown: allowed are cfc, ceb, ke, bke", name));
+}
+
+void FrictionParameters::validate() const {
+  core::require_positive("mu_cfc", mu_cfc);
+  core::require_positive("zeta", zeta);
+}
+
+double cfc_coefficient(double shear_strength, double hardness) {
+  core::require_positive("shear strength s", shear_strength);
+  core::require_positive("hardness H", hardness);
+  return shear_strength / hardness;  // B.10
+}
+
+namespace {
+
+double ceb_coefficient(double w, double nu, double zeta) {
+  if (w >= 1.0) return 0.0;  // sliding inception = first yield: no friction once yielded
+  const double K = hardness_factor(nu);
+  // B.11
+  const double c1 = -1.0 + 1.5 * zeta * std::atan(1.0 / zeta) - zeta * zeta / (2.0 * (1.0 + zeta * zeta));
+  const double c3 = 9.0 * M_PI * M_PI / 16.0 * (2.0 - nu / 2.0 + 7.0 / 8.0 * nu * nu);
+  const double c4 = 9.0 * M_PI / 4.0 * (1.0 - 2.0 * nu) * (1.0 - nu / 2.0);
+  const double c5 = 1.5 * (1.0 - 2.0 * nu) * (1.0 - 2.0 * nu) - 0.56 / (K * K * w);
+  const double first = 0.2045 / (K * std::abs(c1)) * std::sqrt(1.0 / w - 1.0);
+  const double second = (-c4 + std::sqrt(c4 * c4 - 4.0 * c3 * c5)) / (2.0 * c3);
+  return std::min(first, second);
+}
+
+double ke_coefficient(double w) {
+  // B.12
+  if (w <= 1.0) return 0.536 / std::sqrt(w) - 0.0186 * std::sqrt(w);
+  if (w <= 6.2) return ((-0.007 * w + 0.085) * w - 0.389) * w + 0.822;
+  return 0.0;
+}
+
+double bke_coefficient(double w, double nu) {
+  // B.13 (SEED_NOTES.md: this grouping of delta_c reproduces Table 3.2)
+  const auto c = BkeConstants::for_poisson(nu);
+  return 0.26 / std::tanh(0.27 * std::pow(w / c.delta_c, 0.46));
+}
+
+}  // namespace
+
+double friction_coefficient(FrictionLaw law, double w, double nu, const FrictionParameters& params) {
+  params.validate();
+  core::require_in_half_open("nu", nu, 0.0, 0.5);
+  if (law == FrictionLaw::cfc) {
+    core::require_non_negative("interference w = omega/omega_c", w);
+    return params.mu_cfc;
+  }
+  if (!(w > 0.0) || !std::isfinite(w)) {
+    throw InvalidInput(fmt::format(
+        "interference w = omega/omega_c = {} is not allowed for the {} friction law: it must be "
+        "> 0 (mu diverges at w = 0)",
+        core::format_value(w), to_string(law)));
+  }
+  switch (law) {
+    case FrictionLaw::ceb: return ceb_coefficient(w, nu, params.zeta);
+    case FrictionLaw::ke: return ke_coefficient(w);
+    case FrictionLaw::bke: return bke_coefficient(w, nu);
+    case FrictionLaw::cfc: break;
+  }
+  return params.mu_cfc;
+}
+
+double static_friction_star(FrictionLaw law, double w, double nu, double normal_load_star,
+                            const FrictionParameters& params) {
+  if (w == 0.0) return 0.0;
+  return friction_coefficient(law, w, nu, params) * normal_load_star;
+}
+
+}  // namespace asperity::contact

@@ -1,0 +1,73 @@
+#include "asperity/contact/material.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "asperity/core/error.hpp"
+#include "asperity/core/validate.hpp"
+
+namespace asperity::contact {
+
+using core::require_in_half_open;
+using core::require_non_negative;
+using core::require_positive;
+
+void Material::validate(std::string_view name) const {
+  const std::string n(name);
+  require_positive(n + ".E", E);
+  require_in_half_open(n + ".nu", nu, 0.0, 0.5);
+  require_non_negative(n + ".G (0 = derive from E and nu)", G);
+  require_non_negative(n + ".H (0 = not given)", H);
+}
+
+double Material::shear_modulus() const { return G > 0.0 ? G : E / (2.0 * (1.0 + nu)); }
+
+double hardness_factor(double nu) { return 0.454 + 0.41 * nu; }
+
+ContactPair ContactPair::combine(const Material& body1, const Material& body2, double R1,
+                                 double R2) {
+  body1.validate("body1");
+  body2.validate("body2");
+  require_positive("R1", R1);
+  if (!(R2 > 0.0)) {
+    throw InvalidInput(fmt::format("R2 = {} is not allowed: it must be > 0 (infinity for a flat)",
+                                   core::format_value(R2)));
+  }
+  if (body1.H <= 0.0 && body2.H <= 0.0) {
+    throw InvalidInput(
+        "hardness: neither body has a hardness H > 0; give the hardness of the softer material");
+  }
+  ContactPair p;
+  p.E_star = 1.0 / ((1.0 - body1.nu * body1.nu) / body1.E + (1.0 - body2.nu * body2.nu) / body2.E);
+  p.G_star = 1.0 / ((2.0 - body1.nu) / body1.shear_modulus() +
+                    (2.0 - body2.nu) / body2.shear_modulus());
+  p.R = std::isinf(R2) ? R1 : 1.0 / (1.0 / R1 + 1.0 / R2);
+  const bool first_softer =
+      body1.H > 0.0 && (body2.H <= 0.0 || body1.H <= body2.H);
+  const Material& softer = first_softer ? body1 : body2;
+  p.H = softer.H;
+  p.nu = softer.nu;
+  p.validate();
+  return p;
+}
+
+void ContactPair::validate() const {
+  require_positive("E_star", E_star);
+  require_positive("G_star", G_star);
+  require_positive("R", R);
+  require_positive("H", H);
+  require_in_half_open("nu", nu, 0.0, 0.5);
+}
+
+CriticalValues ContactPair::critical() const {
+  // Eq. 3.5 / B.9
+  const double a_c = std::numbers::pi * K() * H * R / (2.0 * E_star);
+  const double omega_c = a_c * a_c / R;
+  const double P_c = 2.0 / 3.0 * K() * H * std::numbers::pi * a_c * a_c;
+  return {omega_c, a_c, P_c};
+}
+
+}  // namespace asperity::contact

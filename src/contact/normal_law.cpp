@@ -1,0 +1,147 @@
+#include "asperity/contact/normal_law.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+
+#include "asperity/contact/material.hpp"
+#include "asperity/core/error.hpp"
+#include "asperity/core/numerics.hpp"
+#include "asperity/core/validate.hpp"
+
+namespace asperity::contact {
+
+std::string_view to_string(NormalLaw law) {
+  switch (law) {
+    case NormalLaw::hertz: return "hertz";
+    case NormalLaw::ceb: return "ceb";
+    case NormalLaw::ke: return "ke";
+    case NormalLaw::bke: return "bke";
+  }
+  return "?";
+}
+
+NormalLaw parse_normal_law(std::string_view name) {
+  for (auto law : {NormalLaw::hertz, NormalLaw::ceb, NormalLaw::ke, NormalLaw::bke}) {
+    if (name == to_string(law)) return law;
+  }
+  throw InvalidInput(
+      fmt::format("normal law \"{}\" is unknown: allowed are hertz, ceb, ke, bke", name));
+}
+
+BkeConstants BkeConstants::for_poisson(double nu) {
+  core::require_in_half_open("nu", nu, 0.0, 0.5);
+  BkeConstants c;
+  c.l_c = 8.88 * nu - 10.13 * (nu * nu + 0.089);
+  c.delta_c = 6.82 * nu - 7.83 * (nu * nu + 0.0586);
+  c.alpha = 0.174 + 0.08 * nu;
+  c.gamma = 0.25 + 0.125 * nu;
+  if (!(c.l_c > 0.0) || !(c.delta_c > 0.0)) {
+    throw InvalidInput(fmt::format(
+        "nu = {} is outside the range of the BKE fits: l_c = {:.4g} and delta_c = {:.4g} must "
+        "be > 0, which needs nu in about (0.118, 0.5)",
+        core::format_value(nu), c.l_c, c.delta_c));
+  }
+  return c;
+}
+
+namespace {
+
+void check_interference(double w) { core::require_non_negative("interference w = omega/omega_c", w); }
+
+double bke_load(const BkeConstants& c, double w) {
+  // B.4
+  const double scale = c.l_c / std::pow(c.delta_c, 1.5);
+  if (w <= c.delta_c) return scale * std::pow(w, 1.5);
+  const double da = std::pow(c.delta_c, c.alpha);
+  return scale * std::pow(w, 1.5) * (1.0 - std::exp(da / (da - std::pow(w, c.alpha))));
+}
+
+}  // namespace
+
+double normal_load_star(NormalLaw law, double w, double nu) {
+  check_interference(w);
+  switch (law) {
+    case NormalLaw::hertz:  // B.1
+      return std::pow(w, 1.5);
+    case NormalLaw::ceb:  // B.2
+      return w <= 1.0 ? std::pow(w, 1.5) : 3.0 * (w - 0.5);
+    case NormalLaw::ke:  // B.3
+      if (w <= 1.0) return std::pow(w, 1.5);
+      if (w <= 6.0) return 1.03 * std::pow(w, 1.425);
+      if (w <= 110.0) return 1.4 * std::pow(w, 1.263);
+      return 3.0 / hardness_factor(nu) * w;
+    case NormalLaw::bke:
+      return bke_load(BkeConstants::for_poisson(nu), w);
+  }
+  return 0.0;
+}
+
+double contact_radius_star(NormalLaw law, double w, double nu) {
+  check_interference(w);
+  switch (law) {
+    case NormalLaw::hertz:  // B.5
+      return std::sqrt(w);
+    case NormalLaw::ceb:  // B.6
+      return w <= 1.0 ? std::sqrt(w) : std::sqrt(2.0 * w - 1.0);
+    case NormalLaw::ke:  // B.7
+      if (w <= 1.0) return std::sqrt(w);
+      if (w <= 6.0) return 0.96 * std::pow(w, 0.57);
+      if (w <= 110.0) return 0.97 * std::pow(w, 0.57);
+      return 1.41 * std::sqrt(w);
+    case NormalLaw::bke: {  // B.8
+      const auto c = BkeConstants::for_poisson(nu);
+      const double scale = 1.0 / std::sqrt(c.delta_c);
+      if (w <= c.delta_c) return scale * std::sqrt(w);
+      const double dg = std::pow(c.delta_c, c.gamma);
+      return scale * std::sqrt(w) * std::sqrt(1.0 + std::exp(dg / (dg - std::pow(w, c.gamma))));
+    }
+  }
+  return 0.0;
+}
+
+double interference_star(NormalLaw law, double P_star, double nu) {
+  core::require_non_negative("normal load P/P_c", P_star);
+  switch (law) {
+    case NormalLaw::hertz:
+      return std::pow(P_star, 2.0 / 3.0);
+    case NormalLaw::ceb:
+      if (P_star <= 1.0) return std::pow(P_star, 2.0 / 3.0);
+      if (P_star <= 1.5) return 1.0;  // inside the jump at w = 1
+      return P_star / 3.0 + 0.5;
+    case NormalLaw::ke: {
+      if (P_star <= 1.0) return std::pow(P_star, 2.0 / 3.0);
+      const double p6 = 1.03 * std::pow(6.0, 1.425);
+      if (P_star <= 1.03) return 1.0;
+      if (P_star <= p6) return std::pow(P_star / 1.03, 1.0 / 1.425);
+      const double p6_next = 1.4 * std::pow(6.0, 1.263);
+      if (P_star <= p6_next) return 6.0;
+      const double p110 = 1.4 * std::pow(110.0, 1.263);
+      if (P_star <= p110) return std::pow(P_star / 1.4, 1.0 / 1.263);
+      const double p110_next = 3.0 / hardness_factor(nu) * 110.0;
+      if (P_star <= p110_next) return 110.0;
+      return P_star * hardness_factor(nu) / 3.0;
+    }
+    case NormalLaw::bke: {
+      const auto c = BkeConstants::for_poisson(nu);
+      const double scale = c.l_c / std::pow(c.delta_c, 1.5);
+      if (P_star <= scale * std::pow(c.delta_c, 1.5)) return std::pow(P_star / scale, 2.0 / 3.0);
+      // Plastic branch: monotone in w, grows at least like w^(1.5 - alpha).
+      double hi = 2.0 * c.delta_c;
+      int expansions = 0;
+      while (bke_load(c, hi) < P_star) {
+        hi *= 2.0;
+        if (++expansions > 200) {
+          throw NumericalError(fmt::format("BKE inverse: no interference carries P/P_c = {}",
+                                           core::format_value(P_star)));
+        }
+      }
+      return core::find_root([&](double w) { return bke_load(c, w) - P_star; }, c.delta_c, hi,
+                             "BKE interference for a load", 62);
+    }
+  }
+  return 0.0;
+}
+
+}  // namespace asperity::contact
