@@ -13,9 +13,11 @@ apt_packages=(
   nlohmann-json3-dev          # JSON output
   libfmt-dev                  # formatting
   libzip-dev libpugixml-dev   # ISO 5436-2 X3P profiles
+  zipcmp zipmerge ziptool     # Debian's libzip CMake config checks these tools exist
   gnuplot-nox                 # CLI plots
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   clang-format
+  clang libclang-rt-14-dev    # libFuzzer targets under fuzz/ (ASPERITY_BUILD_FUZZ)
   python3-dev
 )
 

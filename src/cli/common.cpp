@@ -79,7 +79,17 @@ std::string gnuplot_quote(const std::string& s) {
 
 void plot_png(const std::string& path, const PlotSpec& spec) {
   const std::filesystem::path target(path);
+  if (target.filename().empty()) throw InvalidInput(fmt::format("output path \"{}\" names no file", path));
   const auto tmp_png = temporary_sibling(target);
+  {
+    // An unwritable output path is bad input (exit 2), not a gnuplot failure: probe it
+    // by creating the temporary file gnuplot will overwrite.
+    std::ofstream probe(tmp_png, std::ios::binary | std::ios::trunc);
+    if (!probe) {
+      throw InvalidInput(fmt::format(
+          "cannot write \"{}\": the directory does not exist or is not writable", path));
+    }
+  }
   const auto dir = std::filesystem::temp_directory_path();
   std::random_device rd;
   const auto script_path = dir / fmt::format("asperity-plot-{:08x}.gp", static_cast<unsigned>(rd()));
@@ -119,7 +129,7 @@ void plot_png(const std::string& path, const PlotSpec& spec) {
   }
   std::error_code ec;
   std::filesystem::remove(script_path, ec);
-  if (status != 0 || !std::filesystem::exists(tmp_png)) {
+  if (status != 0 || !std::filesystem::exists(tmp_png) || std::filesystem::file_size(tmp_png, ec) == 0) {
     std::filesystem::remove(tmp_png, ec);
     if (messages.find("pngcairo") != std::string::npos) {
       throw Error(fmt::format("plotting \"{}\" failed: gnuplot has no pngcairo terminal ({})",

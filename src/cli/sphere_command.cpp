@@ -8,6 +8,7 @@
 
 #include "asperity/contact/asperity_model.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/validate.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 
@@ -52,6 +53,15 @@ void run_sphere(const SphereOptions& o, std::string& out) {
                        .nu = dimensionless(o.nu2, "--nu2"),
                        .G = quantity(o.G2, dim::pressure, "--G2").value_or(0.0),
                        .H = quantity(o.H2, dim::pressure, "--H2").value_or(0.0)};
+  // Check each value under its flag's name (Material::validate would say "body1.E").
+  core::require_positive("--E1", b1.E);
+  core::require_positive("--E2", b2.E);
+  core::require_in_half_open("--nu1", b1.nu, 0.0, 0.5);
+  core::require_in_half_open("--nu2", b2.nu, 0.0, 0.5);
+  if (o.G1) core::require_positive("--G1", b1.G);
+  if (o.G2) core::require_positive("--G2", b2.G);
+  if (o.H1) core::require_positive("--H1", b1.H);
+  if (o.H2) core::require_positive("--H2", b2.H);
   if (o.H) {
     if (o.H1 || o.H2) throw InvalidInput("give either --H (softer material) or --H1/--H2, not both");
     if (b1.nu != b2.nu) {
@@ -61,28 +71,39 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     }
     b1.H = b2.H = required_quantity(o.H, dim::pressure, "--H");
   }
+  if (o.H) core::require_positive("--H", b1.H);
   if (b1.H == 0.0 && b2.H == 0.0) throw InvalidInput("the hardness is required: give --H (or --H1/--H2)");
   const double R1 = required_quantity(o.R1, dim::length, "--R1");
   const double R2 = o.R2 ? required_quantity(o.R2, dim::length, "--R2")
                          : std::numeric_limits<double>::infinity();
+  core::require_positive("--R1", R1);
+  if (o.R2) core::require_positive("--R2", R2);
   const auto pair = contact::ContactPair::combine(b1, b2, R1, R2);
 
   std::vector<ModelName> models;
   if (o.model == "all") {
     models.assign(contact::kAllModels.begin(), contact::kAllModels.end());
   } else {
-    models.push_back(contact::parse_model_name(o.model));
+    try {
+      models.push_back(contact::parse_model_name(o.model));
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("--model: {} (or all)", e.what()));
+    }
   }
   contact::FrictionParameters params;
   const bool wants_cfc = std::find(models.begin(), models.end(), ModelName::cfc) != models.end();
   if (o.mu_cfc) {
     params.mu_cfc = dimensionless(o.mu_cfc, "--mu-cfc");
+    core::require_positive("--mu-cfc", params.mu_cfc);
   } else if (wants_cfc) {
     throw InvalidInput(
         "the cfc model needs its friction coefficient: give --mu-cfc (s/H of the softer "
         "material, e.g. 0.284), or choose another --model");
   }
-  if (o.zeta) params.zeta = dimensionless(o.zeta, "--zeta");
+  if (o.zeta) {
+    params.zeta = dimensionless(o.zeta, "--zeta");
+    core::require_positive("--zeta", params.zeta);
+  }
   params.validate();
 
   if (o.P && o.omega_star) throw InvalidInput("give either --P or --omega-star, not both");

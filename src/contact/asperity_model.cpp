@@ -64,6 +64,21 @@ double AsperityLaws::interference_star(double P_star) const {
   return contact::interference_star(normal_law_of(model_), P_star, nu_);
 }
 
+std::vector<double> AsperityLaws::break_points() const {
+  switch (model_) {
+    case ModelName::cfc: return {};
+    case ModelName::ceb: {
+      std::vector<double> b;
+      if (const auto w = ceb_branch_crossing(nu_, params_.zeta)) b.push_back(*w);
+      b.push_back(1.0);
+      return b;
+    }
+    case ModelName::ke: return {1.0, 6.0, 6.2, 110.0};
+    case ModelName::bke: return {BkeConstants::for_poisson(nu_).delta_c};
+  }
+  return {};
+}
+
 PartialSlipModel::PartialSlipModel(const ContactPair& pair, const AsperityLaws& laws,
                                    double omega_star, double P)
     : pair_(pair),

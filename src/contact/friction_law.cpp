@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
 
 #include "asperity/contact/material.hpp"
 #include "asperity/contact/normal_law.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/numerics.hpp"
 #include "asperity/core/validate.hpp"
 
 namespace asperity::contact {
@@ -42,17 +44,26 @@ double cfc_coefficient(double shear_strength, double hardness) {
 
 namespace {
 
-double ceb_coefficient(double w, double nu, double zeta) {
-  if (w >= 1.0) return 0.0;  // sliding inception = first yield: no friction once yielded
+struct CebBranches {
+  double surface;     // 0.2045/(K|c1|) (1/w - 1)^{1/2}
+  double subsurface;  // (-c4 + sqrt(c4^2 - 4 c3 c5))/(2 c3)
+};
+
+CebBranches ceb_branches(double w, double nu, double zeta) {
   const double K = hardness_factor(nu);
   // B.11
   const double c1 = -1.0 + 1.5 * zeta * std::atan(1.0 / zeta) - zeta * zeta / (2.0 * (1.0 + zeta * zeta));
   const double c3 = 9.0 * M_PI * M_PI / 16.0 * (2.0 - nu / 2.0 + 7.0 / 8.0 * nu * nu);
   const double c4 = 9.0 * M_PI / 4.0 * (1.0 - 2.0 * nu) * (1.0 - nu / 2.0);
   const double c5 = 1.5 * (1.0 - 2.0 * nu) * (1.0 - 2.0 * nu) - 0.56 / (K * K * w);
-  const double first = 0.2045 / (K * std::abs(c1)) * std::sqrt(1.0 / w - 1.0);
-  const double second = (-c4 + std::sqrt(c4 * c4 - 4.0 * c3 * c5)) / (2.0 * c3);
-  return std::min(first, second);
+  return {0.2045 / (K * std::abs(c1)) * std::sqrt(1.0 / w - 1.0),
+          (-c4 + std::sqrt(c4 * c4 - 4.0 * c3 * c5)) / (2.0 * c3)};
+}
+
+double ceb_coefficient(double w, double nu, double zeta) {
+  if (w >= 1.0) return 0.0;  // sliding inception = first yield: no friction once yielded
+  const auto b = ceb_branches(w, nu, zeta);
+  return std::min(b.surface, b.subsurface);
 }
 
 double ke_coefficient(double w) {
@@ -90,6 +101,26 @@ double friction_coefficient(FrictionLaw law, double w, double nu, const Friction
     case FrictionLaw::cfc: break;
   }
   return params.mu_cfc;
+}
+
+std::optional<double> ceb_branch_crossing(double nu, double zeta) {
+  auto diff = [&](double w) {
+    const auto b = ceb_branches(w, nu, zeta);
+    return b.surface - b.subsurface;
+  };
+  // Sample (0, 1) for a sign change; the surface branch vanishes at w = 1.
+  double prev_w = 1e-6;
+  double prev = diff(prev_w);
+  for (int i = 1; i <= 200; ++i) {
+    const double w = 1e-6 + (1.0 - 2e-6) * i / 200.0;
+    const double cur = diff(w);
+    if ((prev < 0.0) != (cur < 0.0)) {
+      return core::find_root(diff, prev_w, w, "CEB branch crossing", 60);
+    }
+    prev_w = w;
+    prev = cur;
+  }
+  return std::nullopt;
 }
 
 double static_friction_star(FrictionLaw law, double w, double nu, double normal_load_star,

@@ -50,12 +50,13 @@ double stick_displacement_tilde(double Q_tilde) { return 2.0 / 3.0 * Q_tilde; } 
 
 double loading_displacement_tilde(double Q_tilde) {
   require_unit_force(Q_tilde, "Q~ = Q/(mu P)");
-  return 1.0 - std::pow(1.0 - Q_tilde, 2.0 / 3.0);  // B.15
+  return -std::expm1(2.0 / 3.0 * std::log1p(-Q_tilde));  // B.15
 }
 
 double loading_force_tilde(double delta_tilde) {
   const double d = std::abs(delta_tilde);
-  const double q = d >= 1.0 ? 1.0 : 1.0 - std::pow(1.0 - d, 1.5);  // B.15 inverted
+  // B.15 inverted; expm1/log1p keep the relative accuracy for small delta~.
+  const double q = d >= 1.0 ? 1.0 : -std::expm1(1.5 * std::log1p(-d));
   return std::copysign(q, delta_tilde);
 }
 

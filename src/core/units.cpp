@@ -159,7 +159,12 @@ Quantity parse_quantity(std::string_view text, std::string_view field) {
       fail(field, text, fmt::format("unexpected character '{}'", c));
     }
     const std::size_t start = i;
-    while (i < n && is_symbol_char(static_cast<unsigned char>(text[i]))) ++i;
+    // A symbol ends at a middle dot (U+00B7, bytes C2 B7), whose bytes are >= 0x80
+    // like those of the micro sign: "N" U+00B7 "m" is N times m, not one symbol.
+    while (i < n && is_symbol_char(static_cast<unsigned char>(text[i])) &&
+           text.substr(i, 2) != "\xC2\xB7") {
+      ++i;
+    }
     const auto symbol = text.substr(start, i - start);
     const auto unit = lookup_unit(symbol);
     if (!unit) fail(field, text, fmt::format("unknown unit \"{}\"", symbol));

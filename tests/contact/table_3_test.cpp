@@ -91,7 +91,7 @@ TEST_P(Table32, OwnNormalLawStaysClose) {
 INSTANTIATE_TEST_SUITE_P(MicroScale, Table32,
                          ::testing::Values(Table32Row{35.0, 0.374, {0.284, 0.528, 0.858, 1.444}, 16.17e6},
                                            Table32Row{23.0, 0.283, {0.284, 0.626, 0.992, 1.639}, 14.06e6}),
-                         [](const auto& info) { return info.index == 0 ? "Exp1_35N" : "Exp2_23N"; });
+                         [](const auto& param_info) { return param_info.index == 0 ? "Exp1_35N" : "Exp2_23N"; });
 
 TEST(Table33, CriticalValues) {
   // Section 3.5 text: omega_c = 12.67 nm, a_c = 0.14 um, P_c = 105.9 uN.

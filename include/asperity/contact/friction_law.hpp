@@ -1,5 +1,6 @@
 #pragma once
 // Static friction coefficient of one asperity (Appendix B.2, Eq. B.10-B.13).
+#include <optional>
 #include <string_view>
 
 namespace asperity::contact {
@@ -31,6 +32,10 @@ struct FrictionParameters {
 /// not the differently grouped Eq. 3.16.
 [[nodiscard]] double friction_coefficient(FrictionLaw law, double w, double nu,
                                           const FrictionParameters& params = {});
+
+/// The interference w in (0, 1) where the two branches of B.11's min() cross (a kink
+/// of the CEB mu), if any.
+[[nodiscard]] std::optional<double> ceb_branch_crossing(double nu, double zeta);
 
 /// mu(w) * P(w)/P_c: the static friction force over P_c, finite (0) at w = 0 where
 /// mu of CEB, KE and BKE diverges like w^-1/2. `normal_load_star` is P/P_c at w.

@@ -50,7 +50,10 @@ Integral integrate_tanh_sinh(F f, double a, double b, double rel_tol = 1e-12,
     throw NumericalError(fmt::format("{}: invalid interval [{}, {}]", what, a, b));
   }
   if (a == b) return {};
-  static const boost::math::quadrature::tanh_sinh<double> integrator(15);
+  // Not const: Boost <= 1.8x declares integrate() as `-> decltype(...) const`, which
+  // makes the return type const instead of the member function. thread_local keeps the
+  // lazily refined abscissa tables per thread.
+  thread_local boost::math::quadrature::tanh_sinh<double> integrator(15);
   double error = 0.0;
   double l1 = 0.0;
   const double value = integrator.integrate(f, a, b, rel_tol, &error, &l1);

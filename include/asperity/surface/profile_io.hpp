@@ -1,0 +1,100 @@
+#pragma once
+// Reading measured profiles: delimited text (CSV, tab or space separated, vendor
+// exports with a preamble) and ISO 5436-2 X3P (zip with main.xml and bindata/);
+// writing X3P. Every reader refuses malformed input with InvalidInput naming the
+// file, the line or element, and what was expected; nothing is allocated on a
+// header's word alone.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "asperity/surface/profile.hpp"
+
+namespace asperity::surface {
+
+/// Options of the text reader.
+struct TextReadOptions {
+  /// Sampling interval [m] for a file with a single height column (no x column).
+  std::optional<double> dx;
+};
+
+/// Parses a delimited text profile.
+///
+/// The data block is the longest run of lines whose fields are numbers (empty
+/// trailing fields, as in Dektak exports, are ignored). The line just above it is
+/// the header, which names the columns and their units: `x[mm],z[um]`, `x_um,z_um`,
+/// `x (mm); z (nm)`, `Lateral um,Raw Micrometer`; units are SI length units (m, mm,
+/// um, nm, ..., the micro sign in UTF-8 or Latin-1, or the words Micrometer,
+/// Millimeter, Nanometer, Angstrom). Anything above the header (a vendor preamble)
+/// is skipped. Delimiters: comma, semicolon, tab or blanks; CR, LF or CRLF line
+/// ends; a UTF-8 byte-order mark is skipped.
+///
+/// Two columns are x and z; a single column is z, and then `options.dx` is
+/// required. x must increase strictly with a uniform step: dx and x0 are the
+/// least-squares line through all x; each x may deviate from that grid by at most
+/// dx/2 (rounding in the export) and no step may exceed 1.5 dx (a missing
+/// sample), else the file is refused as non-uniform.
+[[nodiscard]] Profile parse_profile_text(std::string_view content, std::string_view source,
+                                         const TextReadOptions& options = {});
+/// Reads a file with parse_profile_text().
+[[nodiscard]] Profile read_profile_text(const std::string& path, const TextReadOptions& options = {});
+
+/// X3P data types of the Z axis (ISO 5436-2): I int16, L int32, F float32, D float64.
+enum class X3pDataType { int16, int32, float32, float64 };
+
+/// Parses an X3P file held in memory (the zip archive's bytes).
+///
+/// Supports feature types PRF (profile) and SUR (areal), incremental x and y axes,
+/// z data types I, L, F and D, inline `DataList` and binary `DataLink` point data
+/// (little-endian, x fastest), the invalid-point mask (`ValidPointsLink`, one bit
+/// per point, least significant bit first; NaN heights and empty `Datum` elements
+/// are invalid points too), and checks the MD5 of the point data
+/// (`MD5ChecksumPointData`, of the valid-points file when given) and of main.xml
+/// (`md5checksum.hex`). Refused: point clouds (PCL), absolute x/y axes, SizeZ != 1,
+/// sizes that disagree with the data, checksum mismatches, missing entries.
+[[nodiscard]] HeightMap parse_x3p(std::string_view bytes, std::string_view source);
+/// Reads a file with parse_x3p().
+[[nodiscard]] HeightMap read_x3p(const std::string& path);
+
+/// Reads an X3P file (recognised by its zip signature) or a text profile; a text
+/// profile comes back as a map with ny = 1.
+[[nodiscard]] HeightMap read_height_file(const std::string& path,
+                                         const TextReadOptions& options = {});
+
+/// Options of the X3P writer.
+struct X3pWriteOptions {
+  X3pDataType type = X3pDataType::float64;
+  /// Point data inline in main.xml (DataList) instead of bindata/data.bin.
+  bool inline_data = false;
+  /// Height of one integer step [m] for I and L; 0 chooses the step that spans the
+  /// data's range with the type's full scale.
+  double z_increment = 0.0;
+};
+
+/// The files of an X3P archive before zipping: tests may tamper with them.
+struct X3pPackage {
+  /// (name in the archive, content), main.xml first, md5checksum.hex last.
+  std::vector<std::pair<std::string, std::string>> files;
+  /// The content of the named file; throws if absent.
+  std::string& file(std::string_view name);
+  /// Recomputes md5checksum.hex from main.xml (after editing it).
+  void update_main_checksum();
+};
+
+/// Builds the archive's files for a height map (or profile, ny = 1): main.xml with
+/// Record1-4, point data, the valid-points mask when the map has invalid points,
+/// and md5checksum.hex.
+[[nodiscard]] X3pPackage make_x3p_package(const HeightMap& map, const X3pWriteOptions& options = {});
+/// Zips a package (deflate) into the bytes of an .x3p file.
+[[nodiscard]] std::string zip_x3p_package(const X3pPackage& package);
+/// Writes `map` as an X3P file.
+void write_x3p(const std::string& path, const HeightMap& map, const X3pWriteOptions& options = {});
+
+/// Reads a whole file into memory; throws InvalidInput naming the path when it
+/// cannot be read. Refuses files larger than `max_bytes`.
+[[nodiscard]] std::string read_file_bytes(const std::string& path,
+                                          std::size_t max_bytes = std::size_t{1} << 31);
+
+}  // namespace asperity::surface

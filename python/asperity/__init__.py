@@ -1,0 +1,59 @@
+"""asperity: physics-based friction of bolted and clamped joints.
+
+Python face of the C++ library (Eriten 2012, "Multiscale physics-based modeling of
+friction"). Every function calls the same C++ code as the CLI; this package holds no
+physics. Conventions:
+
+* SI units in and out (m, N, Pa, J); dimensionless quantities end in ``_star`` and
+  say what they are divided by.
+* Functions of interference, load or displacement accept a float (and return a float)
+  or anything array-like (and return a numpy array of the broadcast shape).
+* Law and model names are strings: normal laws ``"hertz", "ceb", "ke", "bke"``;
+  friction laws and models ``"cfc", "ceb", "ke", "bke"``.
+* Const getters of C++ classes are read-only properties (``model.mu``, ``pair.critical``).
+* Errors: :class:`InvalidInput` (a ``ValueError``) for bad input, naming the field;
+  :class:`NumericalError` (a ``RuntimeError``) for a failed solve; both derive from
+  :class:`Error`.
+
+Layers: ``contact`` (one asperity, thesis ch. 2-3 and appendices A-B) is bound here;
+Cattaneo-Mindlin tilde functions live in :mod:`asperity.mindlin`; matplotlib helpers in
+:mod:`asperity.plotting`; the thesis's experiments in :mod:`asperity.thesis`.
+"""
+from __future__ import annotations
+
+import sys as _sys
+
+from . import _core
+from ._core import *  # noqa: F401,F403
+from ._core import mindlin
+
+# `import asperity.mindlin` works like a submodule of the package.
+_sys.modules[__name__ + ".mindlin"] = mindlin
+
+__version__ = "0.1.0"
+
+__all__ = [name for name in dir(_core) if not name.startswith("_")]
+
+
+def thesis_normalization(model: "PartialSlipModel") -> dict:  # noqa: F405
+    """Scales of the thesis's dimensionless tangential variables (section 3.3-3.4).
+
+    Returns ``{"delta": 3 P_c/(16 G* a_c), "Q": P_c, "energy": P_c^2/(G* a_c)}`` so that
+    ``delta* = delta/scales["delta"]``, ``Q* = Q/scales["Q"]`` and
+    ``Delta W* = Delta W/scales["energy"]`` (Fig. 3.6-3.8).
+    """
+    return {
+        "delta": model.delta_scale,
+        "Q": model.critical.P_c,
+        "energy": model.energy_scale,
+    }
+
+
+def loop_arrays(loop: "FrettingLoop"):  # noqa: F405
+    """``(delta, Q, branch)`` of a :class:`FrettingLoop` as independent numpy copies."""
+    import numpy as np
+
+    return np.array(loop.delta), np.array(loop.Q), np.array(loop.branch)
+
+
+__all__ += ["mindlin", "thesis_normalization", "loop_arrays", "__version__"]

@@ -1,0 +1,19 @@
+#pragma once
+// One bind_<layer>() per layer of the library, each in its own file
+// (python/src/<layer>.cpp); module.cpp calls them in layer order. To add a layer:
+// declare its function here, define it in a new .cpp (CMake globs src/*.cpp) and call
+// it from module.cpp. Use vectorize.hpp for functions of arrays.
+#include <nanobind/nanobind.h>
+
+namespace asperity::python {
+
+namespace nb = nanobind;
+
+/// Exceptions (asperity.Error, InvalidInput, NumericalError) and core/units.
+void bind_core(nb::module_& m);
+/// contact/: materials, normal and friction laws, Cattaneo-Mindlin, the four models.
+void bind_contact(nb::module_& m);
+/// surface/: profiles (read, level, filter), spectral moments, roughness parameters.
+void bind_surface(nb::module_& m);
+
+}  // namespace asperity::python

@@ -1,0 +1,605 @@
+// asperity roughness: roughness parameters of the two joint halves from measured
+// profiles (or given parameters), combined as in Eq. 5.1 (thesis ch. 5-6).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "asperity/contact/material.hpp"
+#include "asperity/core/error.hpp"
+#include "asperity/surface/profile_io.hpp"
+#include "asperity/surface/roughness.hpp"
+#include "commands.hpp"
+#include "common.hpp"
+
+namespace asperity::cli {
+
+namespace dim = core::dim;
+using surface::GaussianFilter;
+using surface::HeightMap;
+using surface::Levelling;
+using surface::SpectralMoments;
+
+namespace {
+
+struct RoughnessOptions {
+  std::vector<std::string> surfaces;  // comma-separated file lists
+  std::vector<std::string> params;    // sigma=..,eta=..,R=..
+  std::string lc = "0.8mm";
+  std::string ls = "20um";
+  std::string filter = "gaussian";
+  std::string level = "line";
+  std::string end = "discard";
+  std::string truncation = "1";
+  std::string rule = "geometric";
+  std::optional<std::string> dx;
+  std::optional<std::string> E, nu, E1, nu1, E2, nu2, H, H1, H2;
+  bool json = false;
+  std::optional<std::string> plot;
+  // Order in which --surface and --params were given (true = --surface).
+  std::vector<bool> order;
+};
+
+struct Scan {
+  std::string file;
+  std::string direction;  // "isotropic", "max_slope", "min_slope", "x", "y"
+  std::size_t points = 0;  // points in the filtered profile (per profile for areal)
+  std::size_t profiles = 1;
+  double dx = 0.0;
+  double length = 0.0;             // of the raw profile
+  double evaluation_length = 0.0;  // of the filtered profile
+  SpectralMoments moments;
+};
+
+struct PlotTrace {
+  std::string label;
+  surface::Profile raw, levelled, filtered;
+  std::vector<double> heights;  // filtered heights of every scan of the surface
+};
+
+struct AnalysedSurface {
+  bool from_files = false;
+  std::vector<std::string> files;
+  std::vector<Scan> scans;
+  SpectralMoments moments;
+  std::optional<HeightMap> areal;  // metadata of an areal file (z cleared)
+  double Sq = 0.0;
+  std::size_t invalid_points = 0;
+  std::optional<PlotTrace> trace;
+};
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  std::istringstream in(s);
+  while (std::getline(in, cur, sep)) out.push_back(cur);
+  if (!s.empty() && s.back() == sep) out.emplace_back();
+  return out;
+}
+
+std::string trim(std::string s) {
+  const auto b = s.find_first_not_of(" \t");
+  const auto e = s.find_last_not_of(" \t");
+  return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+}
+
+// "none" or a length.
+double cutoff(const std::string& text, const std::string& flag) {
+  if (text == "none" || text == "0") return 0.0;
+  const double v = core::parse_quantity(text, dim::length, flag);
+  if (!(v > 0.0)) throw InvalidInput(fmt::format("{} = \"{}\" must be > 0 (or none)", flag, text));
+  return v;
+}
+
+SpectralMoments parse_params(const std::string& text, std::size_t index) {
+  std::optional<double> sigma, eta, R;
+  const std::string flag = fmt::format("--params #{}", index + 1);
+  for (const auto& item : split(text, ',')) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos) {
+      throw InvalidInput(fmt::format("{}: \"{}\" is not key=value (expected sigma=..,eta=..,R=..)",
+                                     flag, item));
+    }
+    const std::string key = trim(item.substr(0, eq));
+    const std::string value = trim(item.substr(eq + 1));
+    if (key == "sigma") {
+      sigma = core::parse_quantity(value, dim::length, flag + " sigma");
+    } else if (key == "eta") {
+      eta = core::parse_quantity(value, dim::inverse_area, flag + " eta");
+    } else if (key == "R") {
+      R = core::parse_quantity(value, dim::length, flag + " R");
+    } else {
+      throw InvalidInput(fmt::format("{}: unknown key \"{}\": use sigma, eta and R", flag, key));
+    }
+  }
+  if (!sigma || !eta || !R) {
+    throw InvalidInput(fmt::format(
+        "{}: give all of sigma, eta and R, e.g. sigma=1.763um,eta=3.34e-4um^-2,R=40.76um", flag));
+  }
+  return SpectralMoments::from_parameters(*sigma, *eta, *R);
+}
+
+struct Settings {
+  Levelling level = Levelling::line;
+  GaussianFilter filter;
+  surface::IsotropicRule rule = surface::IsotropicRule::geometric;
+  surface::TextReadOptions text;
+  bool plot = false;
+};
+
+AnalysedSurface analyse_files(const std::string& list, std::size_t index, const Settings& s) {
+  AnalysedSurface out;
+  out.from_files = true;
+  struct Item {
+    std::string path;
+    std::string tag;  // "", "max", "min"
+  };
+  std::vector<Item> items;
+  for (auto f : split(list, ',')) {
+    f = trim(f);
+    if (f.empty()) {
+      throw InvalidInput(fmt::format("--surface #{}: empty file name in \"{}\"", index + 1, list));
+    }
+    Item it{f, ""};
+    for (const char* tag : {"@max", "@min"}) {
+      const std::string t(tag);
+      if (f.size() > t.size() && f.compare(f.size() - t.size(), t.size(), t) == 0) {
+        it.path = f.substr(0, f.size() - t.size());
+        it.tag = t.substr(1);
+      }
+    }
+    items.push_back(it);
+    out.files.push_back(it.path);
+  }
+  const bool tagged = std::any_of(items.begin(), items.end(), [](const Item& i) { return !i.tag.empty(); });
+  if (tagged && !std::all_of(items.begin(), items.end(), [](const Item& i) { return !i.tag.empty(); })) {
+    throw InvalidInput(fmt::format(
+        "--surface #{}: tag every scan with @max or @min, or none of them", index + 1));
+  }
+
+  std::vector<HeightMap> maps;
+  for (const auto& it : items) maps.push_back(surface::read_height_file(it.path, s.text));
+  const bool any_areal = std::any_of(maps.begin(), maps.end(), [](const HeightMap& m) { return !m.is_profile(); });
+
+  if (any_areal) {
+    if (maps.size() != 1) {
+      throw InvalidInput(fmt::format(
+          "--surface #{}: an areal file must be the only file of its surface (its rows and "
+          "columns give both directions)",
+          index + 1));
+    }
+    const auto& map = maps.front();
+    const auto d = surface::areal_moments(map, s.level, s.filter);
+    const bool x_is_max = d.x.m2 >= d.y.m2;
+    const double len_x = map.dx * static_cast<double>(map.nx - 1);
+    const double len_y = map.dy * static_cast<double>(map.ny - 1);
+    out.scans.push_back({map.source, x_is_max ? "x (max_slope)" : "x (min_slope)", 0, d.x_profiles,
+                         map.dx, len_x, 0.0, d.x});
+    out.scans.push_back({map.source, x_is_max ? "y (min_slope)" : "y (max_slope)", 0, d.y_profiles,
+                         map.dy, len_y, 0.0, d.y});
+    out.moments = x_is_max ? surface::equivalent_isotropic(d.x, d.y, s.rule)
+                           : surface::equivalent_isotropic(d.y, d.x, s.rule);
+    out.Sq = map.rms_height_about_plane();
+    out.invalid_points = map.invalid_count();
+    if (s.plot) {
+      const auto rows = map.rows(s.filter.is_none() ? 3 : s.filter.min_points(map.dx));
+      for (const auto& row : rows) {
+        const auto p = surface::process_profile(row, s.level, s.filter);
+        if (!out.trace) out.trace = PlotTrace{row.source, row, p.levelled, p.filtered, {}};
+        out.trace->heights.insert(out.trace->heights.end(), p.filtered.z.begin(), p.filtered.z.end());
+      }
+    }
+    HeightMap meta = map;
+    meta.z.clear();
+    meta.valid.clear();
+    out.areal = std::move(meta);
+    return out;
+  }
+
+  std::vector<surface::ProcessedProfile> processed;
+  for (std::size_t k = 0; k < maps.size(); ++k) {
+    const auto profile = maps[k].as_profile();
+    if (maps[k].invalid_count() > 0) out.invalid_points += maps[k].invalid_count();
+    auto p = surface::process_profile(profile, s.level, s.filter);
+    Scan scan{profile.source, "isotropic", p.filtered.z.size(), 1, profile.dx, profile.length(),
+              p.filtered.length(), p.moments};
+    if (!out.trace) out.trace = PlotTrace{profile.source, profile, p.levelled, p.filtered, {}};
+    out.trace->heights.insert(out.trace->heights.end(), p.filtered.z.begin(), p.filtered.z.end());
+    out.scans.push_back(scan);
+    processed.push_back(std::move(p));
+  }
+  if (out.scans.size() == 1) {
+    out.moments = out.scans.front().moments;
+    out.scans.front().direction = "isotropic (one scan)";
+  } else if (!tagged) {
+    if (out.scans.size() != 2) {
+      throw InvalidInput(fmt::format(
+          "--surface #{}: {} scans without direction: give two scans (the max- and min-slope "
+          "directions are found from their m2), or tag each file with @max or @min",
+          index + 1, out.scans.size()));
+    }
+    const bool first_is_max = out.scans[0].moments.m2 >= out.scans[1].moments.m2;
+    out.scans[0].direction = first_is_max ? "max_slope" : "min_slope";
+    out.scans[1].direction = first_is_max ? "min_slope" : "max_slope";
+    out.moments = surface::equivalent_isotropic(out.scans[first_is_max ? 0 : 1].moments,
+                                                out.scans[first_is_max ? 1 : 0].moments, s.rule);
+  } else {
+    std::vector<SpectralMoments> mx, mn;
+    std::vector<double> wx, wn;
+    for (std::size_t k = 0; k < items.size(); ++k) {
+      auto& scan = out.scans[k];
+      const bool is_max = items[k].tag == "max";
+      scan.direction = is_max ? "max_slope" : "min_slope";
+      (is_max ? mx : mn).push_back(scan.moments);
+      (is_max ? wx : wn).push_back(static_cast<double>(scan.points));
+    }
+    if (mx.empty() || mn.empty()) {
+      throw InvalidInput(fmt::format("--surface #{}: need at least one @max and one @min scan", index + 1));
+    }
+    out.moments = surface::equivalent_isotropic(surface::average(mx, wx), surface::average(mn, wn), s.rule);
+  }
+  return out;
+}
+
+Json nullable(std::optional<double> v) { return v ? Json(*v) : Json(nullptr); }
+
+std::optional<double> try_sigma_a(const SpectralMoments& m) {
+  try {
+    return m.sigma_a();
+  } catch (const InvalidInput&) {
+    return std::nullopt;
+  }
+}
+
+Json moments_json(const SpectralMoments& m, const std::optional<contact::ContactPair>& pair) {
+  Json j;
+  j["sigma"] = m.sigma();
+  j["eta"] = m.eta();
+  j["R"] = m.R();
+  j["beta"] = m.beta();
+  j["alpha"] = m.alpha();
+  j["m0"] = m.m0;
+  j["m2"] = m.m2;
+  j["m4"] = m.m4;
+  j["sigma_a"] = nullable(try_sigma_a(m));
+  if (pair) j["psi"] = surface::plasticity_index(*pair, m);
+  return j;
+}
+
+Json filter_json(const Settings& s) {
+  Json f;
+  f["lc"] = s.filter.lc > 0.0 ? Json(s.filter.lc) : Json(nullptr);
+  f["ls"] = s.filter.ls > 0.0 ? Json(s.filter.ls) : Json(nullptr);
+  f["type"] = s.filter.is_none() ? "none" : "gaussian (ISO 16610-21)";
+  f["truncation"] = s.filter.truncation;
+  f["end"] = surface::to_string(s.filter.end);
+  f["level"] = surface::to_string(s.level);
+  return f;
+}
+
+std::optional<contact::ContactPair> material_pair(const RoughnessOptions& o) {
+  const bool any = o.E || o.nu || o.E1 || o.nu1 || o.E2 || o.nu2 || o.H || o.H1 || o.H2;
+  if (!any) return std::nullopt;
+  if ((o.E || o.nu) && (o.E1 || o.nu1 || o.E2 || o.nu2)) {
+    throw InvalidInput("give either --E/--nu (both halves alike) or --E1/--nu1/--E2/--nu2");
+  }
+  contact::Material b1, b2;
+  if (o.E || o.nu) {
+    b1.E = b2.E = required_quantity(o.E, dim::pressure, "--E");
+    b1.nu = b2.nu = required_quantity(o.nu, dim::dimensionless, "--nu");
+  } else {
+    b1.E = required_quantity(o.E1, dim::pressure, "--E1");
+    b1.nu = required_quantity(o.nu1, dim::dimensionless, "--nu1");
+    b2.E = required_quantity(o.E2, dim::pressure, "--E2");
+    b2.nu = required_quantity(o.nu2, dim::dimensionless, "--nu2");
+  }
+  if (o.H) {
+    if (o.H1 || o.H2) throw InvalidInput("give either --H (softer material) or --H1/--H2, not both");
+    if (b1.nu != b2.nu) {
+      throw InvalidInput("--H does not say which half is softer and the Poisson's ratios differ: "
+                         "give --H1 and --H2");
+    }
+    b1.H = b2.H = required_quantity(o.H, dim::pressure, "--H");
+  } else {
+    b1.H = quantity(o.H1, dim::pressure, "--H1").value_or(0.0);
+    b2.H = quantity(o.H2, dim::pressure, "--H2").value_or(0.0);
+  }
+  if (b1.H == 0.0 && b2.H == 0.0) {
+    throw InvalidInput("the plasticity index needs the hardness: give --H (or --H1/--H2)");
+  }
+  b1.validate("half 1");
+  b2.validate("half 2");
+  return contact::ContactPair::combine(b1, b2, 1.0);
+}
+
+std::vector<double> decimate_x(const surface::Profile& p, std::size_t stride) {
+  std::vector<double> x;
+  for (std::size_t i = 0; i < p.z.size(); i += stride) x.push_back((p.x0 + static_cast<double>(i) * p.dx) * 1e6);
+  return x;
+}
+std::vector<double> decimate_z(const surface::Profile& p, std::size_t stride) {
+  std::vector<double> z;
+  for (std::size_t i = 0; i < p.z.size(); i += stride) z.push_back(p.z[i] * 1e6);
+  return z;
+}
+
+std::string gp_quote(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+void draw_plot(const std::string& path, const std::vector<AnalysedSurface>& surfaces) {
+  // Top panel: raw, levelled and filtered profile of the first scan of each measured
+  // surface; bottom panel (the PlotSpec itself): histogram of the filtered heights
+  // against the Gaussian of the same rms.
+  std::ostringstream top;
+  top << "set multiplot layout 2,1\n";
+  top << "set title \"Profiles (first scan or row of each surface)\" noenhanced\n";
+  top << "set xlabel \"x [um]\"\nset ylabel \"z [um]\"\n";
+  std::vector<std::pair<std::string, std::pair<std::vector<double>, std::vector<double>>>> lines;
+  PlotSpec hist{.title = "Height distribution of the filtered profiles",
+                .xlabel = "z [um]",
+                .ylabel = "probability density [1/um]"};
+  std::size_t si = 0;
+  for (const auto& s : surfaces) {
+    ++si;
+    if (!s.trace) continue;
+    const auto& t = *s.trace;
+    const std::size_t stride = std::max<std::size_t>(1, t.raw.z.size() / 4000);
+    const std::string tag = fmt::format("surface {}", si);
+    lines.push_back({tag + " raw", {decimate_x(t.raw, stride), decimate_z(t.raw, stride)}});
+    lines.push_back({tag + " levelled", {decimate_x(t.levelled, stride), decimate_z(t.levelled, stride)}});
+    lines.push_back({tag + " filtered", {decimate_x(t.filtered, stride), decimate_z(t.filtered, stride)}});
+    // Histogram of the filtered heights of all scans (all rows of an areal map).
+    const auto& z = t.heights;
+    double mean = 0, ms = 0, lo = z.front(), hi = z.front();
+    for (double v : z) {
+      mean += v;
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+    mean /= static_cast<double>(z.size());
+    for (double v : z) ms += (v - mean) * (v - mean);
+    const double sd = std::sqrt(ms / static_cast<double>(z.size()));
+    const std::size_t bins = std::clamp<std::size_t>(z.size() / 50, 10, 60);
+    const double w = (hi - lo) / static_cast<double>(bins);
+    if (!(w > 0.0)) continue;
+    std::vector<double> count(bins, 0.0);
+    for (double v : z) {
+      auto b = static_cast<std::size_t>((v - lo) / w);
+      count[std::min(b, bins - 1)] += 1.0;
+    }
+    Series h{.title = tag + " filtered heights", .style = "steps"};
+    Series g{.title = tag + " Gaussian, same rms"};
+    for (std::size_t b = 0; b < bins; ++b) {
+      h.x.push_back((lo + w * static_cast<double>(b)) * 1e6);
+      h.y.push_back(count[b] / (static_cast<double>(z.size()) * w * 1e6));
+    }
+    h.x.push_back(hi * 1e6);
+    h.y.push_back(h.y.back());
+    for (int k = 0; k <= 100; ++k) {
+      const double v = lo + (hi - lo) * k / 100.0;
+      const double u = (v - mean) / sd;
+      g.x.push_back(v * 1e6);
+      g.y.push_back(std::exp(-0.5 * u * u) / (sd * 1e6 * std::sqrt(2 * std::numbers::pi)));
+    }
+    hist.series.push_back(std::move(h));
+    hist.series.push_back(std::move(g));
+  }
+  if (lines.empty()) {
+    throw InvalidInput("--plot needs at least one surface given by profile files (not --params)");
+  }
+  top << "plot ";
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    top << (i ? ", " : "") << "'-' using 1:2 with lines lw 1.5 title " << gp_quote(lines[i].first);
+  }
+  top << "\n";
+  for (const auto& l : lines) {
+    for (std::size_t j = 0; j < l.second.first.size(); ++j) {
+      top << fmt::format("{:.10g} {:.10g}\n", l.second.first[j], l.second.second[j]);
+    }
+    top << "e\n";
+  }
+  top << "set title " << gp_quote(hist.title) << " noenhanced\n";
+  top << "set xlabel " << gp_quote(hist.xlabel) << "\nset ylabel " << gp_quote(hist.ylabel) << "\n";
+  hist.extra = top.str();
+  plot_png(path, hist);
+}
+
+void run_roughness(const RoughnessOptions& o, std::string& out) {
+  Settings s;
+  s.level = surface::parse_levelling(o.level, "--level");
+  s.rule = surface::parse_isotropic_rule(o.rule, "--rule");
+  if (o.filter == "none") {
+    s.filter = GaussianFilter::none();
+  } else if (o.filter == "gaussian") {
+    s.filter.lc = cutoff(o.lc, "--lc");
+    s.filter.ls = cutoff(o.ls, "--ls");
+    s.filter.end = surface::parse_end_effects(o.end, "--end");
+    s.filter.truncation = core::parse_quantity(o.truncation, dim::dimensionless, "--truncation");
+  } else {
+    throw InvalidInput(fmt::format("--filter = \"{}\" is not allowed: use gaussian or none", o.filter));
+  }
+  s.filter.validate();
+  if (o.dx) {
+    s.text.dx = core::parse_quantity(*o.dx, dim::length, "--dx");
+    if (!(*s.text.dx > 0.0)) throw InvalidInput(fmt::format("--dx = \"{}\" must be > 0", *o.dx));
+  }
+  const auto pair = material_pair(o);
+  s.plot = o.plot.has_value();
+
+  const std::size_t n = o.surfaces.size() + o.params.size();
+  if (n == 0) {
+    throw InvalidInput("give the surfaces: --surface FILE[,FILE...] or --params sigma=..,eta=..,R=.. "
+                       "(once per joint half)");
+  }
+  if (n > 2) throw InvalidInput(fmt::format("{} surfaces given: a joint has one or two halves", n));
+  std::vector<AnalysedSurface> surfaces;
+  std::size_t next_file = 0, next_param = 0;
+  for (bool is_file : o.order) {
+    if (is_file) {
+      surfaces.push_back(analyse_files(o.surfaces[next_file++], surfaces.size(), s));
+    } else {
+      AnalysedSurface a;
+      a.moments = parse_params(o.params[next_param++], surfaces.size());
+      surfaces.push_back(std::move(a));
+    }
+  }
+  for (std::size_t k = 0; k < surfaces.size(); ++k) surfaces[k].moments.validate(fmt::format("surface {}", k + 1));
+  SpectralMoments combined = surfaces.front().moments;
+  for (std::size_t k = 1; k < surfaces.size(); ++k) combined = surface::combine(combined, surfaces[k].moments);
+  const bool any_files = std::any_of(surfaces.begin(), surfaces.end(), [](const auto& a) { return a.from_files; });
+
+  if (o.json) {
+    Json j;
+    Json arr = Json::array();
+    for (const auto& a : surfaces) {
+      Json js;
+      js["source"] = a.from_files ? "files" : "params";
+      if (a.from_files) js["files"] = a.files;
+      Json mj = moments_json(a.moments, pair);
+      for (auto it = mj.begin(); it != mj.end(); ++it) js[it.key()] = it.value();
+      js["filter"] = a.from_files ? filter_json(s) : Json(nullptr);
+      if (a.from_files) {
+        js["rule"] = a.scans.size() > 1 ? Json(surface::to_string(s.rule)) : Json(nullptr);
+        Json scans = Json::array();
+        for (const auto& sc : a.scans) {
+          Json x;
+          x["file"] = sc.file;
+          x["direction"] = sc.direction;
+          x["profiles"] = sc.profiles;
+          if (sc.profiles == 1) x["points"] = sc.points;
+          x["dx"] = sc.dx;
+          x["length"] = sc.length;
+          if (sc.profiles == 1) x["evaluation_length"] = sc.evaluation_length;
+          x["m0"] = sc.moments.m0;
+          x["m2"] = sc.moments.m2;
+          x["m4"] = sc.moments.m4;
+          scans.push_back(x);
+        }
+        js["scans"] = scans;
+        js["invalid_points"] = a.invalid_points;
+      }
+      if (a.areal) {
+        js["size"] = {{"nx", a.areal->nx},
+                      {"ny", a.areal->ny},
+                      {"x", a.areal->dx * static_cast<double>(a.areal->nx - 1)},
+                      {"y", a.areal->dy * static_cast<double>(a.areal->ny - 1)}};
+        js["spacing"] = {{"dx", a.areal->dx}, {"dy", a.areal->dy}};
+        js["Sq"] = a.Sq;
+      }
+      arr.push_back(js);
+    }
+    j["surfaces"] = arr;
+    Json c = moments_json(combined, pair);
+    c["filter"] = any_files ? filter_json(s) : Json(nullptr);
+    j["combined"] = c;
+    if (pair) {
+      j["material"] = {{"E_star", pair->E_star}, {"H", pair->H}, {"nu", pair->nu}, {"K", pair->K()}};
+    }
+    out += j.dump(2) + "\n";
+  } else {
+    if (any_files) {
+      out += s.filter.is_none()
+                 ? fmt::format("filter: none; levelling: {}\n", surface::to_string(s.level))
+                 : fmt::format("filter: ISO 16610-21 Gaussian, lc = {}, ls = {} (ct = {:.3g}, ends: {}); "
+                               "levelling: {}; anisotropy rule: {}\n",
+                               s.filter.lc > 0 ? fmt::format("{:.4g} mm", s.filter.lc * 1e3) : "none",
+                               s.filter.ls > 0 ? fmt::format("{:.4g} um", s.filter.ls * 1e6) : "none",
+                               s.filter.truncation, surface::to_string(s.filter.end),
+                               surface::to_string(s.level), surface::to_string(s.rule));
+    }
+    out += fmt::format("{:<12}{:>11}{:>14}{:>11}{:>8}{:>8}{:>13}{}\n", "surface", "sigma[um]",
+                       "eta[um^-2]", "R[um]", "beta", "alpha", "sigma_a[um]", pair ? "      psi" : "");
+    auto row = [&](const std::string& name, const SpectralMoments& m) {
+      const auto sa = try_sigma_a(m);
+      out += fmt::format("{:<12}{:>11.4f}{:>14.4e}{:>11.4f}{:>8.4f}{:>8.3f}{:>13}{}\n", name,
+                         m.sigma() * 1e6, m.eta() * 1e-12, m.R() * 1e6, m.beta(), m.alpha(),
+                         sa ? fmt::format("{:.4f}", *sa * 1e6) : "-",
+                         pair ? fmt::format("{:>9.4f}", surface::plasticity_index(*pair, m)) : "");
+    };
+    for (std::size_t k = 0; k < surfaces.size(); ++k) row(fmt::format("{}", k + 1), surfaces[k].moments);
+    row("combined", combined);
+    for (std::size_t k = 0; k < surfaces.size(); ++k) {
+      for (const auto& sc : surfaces[k].scans) {
+        out += fmt::format("  surface {} scan {} [{}]: m0 = {:.4g} m^2, m2 = {:.4g}, m4 = {:.4g} m^-2\n",
+                           k + 1, sc.file, sc.direction, sc.moments.m0, sc.moments.m2, sc.moments.m4);
+      }
+      if (surfaces[k].areal) {
+        const auto& a = *surfaces[k].areal;
+        out += fmt::format("  surface {}: areal {} x {} points, dx = {:.4g} um, dy = {:.4g} um, "
+                           "Sq = {:.4g} um\n",
+                           k + 1, a.nx, a.ny, a.dx * 1e6, a.dy * 1e6, surfaces[k].Sq * 1e6);
+      }
+    }
+  }
+  if (o.plot) draw_plot(*o.plot, surfaces);
+}
+
+}  // namespace
+
+void add_roughness_command(CLI::App& app, std::function<int()>& action) {
+  auto o = std::make_shared<RoughnessOptions>();
+  auto* cmd = app.add_subcommand(
+      "roughness",
+      "Roughness parameters (sigma, eta, R, beta, alpha, spectral moments) of one or two joint "
+      "halves from measured profiles (CSV/text or ISO 5436-2 X3P) or given parameters, combined "
+      "as in thesis Eq. 5.1. Example: asperity roughness --surface a_max.csv,a_min.csv "
+      "--surface b.x3p --json");
+  auto* surf = cmd->add_option(
+      "--surface", o->surfaces,
+      "profile files of one half, comma-separated: one scan (isotropic), two scans (max- and "
+      "min-slope directions found from m2), or scans tagged FILE@max / FILE@min (averaged per "
+      "direction); or one areal X3P file (rows and columns give the two directions). Repeat for "
+      "the second half.");
+  auto* par = cmd->add_option("--params", o->params,
+                              "parameters of one half instead of files: "
+                              "sigma=1.763um,eta=3.34e-4um^-2,R=40.76um (repeatable)");
+  surf->delimiter('\0');
+  par->delimiter('\0');
+  cmd->add_option("--lc", o->lc, "long-wave cut-off (default 0.8mm; none to skip)");
+  cmd->add_option("--ls", o->ls, "short-wave cut-off (default 20um; none to skip)");
+  cmd->add_option("--filter", o->filter, "gaussian (ISO 16610-21, default) or none");
+  cmd->add_option("--level", o->level, "form removal before filtering: none, mean or line (default)");
+  cmd->add_option("--end", o->end,
+                  "filter end effects: discard (default, drop ct*cut-off at each end) or regression "
+                  "(keep every point; Gaussian regression near the ends)");
+  cmd->add_option("--truncation", o->truncation,
+                  "ct: Gaussian weights kept within +-ct*cut-off, in [0.5, 3] (default 1)");
+  cmd->add_option("--rule", o->rule,
+                  "m2, m4 of the equivalent isotropic surface from max/min-slope scans: geometric "
+                  "(McCool, default) or arithmetic mean; m0 is always the arithmetic mean");
+  cmd->add_option("--dx", o->dx, "sampling interval of single-column (z only) text files, e.g. 0.5um");
+  cmd->add_option("--E", o->E, "Young's modulus of both halves (for the plasticity index psi)");
+  cmd->add_option("--nu", o->nu, "Poisson's ratio of both halves");
+  cmd->add_option("--E1", o->E1, "Young's modulus of half 1");
+  cmd->add_option("--nu1", o->nu1, "Poisson's ratio of half 1");
+  cmd->add_option("--E2", o->E2, "Young's modulus of half 2");
+  cmd->add_option("--nu2", o->nu2, "Poisson's ratio of half 2");
+  cmd->add_option("--H", o->H, "hardness of the softer half (e.g. 5.8GPa)");
+  cmd->add_option("--H1", o->H1, "hardness of half 1");
+  cmd->add_option("--H2", o->H2, "hardness of half 2");
+  cmd->add_flag("--json", o->json,
+                "print JSON (SI units): surfaces[] and combined, each with sigma, eta, R, beta, "
+                "alpha, m0, m2, m4, sigma_a (psi with a material), filter {lc, ls}");
+  cmd->add_option("--plot", o->plot,
+                  "draw the raw, levelled and filtered profiles and the height histogram against "
+                  "the Gaussian into this PNG file");
+  cmd->callback([o, cmd, surf, par, &action] {
+    o->order.clear();
+    for (const auto* opt : cmd->parse_order()) {
+      if (opt == surf) o->order.push_back(true);
+      if (opt == par) o->order.push_back(false);
+    }
+    action = [o] { return run_guarded([o](std::string& out) { run_roughness(*o, out); }); };
+  });
+}
+
+}  // namespace asperity::cli

@@ -1,0 +1,216 @@
+#include "asperity/hysteresis/masing.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "asperity/core/error.hpp"
+#include "asperity/core/numerics.hpp"
+#include "asperity/core/validate.hpp"
+
+namespace asperity::hysteresis {
+
+namespace {
+
+double odd_force(const Backbone& b, double x) { return std::copysign(b.force(std::abs(x)), x); }
+
+int sign_of(double v) { return (v > 0.0) - (v < 0.0); }
+
+}  // namespace
+
+double Backbone::integral(double x) const {
+  core::require_non_negative("x", x);
+  return core::integrate([this](double s) { return force(s); }, 0.0, x, 1e-13, 20,
+                         "backbone integral")
+      .value;
+}
+
+double energy_per_cycle(const Backbone& backbone, double x_max) {
+  core::require_non_negative("displacement amplitude", x_max);
+  const double w = 8.0 * backbone.integral(x_max) - 4.0 * x_max * backbone.force(x_max);
+  // W >= 0 for any non-decreasing backbone; clip only round-off of order eps * scale.
+  const double scale = 4.0 * x_max * backbone.force(x_max);
+  if (w < 0.0 && w > -1e-12 * scale) return 0.0;
+  return w;
+}
+
+Hysteresis::Hysteresis(std::shared_ptr<const Backbone> backbone, MemoryRule rule)
+    : backbone_(std::move(backbone)), rule_(rule) {
+  if (!backbone_) throw InvalidInput("Hysteresis needs a backbone");
+  stack_.reserve(64);
+  dirs_.reserve(64);
+}
+
+void Hysteresis::reset() {
+  stack_.clear();
+  dirs_.clear();
+  x_ = 0.0;
+  Q_ = 0.0;
+  direction_ = 0;
+}
+
+int Hysteresis::branch_direction(std::size_t k) const { return k == 0 ? 0 : dirs_[k - 1]; }
+
+std::size_t Hysteresis::active_branch(double x) const {
+  std::size_t k = stack_.size();
+  while (k >= 1) {
+    const ReversalPoint& r = stack_[k - 1];
+    const int d = dirs_[k - 1];
+    if ((x - r.x) * d < 0.0) {  // moving against branch k: that reversal never happened
+      --k;
+      continue;
+    }
+    if (rule_ == MemoryRule::masing) {
+      const double target = k >= 2 ? stack_[k - 2].x : -stack_[0].x;
+      if ((x - target) * d >= 0.0) {  // the inner loop closes: continue on the older branch
+        k = k >= 2 ? k - 2 : 0;
+        continue;
+      }
+    }
+    break;
+  }
+  return k;
+}
+
+std::size_t Hysteresis::active_branch_force(double Q) const {
+  std::size_t k = stack_.size();
+  while (k >= 1) {
+    const ReversalPoint& r = stack_[k - 1];
+    const int d = dirs_[k - 1];
+    if ((Q - r.Q) * d < 0.0) {
+      --k;
+      continue;
+    }
+    if (rule_ == MemoryRule::masing) {
+      const double target = k >= 2 ? stack_[k - 2].Q : -stack_[0].Q;
+      if ((Q - target) * d >= 0.0) {
+        k = k >= 2 ? k - 2 : 0;
+        continue;
+      }
+    }
+    break;
+  }
+  return k;
+}
+
+double Hysteresis::branch_force(std::size_t k, double x) const {
+  if (k == 0) return odd_force(*backbone_, x);
+  const ReversalPoint& r = stack_[k - 1];
+  return r.Q + dirs_[k - 1] * 2.0 * backbone_->force(std::abs(x - r.x) * 0.5);
+}
+
+double Hysteresis::branch_displacement(std::size_t k, double Q) const {
+  const double limit = backbone_->limit();
+  if (k == 0) {
+    if (std::abs(Q) >= limit) {
+      throw InvalidInput(fmt::format(
+          "tangential force {} reaches the static friction limit {}: the contact slides "
+          "(gross slip has no finite displacement under force control)",
+          core::format_value(Q), core::format_value(limit)));
+    }
+    return std::copysign(backbone_->displacement(std::abs(Q)), Q);
+  }
+  const ReversalPoint& r = stack_[k - 1];
+  const double half = std::abs(Q - r.Q) * 0.5;
+  if (half >= limit) {
+    throw InvalidInput(fmt::format(
+        "tangential force {} is beyond the static friction limit {} on this branch: the contact "
+        "slides (gross slip has no finite displacement under force control)",
+        core::format_value(Q), core::format_value(limit)));
+  }
+  return r.x + dirs_[k - 1] * 2.0 * backbone_->displacement(half);
+}
+
+double Hysteresis::force(double x) const { return branch_force(active_branch(x), x); }
+
+double Hysteresis::tangent_stiffness(double x) const {
+  const std::size_t k = active_branch(x);
+  const double h = 1e-7 * std::max(1e-300, std::abs(x) + (k ? std::abs(stack_[k - 1].x) : 0.0));
+  // One-sided in the direction of motion keeps the difference on the active branch.
+  const int d = k ? dirs_[k - 1] : (x >= 0.0 ? 1 : -1);
+  const double x0 = x - d * h;
+  if (k == 0 || (x0 - stack_[k - 1].x) * d >= 0.0) {
+    return (branch_force(k, x) - branch_force(k, x0)) / (x - x0);
+  }
+  // Right at the reversal: the tangent of the fresh branch is the backbone's initial one.
+  return backbone_->initial_stiffness();
+}
+
+void Hysteresis::move_to(std::size_t k, double x, double Q) {
+  stack_.resize(k);
+  dirs_.resize(k);
+  x_ = x;
+  Q_ = Q;
+}
+
+void Hysteresis::commit_reversal(double x) {
+  const std::size_t k = active_branch(x);
+  const double Q = branch_force(k, x);
+  move_to(k, x, Q);
+  const int current = k ? dirs_[k - 1] : (direction_ != 0 ? direction_ : sign_of(x));
+  if (current == 0) return;  // a reversal at the origin before any motion: nothing to remember
+  if (rule_ == MemoryRule::reset_at_reversal) {
+    // Eq. 7.10: u_max reset to the displacement at the reversal; the branch starts from
+    // the backbone value there, Q_l(u_max), whatever the force was.
+    stack_.clear();
+    dirs_.clear();
+    stack_.push_back({x, odd_force(*backbone_, x)});
+  } else {
+    stack_.push_back({x, Q});
+  }
+  dirs_.push_back(-current);
+  direction_ = -current;
+  Q_ = stack_.back().Q;
+}
+
+double Hysteresis::update(double x) {
+  core::require_finite("displacement", x);
+  const int d = sign_of(x - x_);
+  if (d == 0) return Q_;
+  if (direction_ != 0 && d != direction_) commit_reversal(x_);
+  direction_ = d;
+  const std::size_t k = active_branch(x);
+  const double Q = branch_force(k, x);
+  move_to(k, x, Q);
+  return Q;
+}
+
+double Hysteresis::update_force(double Q) {
+  core::require_finite("force", Q);
+  const int d = sign_of(Q - Q_);
+  if (d == 0) return x_;
+  if (direction_ != 0 && d != direction_) {
+    // Reversal in force at the current point.
+    const std::size_t k0 = stack_.size();
+    const int current = k0 ? dirs_[k0 - 1] : direction_;
+    if (rule_ == MemoryRule::reset_at_reversal) {
+      stack_.clear();
+      dirs_.clear();
+    }
+    stack_.push_back({x_, Q_});
+    dirs_.push_back(-current);
+  }
+  direction_ = d;
+  const std::size_t k = active_branch_force(Q);
+  const double x = branch_displacement(k, Q);
+  move_to(k, x, Q);
+  return x;
+}
+
+std::vector<double> Hysteresis::forces(std::span<const double> x_history) const {
+  Hysteresis h = *this;
+  std::vector<double> out;
+  out.reserve(x_history.size());
+  for (double x : x_history) out.push_back(h.update(x));
+  return out;
+}
+
+std::vector<double> Hysteresis::displacements(std::span<const double> Q_history) const {
+  Hysteresis h = *this;
+  std::vector<double> out;
+  out.reserve(Q_history.size());
+  for (double Q : Q_history) out.push_back(h.update_force(Q));
+  return out;
+}
+
+}  // namespace asperity::hysteresis

@@ -1,0 +1,408 @@
+// Delimited-text profile reader (CSV and vendor exports such as Bruker Dektak).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "asperity/core/error.hpp"
+#include "asperity/core/units.hpp"
+#include "asperity/surface/profile_io.hpp"
+
+namespace asperity::surface {
+namespace {
+
+struct Line {
+  std::size_t number = 0;  // 1-based
+  std::string_view text;
+};
+
+std::vector<Line> split_lines(std::string_view s) {
+  std::vector<Line> lines;
+  std::size_t start = 0, number = 1;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '\n' || s[i] == '\r') {
+      lines.push_back({number++, s.substr(start, i - start)});
+      if (s[i] == '\r' && i + 1 < s.size() && s[i + 1] == '\n') ++i;
+      start = i + 1;
+    }
+  }
+  if (start < s.size()) lines.push_back({number, s.substr(start)});
+  return lines;
+}
+
+std::string_view trim(std::string_view s) {
+  const auto is_space = [](char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v'; };
+  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+// Splits a line at its delimiter: ',' if present, else ';', else tab, else blanks.
+// Trailing empty fields are dropped.
+std::vector<std::string_view> split_fields(std::string_view line) {
+  std::vector<std::string_view> fields;
+  char delim = 0;
+  if (line.find(',') != std::string_view::npos) {
+    delim = ',';
+  } else if (line.find(';') != std::string_view::npos) {
+    delim = ';';
+  } else if (line.find('\t') != std::string_view::npos) {
+    delim = '\t';
+  }
+  if (delim) {
+    std::size_t start = 0;
+    while (true) {
+      const auto pos = line.find(delim, start);
+      fields.push_back(trim(line.substr(start, pos == std::string_view::npos ? pos : pos - start)));
+      if (pos == std::string_view::npos) break;
+      start = pos + 1;
+    }
+  } else {
+    std::size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+      const std::size_t start = i;
+      while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+      if (i > start) fields.push_back(line.substr(start, i - start));
+    }
+  }
+  while (!fields.empty() && fields.back().empty()) fields.pop_back();
+  return fields;
+}
+
+// A number filling the whole field (NaN and infinities parse, and are refused later
+// with the line number).
+bool parse_number(std::string_view f, double& v) {
+  if (f.empty()) return false;
+  const char* first = f.data();
+  const char* last = f.data() + f.size();
+  if (*first == '+') ++first;
+  if (first == last) return false;
+  const auto [ptr, ec] = std::from_chars(first, last, v);
+  return ec == std::errc() && ptr == last;
+}
+
+bool numeric_line(std::string_view text, std::vector<double>* values = nullptr) {
+  const auto fields = split_fields(text);
+  if (fields.empty()) return false;
+  if (values) values->clear();
+  for (auto f : fields) {
+    double v = 0;
+    if (!parse_number(f, v)) return false;
+    if (values) values->push_back(v);
+  }
+  return true;
+}
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  std::transform(out.begin(), out.end(), out.begin(),
+                 [](unsigned char c) { return static_cast<char>(c >= 'A' && c <= 'Z' ? c + 32 : c); });
+  return out;
+}
+
+// SI factor of a length unit written in a header, or NaN if it is not one.
+double length_unit_factor(std::string_view unit_text) {
+  std::string u(trim(unit_text));
+  // Latin-1 micro sign (0xB5 not preceded by 0xC2) -> u.
+  std::string fixed;
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    const auto c = static_cast<unsigned char>(u[i]);
+    if (c == 0xC2 && i + 1 < u.size() && static_cast<unsigned char>(u[i + 1]) == 0xB5) {
+      fixed += 'u';
+      ++i;
+    } else if (c == 0xCE && i + 1 < u.size() && static_cast<unsigned char>(u[i + 1]) == 0xBC) {
+      fixed += 'u';
+      ++i;
+    } else if (c == 0xB5) {
+      fixed += 'u';
+    } else {
+      fixed += u[i];
+    }
+  }
+  const std::string l = lower(fixed);
+  struct Word {
+    const char* word;
+    double factor;
+  };
+  static constexpr Word kWords[] = {
+      {"micrometer", 1e-6}, {"micrometers", 1e-6}, {"micrometre", 1e-6}, {"micrometres", 1e-6},
+      {"micron", 1e-6},     {"microns", 1e-6},     {"millimeter", 1e-3}, {"millimeters", 1e-3},
+      {"millimetre", 1e-3}, {"millimetres", 1e-3}, {"nanometer", 1e-9},  {"nanometers", 1e-9},
+      {"nanometre", 1e-9},  {"nanometres", 1e-9},  {"meter", 1.0},       {"meters", 1.0},
+      {"metre", 1.0},       {"metres", 1.0},       {"angstrom", 1e-10},  {"angstroms", 1e-10},
+      {"a", 1e-10},
+  };
+  for (const auto& w : kWords) {
+    if (l == w.word) return w.factor;
+  }
+  if (fixed.empty() || fixed.size() > 8) return std::numeric_limits<double>::quiet_NaN();
+  try {
+    return core::parse_quantity("1 " + fixed, core::dim::length, "unit");
+  } catch (const InvalidInput&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+struct Column {
+  std::string name;  // lower case
+  double factor = std::numeric_limits<double>::quiet_NaN();
+};
+
+// "x[mm]", "x (mm)", "x_um", "Lateral um", "z" -> name and unit factor (NaN if none).
+Column parse_column_header(std::string_view field) {
+  field = trim(field);
+  Column c;
+  auto take = [&](std::size_t name_end, std::string_view unit) {
+    c.name = lower(trim(field.substr(0, name_end)));
+    c.factor = length_unit_factor(unit);
+  };
+  for (auto [open, close] : {std::pair{'[', ']'}, std::pair{'(', ')'}}) {
+    const auto o = field.rfind(open);
+    if (o != std::string_view::npos && !field.empty() && field.back() == close && o + 1 < field.size()) {
+      take(o, field.substr(o + 1, field.size() - o - 2));
+      return c;
+    }
+  }
+  for (char sep : {' ', '_', '/'}) {
+    const auto p = field.rfind(sep);
+    if (p != std::string_view::npos && p > 0) {
+      const double f = length_unit_factor(field.substr(p + 1));
+      if (std::isfinite(f)) {
+        c.name = lower(trim(field.substr(0, p)));
+        c.factor = f;
+        return c;
+      }
+    }
+  }
+  c.name = lower(field);
+  return c;
+}
+
+bool starts_with_any(const std::string& s, std::initializer_list<const char*> prefixes) {
+  for (const char* p : prefixes) {
+    if (s.rfind(p, 0) == 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+Profile parse_profile_text(std::string_view content, std::string_view source,
+                           const TextReadOptions& options) {
+  if (content.size() >= 3 && content.substr(0, 3) == "\xEF\xBB\xBF") content.remove_prefix(3);
+  if (content.find('\0') != std::string_view::npos) {
+    throw InvalidInput(fmt::format("{}: this is not a text profile (it contains NUL bytes)", source));
+  }
+  const auto lines = split_lines(content);
+  // The data block: the longest run of consecutive numeric lines.
+  std::size_t best_start = 0, best_len = 0;
+  for (std::size_t i = 0; i < lines.size();) {
+    if (!numeric_line(lines[i].text)) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < lines.size() && numeric_line(lines[j].text)) ++j;
+    if (j - i > best_len) {
+      best_len = j - i;
+      best_start = i;
+    }
+    i = j;
+  }
+  if (best_len == 0) {
+    throw InvalidInput(fmt::format("{}: no data: expected lines of numbers (x and z, or z)", source));
+  }
+  // A line after the block that starts with a number is a malformed data line.
+  for (std::size_t k = best_start + best_len; k < lines.size(); ++k) {
+    const auto fields = split_fields(lines[k].text);
+    if (fields.empty()) continue;
+    double v = 0;
+    if (parse_number(fields.front(), v)) {
+      throw InvalidInput(fmt::format("{}: line {}: expected only numbers, got \"{}\"", source,
+                                     lines[k].number, trim(lines[k].text)));
+    }
+    break;
+  }
+  std::vector<double> values;
+  numeric_line(lines[best_start].text, &values);
+  const std::size_t ncol = values.size();
+
+  // Columns from the header line just above the block.
+  std::vector<Column> columns(ncol);
+  bool have_header = false;
+  std::size_t header_line = 0;
+  if (best_start > 0) {
+    const auto fields = split_fields(lines[best_start - 1].text);
+    header_line = lines[best_start - 1].number;
+    if (!fields.empty()) {
+      if (fields.size() != ncol) {
+        throw InvalidInput(fmt::format("{}: line {}: the header names {} columns but the data has {}",
+                                       source, header_line, fields.size(), ncol));
+      }
+      have_header = true;
+      for (std::size_t c = 0; c < ncol; ++c) columns[c] = parse_column_header(fields[c]);
+    }
+  }
+  std::size_t xcol = ncol, zcol = ncol;
+  if (ncol == 1) {
+    zcol = 0;
+  } else if (ncol == 2) {
+    xcol = 0;
+    zcol = 1;
+  } else {
+    for (std::size_t c = 0; c < ncol; ++c) {
+      const auto& n = columns[c].name;
+      if (starts_with_any(n, {"x", "lateral", "position", "distance"}) && xcol == ncol) xcol = c;
+      if (starts_with_any(n, {"z", "height", "raw", "profile"}) && zcol == ncol) zcol = c;
+    }
+    if (!have_header || xcol == ncol || zcol == ncol) {
+      throw InvalidInput(fmt::format(
+          "{}: {} columns of data: expected 1 (z) or 2 (x, z), or a header naming the x and z "
+          "columns",
+          source, ncol));
+    }
+  }
+  auto unit_of = [&](std::size_t c, const char* role) {
+    if (!have_header) {
+      throw InvalidInput(fmt::format(
+          "{}: no header line naming the units above the data (line {}): write one such as "
+          "\"x[mm],z[um]\" or \"z[um]\"",
+          source, lines[best_start].number));
+    }
+    if (!std::isfinite(columns[c].factor)) {
+      throw InvalidInput(fmt::format(
+          "{}: line {}: column {} (\"{}\", the {} column) has no known length unit: write it "
+          "like {}[um] or {}_mm (m, mm, um, nm, Micrometer, ...)",
+          source, header_line, c + 1, columns[c].name, role, role, role));
+    }
+    return columns[c].factor;
+  };
+  const double zf = unit_of(zcol, "z");
+  const double xf = xcol < ncol ? unit_of(xcol, "x") : 1.0;
+
+  Profile p;
+  p.source = std::string(source);
+  p.z.reserve(best_len);
+  std::vector<double> x;
+  if (xcol < ncol) x.reserve(best_len);
+  for (std::size_t k = best_start; k < best_start + best_len; ++k) {
+    numeric_line(lines[k].text, &values);
+    if (values.size() != ncol) {
+      throw InvalidInput(fmt::format("{}: line {}: expected {} numbers, got {}", source,
+                                     lines[k].number, ncol, values.size()));
+    }
+    for (std::size_t c = 0; c < ncol; ++c) {
+      if (!std::isfinite(values[c])) {
+        throw InvalidInput(fmt::format("{}: line {}: column {} is {}, not a finite number",
+                                       source, lines[k].number, c + 1, values[c]));
+      }
+    }
+    p.z.push_back(values[zcol] * zf);
+    if (xcol < ncol) x.push_back(values[xcol] * xf);
+  }
+  if (p.z.size() < 2) {
+    throw InvalidInput(fmt::format("{}: only {} data point: a profile needs at least 2", source,
+                                   p.z.size()));
+  }
+  if (xcol < ncol) {
+    if (options.dx) {
+      throw InvalidInput(fmt::format("{}: the file has an x column, so --dx must not be given", source));
+    }
+    const std::size_t n = x.size();
+    // The uniform grid x = x0 + i dx by least squares (robust to the rounding of the
+    // first and last x in exports that print few decimals).
+    double a = 0, b = 0;
+    {
+      const double c = 0.5 * static_cast<double>(n - 1);
+      double sxx = 0, sxy = 0, my = 0;
+      for (double v : x) my += v;
+      my /= static_cast<double>(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const double u = static_cast<double>(i) - c;
+        sxx += u * u;
+        sxy += u * (x[i] - my);
+      }
+      b = sxy / sxx;
+      a = my - b * c;
+    }
+    const double dx = b;
+    for (std::size_t i = 1; i < n; ++i) {
+      if (!(x[i] > x[i - 1])) {
+        throw InvalidInput(fmt::format("{}: line {}: x = {:.9g} m does not increase (previous {:.9g} m): "
+                                       "x must increase with a uniform step",
+                                       source, lines[best_start + i].number, x[i], x[i - 1]));
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const double expected = a + dx * static_cast<double>(i);
+      const double step = i > 0 ? x[i] - x[i - 1] : 0.0;
+      if (std::abs(x[i] - expected) > 0.5 * dx || step > 1.5 * dx) {
+        throw InvalidInput(fmt::format(
+            "{}: line {}: x is not uniformly spaced: x = {:.9g} m, the uniform grid (dx = {:.6g} "
+            "m fitted to all points) expects {:.9g} m",
+            source, lines[best_start + i].number, x[i], dx, expected));
+      }
+    }
+    p.dx = dx;
+    p.x0 = a;
+  } else {
+    if (!options.dx) {
+      throw InvalidInput(fmt::format(
+          "{}: a single height column has no x: give the sampling interval (--dx, e.g. 0.5um)",
+          source));
+    }
+    p.dx = *options.dx;
+    if (!std::isfinite(p.dx) || p.dx <= 0.0) {
+      throw InvalidInput(fmt::format("{}: dx = {:.6g} m must be > 0", source, p.dx));
+    }
+  }
+  p.validate();
+  return p;
+}
+
+std::string read_file_bytes(const std::string& path, std::size_t max_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidInput(fmt::format("{}: cannot open the file (does it exist?)", path));
+  in.seekg(0, std::ios::end);
+  const auto size = in.tellg();
+  if (size < 0) throw InvalidInput(fmt::format("{}: cannot read the file", path));
+  if (static_cast<std::size_t>(size) > max_bytes) {
+    throw InvalidInput(fmt::format("{}: the file is {} bytes, more than the {} allowed", path,
+                                   static_cast<std::size_t>(size), max_bytes));
+  }
+  in.seekg(0, std::ios::beg);
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  in.read(bytes.data(), size);
+  if (!in) throw InvalidInput(fmt::format("{}: reading the file failed", path));
+  return bytes;
+}
+
+Profile read_profile_text(const std::string& path, const TextReadOptions& options) {
+  const auto bytes = read_file_bytes(path);
+  if (bytes.empty()) throw InvalidInput(fmt::format("{}: the file is empty", path));
+  return parse_profile_text(bytes, path, options);
+}
+
+HeightMap read_height_file(const std::string& path, const TextReadOptions& options) {
+  const auto bytes = read_file_bytes(path);
+  if (bytes.empty()) throw InvalidInput(fmt::format("{}: the file is empty", path));
+  if (bytes.size() >= 4 && bytes.substr(0, 4) == std::string_view("PK\x03\x04", 4)) {
+    return parse_x3p(bytes, path);
+  }
+  const auto p = parse_profile_text(bytes, path, options);
+  HeightMap m;
+  m.nx = p.z.size();
+  m.ny = 1;
+  m.dx = p.dx;
+  m.x0 = p.x0;
+  m.z = p.z;
+  m.source = p.source;
+  return m;
+}
+
+}  // namespace asperity::surface

@@ -1,0 +1,667 @@
+// ISO 5436-2 X3P reader and writer (libzip for the archive, pugixml for main.xml).
+#include <fmt/format.h>
+#include <zip.h>
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <pugixml.hpp>
+
+#include "asperity/core/error.hpp"
+#include "asperity/surface/profile_io.hpp"
+#include "detail/md5.hpp"
+
+namespace asperity::surface {
+namespace {
+
+// Upper bounds that keep a hostile header from making us allocate: point count and
+// any single archive entry.
+constexpr std::uint64_t kMaxPoints = std::uint64_t{1} << 28;       // 268 M points
+constexpr std::uint64_t kMaxEntryBytes = std::uint64_t{1} << 31;   // 2 GiB
+
+struct ZipCloser {
+  void operator()(zip_t* z) const { zip_discard(z); }
+};
+using ZipPtr = std::unique_ptr<zip_t, ZipCloser>;
+struct ZipFileCloser {
+  void operator()(zip_file_t* f) const { zip_fclose(f); }
+};
+using ZipFilePtr = std::unique_ptr<zip_file_t, ZipFileCloser>;
+
+std::size_t type_size(X3pDataType t) {
+  switch (t) {
+    case X3pDataType::int16: return 2;
+    case X3pDataType::int32: return 4;
+    case X3pDataType::float32: return 4;
+    case X3pDataType::float64: return 8;
+  }
+  return 8;
+}
+
+char type_letter(X3pDataType t) {
+  switch (t) {
+    case X3pDataType::int16: return 'I';
+    case X3pDataType::int32: return 'L';
+    case X3pDataType::float32: return 'F';
+    case X3pDataType::float64: return 'D';
+  }
+  return 'D';
+}
+
+bool is_integer_type(X3pDataType t) { return t == X3pDataType::int16 || t == X3pDataType::int32; }
+
+class Reader {
+ public:
+  Reader(std::string_view bytes, std::string_view source) : source_(source) {
+    if (bytes.size() < 22 || bytes.substr(0, 2) != "PK") {
+      fail("", "not an X3P file: it is not a zip archive (an X3P file is a zip holding main.xml)");
+    }
+    zip_error_t err;
+    zip_error_init(&err);
+    zip_source_t* src = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &err);
+    if (!src) fail("", "cannot open the data as a zip archive");
+    zip_t* za = zip_open_from_source(src, ZIP_RDONLY | ZIP_CHECKCONS, &err);
+    if (!za) {
+      zip_source_free(src);
+      const std::string why = zip_error_strerror(&err);
+      zip_error_fini(&err);
+      fail("", fmt::format("not a readable zip archive ({}); an X3P file is a zip holding main.xml",
+                           why));
+    }
+    zip_error_fini(&err);
+    zip_.reset(za);
+  }
+
+  [[noreturn]] void fail(std::string_view where, std::string_view what) const {
+    if (where.empty()) throw InvalidInput(fmt::format("{}: {}", source_, what));
+    throw InvalidInput(fmt::format("{}: {}: {}", source_, where, what));
+  }
+
+  // Size of an entry after checking it exists and that the archive's claim is
+  // plausible for its compressed size.
+  std::uint64_t entry_size(const std::string& name, zip_int64_t* index_out) const {
+    const zip_int64_t index = zip_name_locate(zip_.get(), name.c_str(), 0);
+    if (index < 0) fail(name, "missing from the archive");
+    zip_stat_t st;
+    zip_stat_init(&st);
+    if (zip_stat_index(zip_.get(), static_cast<zip_uint64_t>(index), 0, &st) != 0 ||
+        !(st.valid & ZIP_STAT_SIZE) || !(st.valid & ZIP_STAT_COMP_SIZE)) {
+      fail(name, "cannot read the archive entry's header");
+    }
+    // Deflate cannot compress better than about 1032:1.
+    if (st.size > kMaxEntryBytes || st.size > st.comp_size * 1100 + 65536) {
+      fail(name, fmt::format("the archive claims {} bytes from {} compressed bytes: refused",
+                             st.size, st.comp_size));
+    }
+    *index_out = index;
+    return st.size;
+  }
+
+  std::string read_entry(const std::string& name) const {
+    zip_int64_t index = 0;
+    const std::uint64_t size = entry_size(name, &index);
+    ZipFilePtr f(zip_fopen_index(zip_.get(), static_cast<zip_uint64_t>(index), 0));
+    if (!f) fail(name, "cannot open the archive entry (unsupported compression or encryption?)");
+    std::string out;
+    out.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(size, 1 << 24)));
+    char buf[65536];
+    while (true) {
+      const zip_int64_t got = zip_fread(f.get(), buf, sizeof buf);
+      if (got < 0) fail(name, "the archive entry is corrupt (read or CRC error)");
+      if (got == 0) break;
+      out.append(buf, static_cast<std::size_t>(got));
+      if (out.size() > size) fail(name, "the archive entry is longer than its header says");
+    }
+    if (out.size() != size) fail(name, "the archive entry is shorter than its header says");
+    return out;
+  }
+
+  bool has_entry(const std::string& name) const {
+    return zip_name_locate(zip_.get(), name.c_str(), 0) >= 0;
+  }
+
+  const std::string& source() const { return source_; }
+
+ private:
+  std::string source_;
+  ZipPtr zip_;
+};
+
+std::string_view local_name(const char* name) {
+  std::string_view s(name);
+  const auto p = s.find(':');
+  return p == std::string_view::npos ? s : s.substr(p + 1);
+}
+
+pugi::xml_node child(pugi::xml_node node, std::string_view name) {
+  for (auto c : node.children()) {
+    if (c.type() == pugi::node_element && local_name(c.name()) == name) return c;
+  }
+  return {};
+}
+
+std::string_view trimmed_text(pugi::xml_node node) {
+  std::string_view s = node.child_value();
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
+struct Axis {
+  char axis_type = 'I';
+  std::optional<X3pDataType> data_type;
+  double increment = 1.0;
+  double offset = 0.0;
+};
+
+class MainXml {
+ public:
+  MainXml(const Reader& reader, const std::string& xml) : r_(reader) {
+    const auto result = doc_.load_buffer(xml.data(), xml.size());
+    if (!result) {
+      r_.fail("main.xml", fmt::format("not well-formed XML at byte {}: {}", result.offset,
+                                      result.description()));
+    }
+    for (auto c : doc_.children()) {
+      if (c.type() == pugi::node_element && local_name(c.name()) == "ISO5436_2") root_ = c;
+    }
+    if (!root_) r_.fail("main.xml", "the root element ISO5436_2 is missing");
+  }
+
+  pugi::xml_node root() const { return root_; }
+
+  pugi::xml_node require(pugi::xml_node parent, std::string_view name, std::string_view path) const {
+    auto c = child(parent, name);
+    if (!c) r_.fail("main.xml", fmt::format("element {} is missing", path));
+    return c;
+  }
+
+  std::string_view text(pugi::xml_node parent, std::string_view name, std::string_view path) const {
+    auto s = trimmed_text(require(parent, name, path));
+    if (s.empty()) r_.fail("main.xml", fmt::format("element {} is empty", path));
+    return s;
+  }
+
+  double number(pugi::xml_node parent, std::string_view name, std::string_view path) const {
+    const auto s = text(parent, name, path);
+    double v = 0;
+    const char* first = s.data();
+    if (*first == '+') ++first;
+    const auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), v);
+    if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(v)) {
+      r_.fail("main.xml", fmt::format("{} = \"{}\" is not a finite number", path, s));
+    }
+    return v;
+  }
+
+  std::uint64_t count(pugi::xml_node parent, std::string_view name, std::string_view path) const {
+    const auto s = text(parent, name, path);
+    std::uint64_t v = 0;
+    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || ptr != s.data() + s.size() || v == 0 || v > kMaxPoints) {
+      r_.fail("main.xml", fmt::format("{} = \"{}\" is not a size between 1 and {}", path, s, kMaxPoints));
+    }
+    return v;
+  }
+
+  Axis axis(pugi::xml_node axes, std::string_view name) const {
+    const std::string path = fmt::format("Record1/Axes/{}", name);
+    const auto node = require(axes, name, path);
+    Axis a;
+    const auto type = text(node, "AxisType", path + "/AxisType");
+    if (type != "I" && type != "A") {
+      r_.fail("main.xml", fmt::format("{}/AxisType = \"{}\": expected I or A", path, type));
+    }
+    a.axis_type = type[0];
+    if (child(node, "DataType")) {
+      const auto dt = text(node, "DataType", path + "/DataType");
+      if (dt == "I") a.data_type = X3pDataType::int16;
+      else if (dt == "L") a.data_type = X3pDataType::int32;
+      else if (dt == "F") a.data_type = X3pDataType::float32;
+      else if (dt == "D") a.data_type = X3pDataType::float64;
+      else r_.fail("main.xml", fmt::format("{}/DataType = \"{}\": expected I, L, F or D", path, dt));
+    }
+    if (child(node, "Increment")) a.increment = number(node, "Increment", path + "/Increment");
+    if (child(node, "Offset")) a.offset = number(node, "Offset", path + "/Offset");
+    return a;
+  }
+
+ private:
+  const Reader& r_;
+  pugi::xml_document doc_;
+  pugi::xml_node root_;
+};
+
+bool same_hex(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i]))) {
+      return false;
+    }
+  }
+  return true;
+}
+
+double decode(const unsigned char* p, X3pDataType t) {
+  switch (t) {
+    case X3pDataType::int16: {
+      const auto u = static_cast<std::uint16_t>(p[0] | (p[1] << 8));
+      return static_cast<double>(static_cast<std::int16_t>(u));
+    }
+    case X3pDataType::int32: {
+      std::uint32_t u = 0;
+      for (int k = 3; k >= 0; --k) u = (u << 8) | p[k];
+      return static_cast<double>(static_cast<std::int32_t>(u));
+    }
+    case X3pDataType::float32: {
+      std::uint32_t u = 0;
+      for (int k = 3; k >= 0; --k) u = (u << 8) | p[k];
+      return static_cast<double>(std::bit_cast<float>(u));
+    }
+    case X3pDataType::float64: {
+      std::uint64_t u = 0;
+      for (int k = 7; k >= 0; --k) u = (u << 8) | p[k];
+      return std::bit_cast<double>(u);
+    }
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+HeightMap parse_x3p(std::string_view bytes, std::string_view source) {
+  Reader reader(bytes, source);
+  const std::string xml = reader.read_entry("main.xml");
+  MainXml doc(reader, xml);
+  const auto root = doc.root();
+
+  // Record4: checksum of main.xml.
+  const auto rec4 = doc.require(root, "Record4", "Record4");
+  const std::string checksum_file(doc.text(rec4, "ChecksumFile", "Record4/ChecksumFile"));
+  const std::string checksum_text = reader.read_entry(checksum_file);
+  if (checksum_text.size() < 32) reader.fail(checksum_file, "expected a 32-digit MD5 of main.xml");
+  const std::string actual_xml_md5 = detail::md5_hex(xml);
+  if (!same_hex(std::string_view(checksum_text).substr(0, 32), actual_xml_md5)) {
+    reader.fail(checksum_file, fmt::format("MD5 checksum mismatch: main.xml has {}, the file says {}",
+                                           actual_xml_md5, std::string_view(checksum_text).substr(0, 32)));
+  }
+
+  // Record1: feature type and axes.
+  const auto rec1 = doc.require(root, "Record1", "Record1");
+  const auto feature = doc.text(rec1, "FeatureType", "Record1/FeatureType");
+  if (feature != "PRF" && feature != "SUR") {
+    reader.fail("main.xml", fmt::format("Record1/FeatureType = \"{}\": only PRF (profile) and SUR "
+                                        "(areal) are supported, not point clouds (PCL)",
+                                        feature));
+  }
+  const auto axes = doc.require(rec1, "Axes", "Record1/Axes");
+  const Axis cx = doc.axis(axes, "CX");
+  const Axis cy = doc.axis(axes, "CY");
+  const Axis cz = doc.axis(axes, "CZ");
+  if (cx.axis_type != 'I' || cy.axis_type != 'I') {
+    reader.fail("main.xml", "absolute x or y axes (AxisType A: coordinates per point) are not "
+                            "supported; expected incremental axes (AxisType I)");
+  }
+  if (!(cx.increment > 0.0)) {
+    reader.fail("main.xml", fmt::format("Record1/Axes/CX/Increment = {} must be > 0", cx.increment));
+  }
+  if (cz.axis_type != 'A') reader.fail("main.xml", "Record1/Axes/CZ/AxisType must be A");
+  if (!cz.data_type) reader.fail("main.xml", "element Record1/Axes/CZ/DataType is missing");
+  if (!(cz.increment != 0.0)) reader.fail("main.xml", "Record1/Axes/CZ/Increment must not be 0");
+  const X3pDataType type = *cz.data_type;
+
+  // Record3: sizes and data.
+  const auto rec3 = doc.require(root, "Record3", "Record3");
+  const auto dims = doc.require(rec3, "MatrixDimension", "Record3/MatrixDimension");
+  const std::uint64_t sx = doc.count(dims, "SizeX", "Record3/MatrixDimension/SizeX");
+  const std::uint64_t sy = doc.count(dims, "SizeY", "Record3/MatrixDimension/SizeY");
+  const std::uint64_t sz = doc.count(dims, "SizeZ", "Record3/MatrixDimension/SizeZ");
+  if (sz != 1) reader.fail("main.xml", fmt::format("SizeZ = {}: only one layer (SizeZ = 1) is supported", sz));
+  if (sx > kMaxPoints / sy) {
+    reader.fail("main.xml", fmt::format("SizeX x SizeY = {} x {} exceeds {} points", sx, sy, kMaxPoints));
+  }
+  const std::uint64_t n = sx * sy;
+  if (feature == "PRF" && sy != 1) {
+    reader.fail("main.xml", fmt::format("a profile (PRF) must have SizeY = 1, not {}", sy));
+  }
+  if (sy > 1 && !(cy.increment > 0.0)) {
+    reader.fail("main.xml", fmt::format("Record1/Axes/CY/Increment = {} must be > 0", cy.increment));
+  }
+
+  HeightMap map;
+  map.nx = static_cast<std::size_t>(sx);
+  map.ny = static_cast<std::size_t>(sy);
+  map.dx = cx.increment;
+  map.dy = sy > 1 ? cy.increment : cx.increment;
+  map.x0 = cx.offset;
+  map.y0 = cy.offset;
+  map.source = std::string(source);
+  std::vector<std::uint8_t> valid;
+  bool any_invalid = false;
+
+  const auto data_link = child(rec3, "DataLink");
+  const auto data_list = child(rec3, "DataList");
+  if (data_link && data_list) reader.fail("main.xml", "Record3 has both DataLink and DataList");
+  if (data_link) {
+    const std::string link(doc.text(data_link, "PointDataLink", "Record3/DataLink/PointDataLink"));
+    const auto expected_md5 =
+        doc.text(data_link, "MD5ChecksumPointData", "Record3/DataLink/MD5ChecksumPointData");
+    const std::uint64_t want = n * type_size(type);
+    // Check the size the archive claims before reading (and allocating) anything.
+    zip_int64_t index = 0;
+    const std::uint64_t claimed = reader.entry_size(link, &index);
+    if (claimed != want) {
+      reader.fail(link, fmt::format("{} bytes, but {} x {} points of type {} need {}", claimed, sx,
+                                    sy, type_letter(type), want));
+    }
+    const std::string data = reader.read_entry(link);
+    if (data.size() != want) {
+      reader.fail(link, fmt::format("{} bytes, but {} x {} points of type {} need {}", data.size(),
+                                    sx, sy, type_letter(type), want));
+    }
+    const auto md5 = detail::md5_hex(data);
+    if (!same_hex(md5, expected_md5)) {
+      reader.fail(link, fmt::format("MD5 checksum mismatch: the data has {}, main.xml says {}", md5,
+                                    expected_md5));
+    }
+    map.z.resize(static_cast<std::size_t>(n));
+    const auto* p = reinterpret_cast<const unsigned char*>(data.data());
+    const std::size_t ts = type_size(type);
+    for (std::size_t k = 0; k < map.z.size(); ++k) {
+      const double raw = decode(p + k * ts, type);
+      map.z[k] = cz.offset + cz.increment * raw;
+    }
+    if (child(data_link, "ValidPointsLink")) {
+      const std::string vlink(doc.text(data_link, "ValidPointsLink", "Record3/DataLink/ValidPointsLink"));
+      const std::string mask = reader.read_entry(vlink);
+      const std::uint64_t want_mask = (n + 7) / 8;
+      if (mask.size() != want_mask) {
+        reader.fail(vlink, fmt::format("{} bytes, but {} points need {} bytes of validity bits",
+                                       mask.size(), n, want_mask));
+      }
+      if (child(data_link, "MD5ChecksumValidPoints")) {
+        const auto vmd5 = doc.text(data_link, "MD5ChecksumValidPoints",
+                                   "Record3/DataLink/MD5ChecksumValidPoints");
+        const auto got = detail::md5_hex(mask);
+        if (!same_hex(got, vmd5)) {
+          reader.fail(vlink, fmt::format("MD5 checksum mismatch: the mask has {}, main.xml says {}",
+                                         got, vmd5));
+        }
+      }
+      valid.assign(static_cast<std::size_t>(n), 1);
+      for (std::size_t k = 0; k < valid.size(); ++k) {
+        if (!((static_cast<unsigned char>(mask[k / 8]) >> (k % 8)) & 1u)) {
+          valid[k] = 0;
+          any_invalid = true;
+        }
+      }
+    }
+  } else if (data_list) {
+    std::uint64_t count = 0;
+    for (auto d : data_list.children()) {
+      if (d.type() == pugi::node_element && local_name(d.name()) == "Datum") ++count;
+    }
+    if (count != n) {
+      reader.fail("main.xml", fmt::format("Record3/DataList has {} Datum elements, but SizeX x SizeY = {}",
+                                          count, n));
+    }
+    map.z.resize(static_cast<std::size_t>(n));
+    valid.assign(static_cast<std::size_t>(n), 1);
+    std::size_t k = 0;
+    for (auto d : data_list.children()) {
+      if (d.type() != pugi::node_element || local_name(d.name()) != "Datum") continue;
+      const auto s = trimmed_text(d);
+      if (s.empty()) {
+        valid[k] = 0;
+        any_invalid = true;
+        map.z[k++] = std::numeric_limits<double>::quiet_NaN();
+        continue;
+      }
+      double v = 0;
+      const char* first = s.data();
+      if (*first == '+') ++first;
+      const auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), v);
+      if (ec != std::errc() || ptr != s.data() + s.size()) {
+        reader.fail("main.xml", fmt::format("Record3/DataList/Datum {} = \"{}\" is not a number", k + 1,
+                                            s.substr(0, 40)));
+      }
+      map.z[k++] = cz.offset + cz.increment * v;
+    }
+  } else {
+    reader.fail("main.xml", "Record3 has neither DataLink nor DataList: no point data");
+  }
+  for (std::size_t k = 0; k < map.z.size(); ++k) {
+    if (!std::isfinite(map.z[k])) {
+      if (valid.empty()) valid.assign(map.z.size(), 1);
+      if (valid[k]) any_invalid = true;
+      valid[k] = 0;
+    }
+  }
+  if (any_invalid) {
+    for (std::size_t k = 0; k < map.z.size(); ++k) {
+      if (!valid[k]) map.z[k] = std::numeric_limits<double>::quiet_NaN();
+    }
+    map.valid = std::move(valid);
+  }
+  map.validate();
+  return map;
+}
+
+HeightMap read_x3p(const std::string& path) {
+  const auto bytes = read_file_bytes(path);
+  if (bytes.empty()) throw InvalidInput(fmt::format("{}: the file is empty", path));
+  return parse_x3p(bytes, path);
+}
+
+// ------------------------------------------------------------------ writer
+
+std::string& X3pPackage::file(std::string_view name) {
+  for (auto& [n, content] : files) {
+    if (n == name) return content;
+  }
+  throw InvalidInput(fmt::format("X3P package has no file \"{}\"", name));
+}
+
+void X3pPackage::update_main_checksum() {
+  file("md5checksum.hex") = detail::md5_hex(file("main.xml")) + " *main.xml\n";
+}
+
+X3pPackage make_x3p_package(const HeightMap& map, const X3pWriteOptions& options) {
+  map.validate();
+  const std::size_t n = map.z.size();
+  std::vector<bool> ok(n, true);
+  bool any_invalid = false;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::size_t k = 0; k < n; ++k) {
+    ok[k] = (map.valid.empty() || map.valid[k]) && std::isfinite(map.z[k]);
+    if (!ok[k]) {
+      any_invalid = true;
+      continue;
+    }
+    lo = std::min(lo, map.z[k]);
+    hi = std::max(hi, map.z[k]);
+  }
+  if (!(lo <= hi)) throw InvalidInput(fmt::format("{}: no valid point to write", map.source));
+  double offset = 0.0, increment = 1.0;
+  std::int64_t full = 0;
+  if (is_integer_type(options.type)) {
+    full = options.type == X3pDataType::int16 ? 32767 : 2147483647;
+    if (options.z_increment > 0.0) {
+      increment = options.z_increment;
+      if (std::max(std::abs(lo), std::abs(hi)) / increment > static_cast<double>(full)) {
+        throw InvalidInput(fmt::format("z_increment = {:.6g} m cannot represent heights up to {:.6g} m in type {}",
+                                       increment, std::max(std::abs(lo), std::abs(hi)),
+                                       type_letter(options.type)));
+      }
+    } else {
+      offset = 0.5 * (lo + hi);
+      increment = hi > lo ? (hi - lo) / (2.0 * static_cast<double>(full - 1)) : 1e-9;
+    }
+  }
+  const bool sur = map.ny > 1;
+  std::string data;
+  std::string datalist;
+  const std::size_t ts = type_size(options.type);
+  if (!options.inline_data) data.resize(n * ts);
+  for (std::size_t k = 0; k < n; ++k) {
+    double v = 0.0;
+    std::int64_t iv = 0;
+    if (is_integer_type(options.type)) {
+      iv = ok[k] ? std::llround((map.z[k] - offset) / increment) : 0;
+      iv = std::clamp<std::int64_t>(iv, -full, full);
+    } else {
+      v = ok[k] ? map.z[k] : std::numeric_limits<double>::quiet_NaN();
+    }
+    if (options.inline_data) {
+      if (!ok[k]) {
+        datalist += "<Datum/>";
+      } else if (is_integer_type(options.type)) {
+        datalist += fmt::format("<Datum>{}</Datum>", iv);
+      } else if (options.type == X3pDataType::float32) {
+        datalist += fmt::format("<Datum>{}</Datum>", static_cast<float>(v));
+      } else {
+        datalist += fmt::format("<Datum>{}</Datum>", v);
+      }
+      continue;
+    }
+    std::uint64_t bits = 0;
+    switch (options.type) {
+      case X3pDataType::int16: bits = static_cast<std::uint16_t>(static_cast<std::int16_t>(iv)); break;
+      case X3pDataType::int32: bits = static_cast<std::uint32_t>(static_cast<std::int32_t>(iv)); break;
+      case X3pDataType::float32: bits = std::bit_cast<std::uint32_t>(static_cast<float>(v)); break;
+      case X3pDataType::float64: bits = std::bit_cast<std::uint64_t>(v); break;
+    }
+    for (std::size_t b = 0; b < ts; ++b) data[k * ts + b] = static_cast<char>((bits >> (8 * b)) & 0xffu);
+  }
+  std::string mask;
+  if (any_invalid && !options.inline_data) {
+    mask.assign((n + 7) / 8, '\0');
+    for (std::size_t k = 0; k < n; ++k) {
+      if (ok[k]) mask[k / 8] = static_cast<char>(static_cast<unsigned char>(mask[k / 8]) | (1u << (k % 8)));
+    }
+  }
+  const char t = type_letter(options.type);
+  std::string xml;
+  xml += "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\" ?>\n";
+  xml += "<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\" "
+         "xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
+         "xsi:schemaLocation=\"http://www.opengps.eu/2008/ISO5436_2 "
+         "http://www.opengps.eu/2008/ISO5436_2/ISO5436_2.xsd\">\n";
+  xml += fmt::format(
+      "  <Record1>\n    <Revision>ISO5436 - 2000</Revision>\n    <FeatureType>{}</FeatureType>\n"
+      "    <Axes>\n"
+      "      <CX><AxisType>I</AxisType><DataType>D</DataType><Increment>{:.17g}</Increment>"
+      "<Offset>{:.17g}</Offset></CX>\n"
+      "      <CY><AxisType>I</AxisType><DataType>D</DataType><Increment>{:.17g}</Increment>"
+      "<Offset>{:.17g}</Offset></CY>\n"
+      "      <CZ><AxisType>A</AxisType><DataType>{}</DataType><Increment>{:.17g}</Increment>"
+      "<Offset>{:.17g}</Offset></CZ>\n"
+      "    </Axes>\n  </Record1>\n",
+      sur ? "SUR" : "PRF", map.dx, map.x0, sur ? map.dy : map.dx, map.y0, t, increment, offset);
+  xml += "  <Record2>\n    <Date>1970-01-01T00:00:00</Date>\n    <Instrument>\n"
+         "      <Manufacturer>asperity</Manufacturer>\n      <Model>asperity</Model>\n"
+         "      <Serial>not available</Serial>\n      <Version>0.1.0</Version>\n"
+         "    </Instrument>\n    <CalibrationDate>1970-01-01T00:00:00</CalibrationDate>\n"
+         "    <ProbingSystem><Type>Software</Type><Identification>asperity</Identification>"
+         "</ProbingSystem>\n    <Comment>written by asperity</Comment>\n  </Record2>\n";
+  xml += fmt::format(
+      "  <Record3>\n    <MatrixDimension><SizeX>{}</SizeX><SizeY>{}</SizeY><SizeZ>1</SizeZ>"
+      "</MatrixDimension>\n",
+      map.nx, map.ny);
+  X3pPackage pkg;
+  if (options.inline_data) {
+    xml += "    <DataList>" + datalist + "</DataList>\n";
+  } else {
+    xml += fmt::format("    <DataLink>\n      <PointDataLink>bindata/data.bin</PointDataLink>\n"
+                       "      <MD5ChecksumPointData>{}</MD5ChecksumPointData>\n",
+                       detail::md5_hex(data));
+    if (!mask.empty()) {
+      xml += fmt::format("      <ValidPointsLink>bindata/valid.bin</ValidPointsLink>\n"
+                         "      <MD5ChecksumValidPoints>{}</MD5ChecksumValidPoints>\n",
+                         detail::md5_hex(mask));
+    }
+    xml += "    </DataLink>\n";
+  }
+  xml += "  </Record3>\n  <Record4>\n    <ChecksumFile>md5checksum.hex</ChecksumFile>\n"
+         "  </Record4>\n</p:ISO5436_2>\n";
+  pkg.files.emplace_back("main.xml", std::move(xml));
+  if (!options.inline_data) {
+    pkg.files.emplace_back("bindata/data.bin", std::move(data));
+    if (!mask.empty()) pkg.files.emplace_back("bindata/valid.bin", std::move(mask));
+  }
+  pkg.files.emplace_back("md5checksum.hex", "");
+  pkg.update_main_checksum();
+  return pkg;
+}
+
+std::string zip_x3p_package(const X3pPackage& package) {
+  zip_error_t err;
+  zip_error_init(&err);
+  zip_source_t* buffer = zip_source_buffer_create(nullptr, 0, 0, &err);
+  if (!buffer) throw Error("X3P writer: cannot create an in-memory zip buffer");
+  zip_source_keep(buffer);
+  zip_t* za = zip_open_from_source(buffer, ZIP_TRUNCATE, &err);
+  if (!za) {
+    zip_source_free(buffer);
+    zip_error_fini(&err);
+    throw Error("X3P writer: cannot open an in-memory zip archive");
+  }
+  auto fail = [&](const std::string& what) {
+    zip_discard(za);
+    zip_source_free(buffer);
+    throw Error(fmt::format("X3P writer: {}", what));
+  };
+  for (const auto& [name, content] : package.files) {
+    zip_source_t* s = zip_source_buffer(za, content.data(), content.size(), 0);
+    if (!s) fail("cannot add " + name);
+    const zip_int64_t idx = zip_file_add(za, name.c_str(), s, ZIP_FL_ENC_UTF_8 | ZIP_FL_OVERWRITE);
+    if (idx < 0) {
+      zip_source_free(s);
+      fail("cannot add " + name);
+    }
+    zip_set_file_compression(za, static_cast<zip_uint64_t>(idx), ZIP_CM_DEFLATE, 6);
+    zip_file_set_mtime(za, static_cast<zip_uint64_t>(idx), 315532800, 0);
+  }
+  if (zip_close(za) != 0) {
+    const std::string why = zip_strerror(za);
+    zip_discard(za);
+    zip_source_free(buffer);
+    throw Error(fmt::format("X3P writer: zipping failed ({})", why));
+  }
+  std::string out;
+  if (zip_source_open(buffer) != 0) {
+    zip_source_free(buffer);
+    throw Error("X3P writer: cannot read back the zip buffer");
+  }
+  char buf[65536];
+  while (true) {
+    const zip_int64_t got = zip_source_read(buffer, buf, sizeof buf);
+    if (got < 0) {
+      zip_source_close(buffer);
+      zip_source_free(buffer);
+      throw Error("X3P writer: cannot read back the zip buffer");
+    }
+    if (got == 0) break;
+    out.append(buf, static_cast<std::size_t>(got));
+  }
+  zip_source_close(buffer);
+  zip_source_free(buffer);
+  zip_error_fini(&err);
+  return out;
+}
+
+void write_x3p(const std::string& path, const HeightMap& map, const X3pWriteOptions& options) {
+  const std::string bytes = zip_x3p_package(make_x3p_package(map, options));
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw InvalidInput(fmt::format("cannot write \"{}\"", path));
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!out) throw InvalidInput(fmt::format("writing \"{}\" failed", path));
+}
+
+}  // namespace asperity::surface

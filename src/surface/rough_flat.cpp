@@ -1,0 +1,389 @@
+#include "asperity/surface/rough_flat.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "asperity/contact/mindlin.hpp"
+#include "asperity/core/error.hpp"
+#include "asperity/core/numerics.hpp"
+#include "asperity/core/validate.hpp"
+
+namespace asperity::surface {
+
+namespace {
+
+// Heights beyond exp(-kTailExponent) of the density at max(d*, 0) are left out.
+constexpr double kTailExponent = 60.0;
+// Relative tolerance of every statistical-sum quadrature.
+constexpr double kQuadratureTol = 1e-13;
+constexpr unsigned kMaxDepth = 16;
+// Lowest separation accepted, in units of sigma_a.
+constexpr double kMinSeparationSigmaA = -5.0;
+
+// 1 - (1 - t)^{3/2} for t < 1, else 1: an asperity's loading force over mu P at
+// delta~ = t (B.15 inverted).
+// expm1/log1p keep full relative accuracy for small t, where the asperity is far from
+// gross slip and 1 - (1 - t)^{3/2} ~ 3t/2 would cancel.
+double slip_response(double t) { return t >= 1.0 ? 1.0 : -std::expm1(1.5 * std::log1p(-t)); }
+double slip_response_slope(double t) { return t >= 1.0 ? 0.0 : 1.5 * std::sqrt(1.0 - t); }
+
+// Break point of an integration over u = z* - d*: `sqrt_type` marks slip boundaries,
+// where the integrand behaves like (u - u_b)^{1/2} or ^{3/2}.
+struct Break {
+  double u;
+  bool sqrt_type;
+};
+
+// Everything about a rough flat at one separation d*, in u = z* - d*.
+class Kernel {
+ public:
+  Kernel(const RoughFlat& flat, double d_star)
+      : flat_(flat), d_(d_star), s_a_(flat.sigma_a_over_sigma()), wc_(flat.omega_c_star()) {
+    const double z0 = std::max(d_, 0.0);
+    u_max_ = std::sqrt(z0 * z0 + 2.0 * kTailExponent * s_a_ * s_a_) - d_;
+    for (double w : flat.laws().break_points()) {
+      const double u = w * wc_;
+      if (u < u_max_) law_breaks_.push_back(u);
+    }
+    norm_ = 1.0 / (std::sqrt(2.0 * std::numbers::pi) * s_a_);
+  }
+
+  [[nodiscard]] double u_max() const { return u_max_; }
+  [[nodiscard]] double phi(double u) const {  // Eq. 4.2
+    const double z = (d_ + u) / s_a_;
+    return norm_ * std::exp(-0.5 * z * z);
+  }
+  [[nodiscard]] double w(double u) const { return u / wc_; }
+  [[nodiscard]] double load(double u) const { return flat_.laws().load_star(w(u)); }
+  [[nodiscard]] double mu(double u) const { return flat_.laws().mu(w(u)); }
+  [[nodiscard]] double radius(double u) const { return flat_.laws().radius_star(w(u)); }
+  /// Slip length lambda(u): an asperity slips fully when 4 (G*/E*) delta* >= lambda
+  /// (Eq. 4.8): mu u for the elastic ratio, mu omega_c* f/a* with the own law.
+  [[nodiscard]] double lambda(double u) const {
+    if (u <= 0.0) return 0.0;
+    const double m = mu(u);
+    if (flat_.parameters().slip_scaling == SlipScaling::elastic) return m * u;
+    const double a = radius(u);
+    return a > 0.0 ? m * wc_ * load(u) / a : 0.0;
+  }
+
+  /// Roots of lambda(u) = level in (0, u_max), found by sampling each law segment and
+  /// refining sign changes with TOMS 748.
+  [[nodiscard]] std::vector<double> slip_boundaries(double level) const {
+    std::vector<double> roots;
+    if (!(level > 0.0)) return roots;
+    if (flat_.laws().model() == contact::ModelName::cfc &&
+        flat_.parameters().slip_scaling == SlipScaling::elastic) {
+      const double u = level / flat_.parameters().friction.mu_cfc;  // lambda = mu u
+      if (u < u_max_) roots.push_back(u);
+      return roots;
+    }
+    std::vector<double> edges{0.0};
+    edges.insert(edges.end(), law_breaks_.begin(), law_breaks_.end());
+    edges.push_back(u_max_);
+    constexpr int kSamples = 32;
+    for (std::size_t s = 0; s + 1 < edges.size(); ++s) {
+      const double a = edges[s];
+      const double b = edges[s + 1];
+      auto g = [&](double u) { return lambda(u) - level; };
+      // Samples just inside the segment (laws jump at its ends), denser near u = 0.
+      double u_prev = a + (b - a) * 1e-12;
+      double g_prev = g(u_prev);
+      for (int i = 1; i <= kSamples; ++i) {
+        const double t = static_cast<double>(i) / kSamples;
+        const double u = (s == 0) ? a + (b - a) * t * t : a + (b - a) * t;
+        const double ui = (i == kSamples) ? b - (b - a) * 1e-12 : u;
+        const double gi = g(ui);
+        if ((g_prev < 0.0) != (gi < 0.0)) {
+          roots.push_back(core::find_root(g, u_prev, ui, "asperity slip boundary", 52));
+        }
+        u_prev = ui;
+        g_prev = gi;
+      }
+    }
+    std::sort(roots.begin(), roots.end());
+    return roots;
+  }
+
+  /// Integral over u in [0, u_max] of g, split at the law branch points and at the
+  /// given slip boundaries (where u = u_b + (b - a) t^2 removes the square-root
+  /// behaviour before Gauss-Kronrod).
+  template <class G>
+  [[nodiscard]] double integrate(G g, const std::vector<double>& slip_breaks = {}) const {
+    std::vector<Break> breaks;
+    breaks.reserve(law_breaks_.size() + slip_breaks.size() + 2);
+    breaks.push_back({0.0, false});
+    for (double u : law_breaks_) breaks.push_back({u, false});
+    for (double u : slip_breaks) {
+      if (u > 0.0 && u < u_max_) breaks.push_back({u, true});
+    }
+    breaks.push_back({u_max_, false});
+    std::sort(breaks.begin(), breaks.end(), [](const Break& x, const Break& y) { return x.u < y.u; });
+    double total = 0.0;
+    for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+      const Break lo = breaks[i];
+      const Break hi = breaks[i + 1];
+      const double h = hi.u - lo.u;
+      if (!(h > 0.0)) continue;
+      // Stay strictly inside the piece: the laws may jump at its ends.
+      auto piece = [&](double a, double b, bool sqrt_at_a) {
+        const double len = b - a;
+        auto mapped = [&](double t) {
+          const double u = sqrt_at_a ? a + len * t * t : b - len * t * t;
+          return g(u) * 2.0 * len * t;
+        };
+        return core::integrate(mapped, 0.0, 1.0, kQuadratureTol, kMaxDepth,
+                               "rough-flat statistical sum")
+            .value;
+      };
+      if (lo.sqrt_type && hi.sqrt_type) {
+        const double mid = 0.5 * (lo.u + hi.u);
+        total += piece(lo.u, mid, true) + piece(mid, hi.u, false);
+      } else if (lo.sqrt_type) {
+        total += piece(lo.u, hi.u, true);
+      } else if (hi.sqrt_type) {
+        total += piece(lo.u, hi.u, false);
+      } else {
+        total += core::integrate(g, lo.u, hi.u, kQuadratureTol, kMaxDepth,
+                                 "rough-flat statistical sum")
+                     .value;
+      }
+    }
+    return total;
+  }
+
+ private:
+  const RoughFlat& flat_;
+  double d_;
+  double s_a_;
+  double wc_;
+  double u_max_ = 0.0;
+  double norm_ = 0.0;
+  std::vector<double> law_breaks_;
+};
+
+void require_separation(double d_star) { core::require_finite("separation d*", d_star); }
+
+}  // namespace
+
+void RoughFlatParameters::validate() const {
+  if (!std::isfinite(beta) || beta <= 0.01928) {
+    throw InvalidInput(fmt::format(
+        "beta = sigma_s R eta = {} is not allowed: it must exceed 0.01928, below which "
+        "sigma_a/sigma_s = sqrt(1 - 3.717e-4/beta^2) is not real (Eq. 4.2); check sigma, R and "
+        "eta",
+        core::format_value(beta)));
+  }
+  core::require_positive("psi (plasticity index)", psi);
+  core::require_in_half_open("nu", nu, 0.0, 0.5);
+  core::require_positive("G*/E*", G_over_E);
+  friction.validate();
+}
+
+RoughFlat::RoughFlat(const RoughFlatParameters& params)
+    : params_(params), laws_((params.validate(), params.model), params.nu, params.friction) {
+  s_a_ = std::sqrt(1.0 - 3.717e-4 / (params.beta * params.beta));
+  omega_c_star_ = s_a_ / (params.psi * params.psi);
+  prefactor_ = 2.0 * std::numbers::pi / 3.0 * params.beta * omega_c_star_;
+}
+
+RoughFlat RoughFlat::from_dimensional(const contact::Material& body1, const contact::Material& body2,
+                                      double sigma, double eta, double R, double A0,
+                                      contact::ModelName model,
+                                      const contact::FrictionParameters& friction,
+                                      SlipScaling scaling) {
+  core::require_positive("sigma (rms roughness)", sigma);
+  core::require_positive("eta (areal density of asperities)", eta);
+  core::require_positive("R (mean asperity radius)", R);
+  core::require_positive("A0 (nominal area)", A0);
+  const auto pair = contact::ContactPair::combine(body1, body2, R);
+  RoughFlatParameters p;
+  p.model = model;
+  p.beta = sigma * R * eta;
+  p.nu = pair.nu;
+  p.G_over_E = pair.G_star / pair.E_star;
+  p.friction = friction;
+  p.slip_scaling = scaling;
+  if (!(p.beta > 0.01928)) p.validate();  // throws with the message about beta
+  const double s_a = std::sqrt(1.0 - 3.717e-4 / (p.beta * p.beta));
+  // Plasticity index on sigma_a (SEED_NOTES.md): psi = (2E*/(pi K H)) sqrt(sigma_a/R).
+  p.psi = 2.0 * pair.E_star / (std::numbers::pi * pair.K() * pair.H) * std::sqrt(s_a * sigma / R);
+  RoughFlat flat(p);
+  flat.scales_ = RoughFlatScales{.sigma = sigma,
+                                 .force = pair.K() * pair.H * A0,
+                                 .A0 = A0,
+                                 .eta = eta,
+                                 .R = R,
+                                 .pair = pair};
+  return flat;
+}
+
+double RoughFlat::normal_load_star(double d_star) const {
+  require_separation(d_star);
+  const Kernel k(*this, d_star);
+  return prefactor_ * k.integrate([&](double u) { return k.load(u) * k.phi(u); });  // Eq. 4.4
+}
+
+double RoughFlat::static_friction_star(double d_star) const {
+  require_separation(d_star);
+  const Kernel k(*this, d_star);
+  return prefactor_ * k.integrate([&](double u) {  // Eq. 4.7
+    return u > 0.0 ? k.mu(u) * k.load(u) * k.phi(u) : 0.0;
+  });
+}
+
+double RoughFlat::contact_area_ratio(double d_star) const {
+  require_separation(d_star);
+  const Kernel k(*this, d_star);
+  // A_r/A0 = eta Int pi a^2 phi dz = pi beta omega_c* Int (a/a_c)^2 phi* dz*.
+  const double a_factor = std::numbers::pi * params_.beta * omega_c_star_;
+  return a_factor * k.integrate([&](double u) {
+    const double a = k.radius(u);
+    return a * a * k.phi(u);
+  });
+}
+
+double RoughFlat::contact_fraction(double d_star) const {
+  require_separation(d_star);
+  return 0.5 * std::erfc(d_star / (s_a_ * std::numbers::sqrt2));
+}
+
+double RoughFlat::max_load_star() const { return normal_load_star(kMinSeparationSigmaA * s_a_); }
+
+double RoughFlat::separation_star(double P_star) const {
+  if (!std::isfinite(P_star) || P_star < 1e-12) {
+    throw InvalidInput(fmt::format(
+        "normalized preload P* = P/(K H A0) = {} is not allowed: it must be >= 1e-12",
+        core::format_value(P_star)));
+  }
+  const double d_min = kMinSeparationSigmaA * s_a_;
+  const double P_max = normal_load_star(d_min);
+  if (P_star > P_max) {
+    throw InvalidInput(fmt::format(
+        "normalized preload P* = {} is more than this rough flat can carry in the "
+        "Greenwood-Williamson model: at separation d* = {} (5 sigma_a below the mean asperity "
+        "height) P* = {}; reduce the preload or enlarge the nominal area",
+        core::format_value(P_star), core::format_value(d_min), core::format_value(P_max)));
+  }
+  const double target = std::log(P_star);
+  auto g = [&](double d) {
+    const double P = normal_load_star(d);
+    return (P > 0.0 ? std::log(P) : -1e300) - target;
+  };
+  // P*(d*) decreases monotonically; step up from d_min by sigma_a until it drops below.
+  double lo = d_min;
+  double hi = d_min;
+  double g_hi = std::log(P_max) - target;
+  while (g_hi > 0.0) {
+    lo = hi;
+    hi += s_a_;
+    g_hi = g(hi);
+    if (hi > 60.0 * s_a_) {
+      throw NumericalError(
+          fmt::format("separation for P* = {}: no bracket found", core::format_value(P_star)));
+    }
+  }
+  return core::find_root(g, lo, hi, "separation for a preload (Eq. 4.4)", 50);
+}
+
+double RoughFlat::loading_force_star(double delta_star, double d_star) const {
+  core::require_non_negative("tangential displacement delta*", delta_star);
+  require_separation(d_star);
+  const Kernel k(*this, d_star);
+  const double c = 4.0 * params_.G_over_E * delta_star;
+  // Eq. 4.9-4.10 with the erratum: full slip (Q = mu P) where delta~ = c/lambda >= 1.
+  return prefactor_ * k.integrate(
+                          [&](double u) {
+                            if (u <= 0.0) return 0.0;
+                            const double m = k.mu(u);
+                            if (m == 0.0) return 0.0;
+                            const double lam = k.lambda(u);
+                            return m * k.load(u) * slip_response(c / lam) * k.phi(u);
+                          },
+                          k.slip_boundaries(c));
+}
+
+double RoughFlat::loading_stiffness_star(double delta_star, double d_star) const {
+  core::require_non_negative("tangential displacement delta*", delta_star);
+  require_separation(d_star);
+  const Kernel k(*this, d_star);
+  const double dc = 4.0 * params_.G_over_E;
+  const double c = dc * delta_star;
+  return prefactor_ * k.integrate(
+                          [&](double u) {
+                            if (u <= 0.0) return 0.0;
+                            const double m = k.mu(u);
+                            if (m == 0.0) return 0.0;
+                            const double lam = k.lambda(u);
+                            return m * k.load(u) * slip_response_slope(c / lam) * dc / lam *
+                                   k.phi(u);
+                          },
+                          k.slip_boundaries(c));
+}
+
+double RoughFlat::stiffness_star(double d_star) const { return loading_stiffness_star(0.0, d_star); }
+
+double RoughFlat::unloading_force_star(double delta_star, double delta_max_star,
+                                       double d_star) const {
+  core::require_non_negative("delta*_max", delta_max_star);
+  require_separation(d_star);
+  if (!(std::abs(delta_star) <= delta_max_star)) {
+    throw InvalidInput(fmt::format("delta* = {} must lie in [-delta*_max, delta*_max] = [-{}, {}]",
+                                   core::format_value(delta_star), core::format_value(delta_max_star),
+                                   core::format_value(delta_max_star)));
+  }
+  const Kernel k(*this, d_star);
+  const double cm = 4.0 * params_.G_over_E * delta_max_star;
+  const double cr = 0.5 * 4.0 * params_.G_over_E * (delta_max_star - delta_star);
+  auto breaks = k.slip_boundaries(cm);
+  const auto more = k.slip_boundaries(cr);
+  breaks.insert(breaks.end(), more.begin(), more.end());
+  // Eq. 4.11-4.12: each asperity unloads by Mindlin-Deresiewicz from its own state at
+  // delta*_max: mu P [h(c_m/lambda) - 2 h((c_m - c)/(2 lambda))].
+  return prefactor_ * k.integrate(
+                          [&](double u) {
+                            if (u <= 0.0) return 0.0;
+                            const double m = k.mu(u);
+                            if (m == 0.0) return 0.0;
+                            const double lam = k.lambda(u);
+                            return m * k.load(u) *
+                                   (slip_response(cm / lam) - 2.0 * slip_response(cr / lam)) *
+                                   k.phi(u);
+                          },
+                          breaks);
+}
+
+double RoughFlat::reloading_force_star(double delta_star, double delta_max_star,
+                                       double d_star) const {
+  return -unloading_force_star(-delta_star, delta_max_star, d_star);  // Eq. 4.13
+}
+
+double RoughFlat::energy_star(double delta_max_star, double d_star) const {
+  core::require_non_negative("delta*_max", delta_max_star);
+  require_separation(d_star);
+  const Kernel k(*this, d_star);
+  const double g = 4.0 * params_.G_over_E;
+  const double cm = g * delta_max_star;
+  // An asperity's loop area is mu P * delta_s * 4.8 E~(delta~_max) (B.19 scaled:
+  // 9/10 / (3/16) = 4.8), with delta_s* = lambda/g its gross-slip displacement.
+  return prefactor_ *
+         k.integrate(
+             [&](double u) {
+               if (u <= 0.0) return 0.0;
+               const double m = k.mu(u);
+               if (m == 0.0) return 0.0;
+               const double lam = k.lambda(u);
+               return m * k.load(u) * (lam / g) * 4.8 *
+                      contact::mindlin::energy_tilde_for_displacement(cm / lam) * k.phi(u);
+             },
+             k.slip_boundaries(cm));
+}
+
+std::shared_ptr<const RoughFlatBackbone> RoughFlat::backbone(double d_star, double rel_tol) const {
+  return std::make_shared<const RoughFlatBackbone>(*this, d_star, rel_tol);
+}
+
+}  // namespace asperity::surface

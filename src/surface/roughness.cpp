@@ -1,0 +1,347 @@
+#include "asperity/surface/roughness.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "asperity/core/error.hpp"
+#include "asperity/core/validate.hpp"
+
+namespace asperity::surface {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// 6 pi sqrt(3): eta = m4 / (6 pi sqrt(3) m2).
+const double kEtaFactor = 6.0 * kPi * std::sqrt(3.0);
+// Smallest beta with a real asperity-height spread: sqrt(3.717e-4).
+constexpr double kSigmaAConstant = 3.717e-4;
+// ISO 16610-21: alpha = sqrt(ln 2 / pi).
+const double kGaussAlpha = std::sqrt(std::numbers::ln2 / kPi);
+
+std::string source_name(const Profile& p) { return p.source.empty() ? "profile" : p.source; }
+
+}  // namespace
+
+// ---------------------------------------------------------------- moments
+
+void SpectralMoments::validate(std::string_view name) const {
+  for (auto [field, v] : {std::pair{"m0", m0}, std::pair{"m2", m2}, std::pair{"m4", m4}}) {
+    if (!std::isfinite(v) || v <= 0.0) {
+      throw InvalidInput(fmt::format("{}: {} = {:.6g} must be a finite number > 0 (a flat or "
+                                     "constant profile has no roughness parameters)",
+                                     name, field, v));
+    }
+  }
+}
+
+double SpectralMoments::sigma() const { return std::sqrt(m0); }
+double SpectralMoments::eta() const { return m4 / (kEtaFactor * m2); }
+double SpectralMoments::R() const { return 0.375 * std::sqrt(kPi / m4); }
+double SpectralMoments::alpha() const { return m0 * m4 / (m2 * m2); }
+double SpectralMoments::beta() const { return sigma() * R() * eta(); }
+
+double SpectralMoments::sigma_a() const {
+  const double b = beta();
+  const double ratio = 1.0 - kSigmaAConstant / (b * b);
+  if (!(ratio > 0.0)) {
+    throw InvalidInput(fmt::format(
+        "beta = sigma R eta = {:.6g} is too small: the spread of asperity heights "
+        "sigma_a = sigma sqrt(1 - 3.717e-4/beta^2) needs beta > 0.01928 (bandwidth alpha > "
+        "0.8968)",
+        b));
+  }
+  return sigma() * std::sqrt(ratio);
+}
+
+SpectralMoments SpectralMoments::from_parameters(double sigma, double eta, double R) {
+  core::require_positive("sigma", sigma);
+  core::require_positive("eta", eta);
+  core::require_positive("R", R);
+  const double m4 = kPi * (0.375 / R) * (0.375 / R);
+  return {sigma * sigma, m4 / (kEtaFactor * eta), m4};
+}
+
+SpectralMoments combine(const SpectralMoments& a, const SpectralMoments& b) { return a + b; }
+
+IsotropicRule parse_isotropic_rule(std::string_view text, std::string_view field) {
+  if (text == "geometric") return IsotropicRule::geometric;
+  if (text == "arithmetic") return IsotropicRule::arithmetic;
+  throw InvalidInput(
+      fmt::format("{} = \"{}\" is not allowed: use geometric or arithmetic", field, text));
+}
+
+std::string_view to_string(IsotropicRule r) {
+  return r == IsotropicRule::geometric ? "geometric" : "arithmetic";
+}
+
+SpectralMoments equivalent_isotropic(const SpectralMoments& max_slope,
+                                     const SpectralMoments& min_slope, IsotropicRule rule) {
+  max_slope.validate("max-slope scan");
+  min_slope.validate("min-slope scan");
+  SpectralMoments e;
+  e.m0 = 0.5 * (max_slope.m0 + min_slope.m0);  // Eq. 5.1
+  if (rule == IsotropicRule::geometric) {
+    e.m2 = std::sqrt(max_slope.m2 * min_slope.m2);
+    e.m4 = std::sqrt(max_slope.m4 * min_slope.m4);
+  } else {
+    e.m2 = 0.5 * (max_slope.m2 + min_slope.m2);
+    e.m4 = 0.5 * (max_slope.m4 + min_slope.m4);
+  }
+  return e;
+}
+
+SpectralMoments average(const std::vector<SpectralMoments>& moments,
+                        const std::vector<double>& weights) {
+  if (moments.empty()) throw InvalidInput("no profile to average the spectral moments over");
+  if (weights.size() != moments.size()) {
+    throw InvalidInput(fmt::format("{} weights for {} sets of moments", weights.size(), moments.size()));
+  }
+  SpectralMoments sum;
+  double w = 0.0;
+  for (std::size_t i = 0; i < moments.size(); ++i) {
+    core::require_positive("weight", weights[i]);
+    sum.m0 += weights[i] * moments[i].m0;
+    sum.m2 += weights[i] * moments[i].m2;
+    sum.m4 += weights[i] * moments[i].m4;
+    w += weights[i];
+  }
+  return {sum.m0 / w, sum.m2 / w, sum.m4 / w};
+}
+
+double plasticity_index(const contact::ContactPair& pair, const SpectralMoments& moments) {
+  core::require_positive("E_star", pair.E_star);
+  core::require_positive("H", pair.H);
+  moments.validate();
+  const double K = pair.K();
+  return 2.0 * pair.E_star / (kPi * K * pair.H) * std::sqrt(moments.sigma_a() / moments.R());
+}
+
+// ---------------------------------------------------------------- filter
+
+EndEffects parse_end_effects(std::string_view text, std::string_view field) {
+  if (text == "discard") return EndEffects::discard;
+  if (text == "regression") return EndEffects::regression;
+  throw InvalidInput(
+      fmt::format("{} = \"{}\" is not allowed: use discard or regression", field, text));
+}
+
+std::string_view to_string(EndEffects e) {
+  return e == EndEffects::discard ? "discard" : "regression";
+}
+
+void GaussianFilter::validate() const {
+  core::require_non_negative("lc", lc);
+  core::require_non_negative("ls", ls);
+  core::require_in_closed("truncation (ct)", truncation, 0.5, 3.0);
+  if (lc > 0.0 && ls > 0.0 && !(ls < lc)) {
+    throw InvalidInput(fmt::format(
+        "ls = {:.6g} m must be smaller than lc = {:.6g} m: the band between them is what the "
+        "filter keeps",
+        ls, lc));
+  }
+}
+
+double GaussianFilter::transmission(double lambda) const {
+  double t = 1.0;
+  if (lc > 0.0) {
+    const double u = kGaussAlpha * lc / lambda;
+    t *= 1.0 - std::exp(-kPi * u * u);
+  }
+  if (ls > 0.0) {
+    const double u = kGaussAlpha * ls / lambda;
+    t *= std::exp(-kPi * u * u);
+  }
+  return t;
+}
+
+namespace {
+
+std::size_t half_width(double cutoff, double truncation, double dx) {
+  const double h = std::floor(truncation * cutoff / dx + 1e-9);
+  // Callers have checked the profile length, so h fits in the data.
+  return h > 1e9 ? static_cast<std::size_t>(1e9) : static_cast<std::size_t>(h);
+}
+
+std::vector<double> gaussian_weights(double cutoff, double dx, std::size_t h) {
+  std::vector<double> w(2 * h + 1);
+  const double scale = 1.0 / (kGaussAlpha * cutoff);
+  for (std::size_t k = 0; k <= 2 * h; ++k) {
+    const double x = (static_cast<double>(k) - static_cast<double>(h)) * dx * scale;
+    w[k] = std::exp(-kPi * x * x);
+  }
+  return w;
+}
+
+}  // namespace
+
+Profile gaussian_mean_line(const Profile& profile, double cutoff, double truncation,
+                           EndEffects end) {
+  profile.validate();
+  core::require_positive("cut-off", cutoff);
+  const std::size_t n = profile.z.size();
+  const std::size_t h = half_width(cutoff, truncation, profile.dx);
+  if (end == EndEffects::discard && n <= 2 * h) {
+    throw InvalidInput(fmt::format(
+        "{}: the profile ({} points, {:.6g} mm) is shorter than the Gaussian filter with "
+        "cut-off {:.6g} mm needs ({} points): use a longer scan, a shorter cut-off or --end "
+        "regression",
+        source_name(profile), n, profile.length() * 1e3, cutoff * 1e3, 2 * h + 1));
+  }
+  const auto w = gaussian_weights(cutoff, profile.dx, h);
+  const auto& z = profile.z;
+  Profile out;
+  out.dx = profile.dx;
+  out.source = profile.source;
+  if (end == EndEffects::discard) {
+    double wsum = 0.0;
+    for (double v : w) wsum += v;
+    out.x0 = profile.x0 + static_cast<double>(h) * profile.dx;
+    out.z.resize(n - 2 * h);
+    for (std::size_t i = h; i + h < n; ++i) {
+      double s = 0.0;
+      const double* zi = z.data() + (i - h);
+      for (std::size_t k = 0; k <= 2 * h; ++k) s += w[k] * zi[k];
+      out.z[i - h] = s / wsum;
+    }
+    return out;
+  }
+  // Regression: Gaussian-weighted least-squares line through the points within the
+  // window, evaluated at the centre (equals the weighted mean where the window is
+  // symmetric).
+  out.x0 = profile.x0;
+  out.z.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t lo = i >= h ? i - h : 0;
+    const std::size_t hi = std::min(n - 1, i + h);
+    double S = 0, Sx = 0, Sxx = 0, Sz = 0, Sxz = 0;
+    for (std::size_t j = lo; j <= hi; ++j) {
+      const double wj = w[j + h - i];
+      const double x = static_cast<double>(j) - static_cast<double>(i);
+      S += wj;
+      Sx += wj * x;
+      Sxx += wj * x * x;
+      Sz += wj * z[j];
+      Sxz += wj * x * z[j];
+    }
+    const double det = S * Sxx - Sx * Sx;
+    out.z[i] = det > 1e-12 * S * Sxx ? (Sxx * Sz - Sx * Sxz) / det : Sz / S;
+  }
+  return out;
+}
+
+std::size_t GaussianFilter::min_points(double dx) const {
+  std::size_t n = 3;
+  if (lc > 0.0) {
+    const auto lc_points = static_cast<std::size_t>(std::ceil(lc / dx)) + 1;
+    n = std::max(n, lc_points);
+    if (end == EndEffects::discard) n += 2 * half_width(lc, truncation, dx);
+  }
+  if (ls > 0.0 && end == EndEffects::discard) n += 2 * half_width(ls, truncation, dx);
+  return n;
+}
+
+Profile GaussianFilter::apply(const Profile& profile) const {
+  validate();
+  profile.validate();
+  const std::string name = source_name(profile);
+  if (ls > 0.0 && ls < 5.0 * profile.dx) {
+    throw InvalidInput(fmt::format(
+        "{}: the short-wave cut-off ls = {:.6g} um is below 5 sample spacings (dx = {:.6g} um): "
+        "the sampled Gaussian would not filter as specified; use ls >= {:.6g} um or no "
+        "short-wave filter",
+        name, ls * 1e6, profile.dx * 1e6, 5.0 * profile.dx * 1e6));
+  }
+  const std::size_t need = min_points(profile.dx);
+  if (profile.z.size() < need) {
+    throw InvalidInput(fmt::format(
+        "{}: the profile ({} points, {:.6g} mm) is shorter than the filter needs ({} points, "
+        "{:.6g} mm for lc = {:.6g} mm, ls = {:.6g} um, end effects '{}'): use a longer scan or a "
+        "shorter lc{}",
+        name, profile.z.size(), profile.length() * 1e3, need,
+        static_cast<double>(need - 1) * profile.dx * 1e3, lc * 1e3, ls * 1e6, to_string(end),
+        end == EndEffects::discard ? " (or --end regression)" : ""));
+  }
+  Profile r = profile;
+  if (lc > 0.0) {
+    const Profile w = gaussian_mean_line(profile, lc, truncation, end);
+    const std::size_t off =
+        static_cast<std::size_t>(std::llround((w.x0 - profile.x0) / profile.dx));
+    r.x0 = w.x0;
+    r.z.assign(w.z.size(), 0.0);
+    for (std::size_t i = 0; i < w.z.size(); ++i) r.z[i] = profile.z[i + off] - w.z[i];
+  }
+  if (ls > 0.0) r = gaussian_mean_line(r, ls, truncation, end);
+  return r;
+}
+
+// ---------------------------------------------------------------- pipeline
+
+SpectralMoments spectral_moments(const Profile& profile) {
+  profile.validate();
+  const auto& y = profile.z;
+  const std::size_t n = y.size();
+  if (n < 3) {
+    throw InvalidInput(fmt::format("{}: spectral moments need at least 3 points, the profile has {}",
+                                   source_name(profile), n));
+  }
+  double s0 = 0, s2 = 0, s4 = 0;
+  for (std::size_t i = 0; i < n; ++i) s0 += y[i] * y[i];
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const double d = y[i + 1] - y[i];
+    s2 += d * d;
+  }
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    const double d = y[i + 1] - 2.0 * y[i] + y[i - 1];
+    s4 += d * d;
+  }
+  const double dx = profile.dx;
+  return {s0 / static_cast<double>(n), s2 / (static_cast<double>(n - 1) * dx * dx),
+          s4 / (static_cast<double>(n - 2) * dx * dx * dx * dx)};
+}
+
+ProcessedProfile process_profile(const Profile& raw, Levelling levelling,
+                                 const GaussianFilter& filter) {
+  ProcessedProfile p;
+  p.levelled = level(raw, levelling);
+  p.filtered = filter.is_none() ? p.levelled : filter.apply(p.levelled);
+  p.moments = spectral_moments(p.filtered);
+  p.moments.validate(source_name(raw));
+  return p;
+}
+
+DirectionalMoments areal_moments(const HeightMap& map, Levelling levelling,
+                                 const GaussianFilter& filter) {
+  map.validate();
+  if (map.ny < 2) {
+    throw InvalidInput(fmt::format("{}: a profile has no second direction; give two scans", map.source));
+  }
+  filter.validate();
+  DirectionalMoments out;
+  auto run = [&](const std::vector<Profile>& profiles, double spacing, const char* axis,
+                 std::size_t& count) {
+    const std::size_t min_pts = filter.is_none() ? 3 : filter.min_points(spacing);
+    std::vector<SpectralMoments> m;
+    std::vector<double> w;
+    for (const auto& p : profiles) {
+      if (p.z.size() < min_pts) continue;
+      const auto r = process_profile(p, levelling, filter);
+      m.push_back(r.moments);
+      w.push_back(static_cast<double>(r.filtered.z.size()));
+    }
+    if (m.empty()) {
+      throw InvalidInput(fmt::format(
+          "{}: no profile along {} is long enough for the filter ({} points of {:.6g} um needed, "
+          "the map has {} x {}): use a shorter --lc",
+          map.source, axis, min_pts, spacing * 1e6, map.nx, map.ny));
+    }
+    count = m.size();
+    return average(m, w);
+  };
+  out.x = run(map.rows(), map.dx, "x (rows)", out.x_profiles);
+  out.y = run(map.columns(), map.dy, "y (columns)", out.y_profiles);
+  return out;
+}
+
+}  // namespace asperity::surface

@@ -1,0 +1,135 @@
+// Friction-force models of chapter 7 (dynamics/friction_model.hpp).
+#include "asperity/dynamics/friction_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "asperity/core/error.hpp"
+#include "asperity/core/numerics.hpp"
+#include "asperity/hysteresis/backbones.hpp"
+
+namespace asperity::dynamics {
+namespace {
+
+TEST(FrictionModelTest, RegularizedCoulombIsEq73) {
+  const RegularizedCoulomb c({.F_max = 1.5, .k_tan = 6.32});  // Table 7.2
+  EXPECT_DOUBLE_EQ(c.force(0.3, 0.0, {}), 0.0);
+  EXPECT_DOUBLE_EQ(c.force(0.0, 0.1, {}), 1.5 * std::tanh(0.632));
+  EXPECT_DOUBLE_EQ(c.force(0.0, -0.1, {}), -1.5 * std::tanh(0.632));
+  EXPECT_NEAR(c.force(0.0, 100.0, {}), 1.5, 1e-15);
+  EXPECT_FALSE(c.uses_reversal_events());
+}
+
+TEST(FrictionModelTest, DankowiczRatesAreEq76) {
+  const Dankowicz d({.F_max = 1.5, .delta = 0.011});
+  std::vector<double> z{0.005}, dz(1);
+  d.internal_rates(0.0, 2.0, z, dz);
+  EXPECT_DOUBLE_EQ(dz[0], 2.0 * (1.0 - 0.005 / 0.011));
+  d.internal_rates(0.0, -2.0, z, dz);
+  EXPECT_DOUBLE_EQ(dz[0], -2.0 * (1.0 + 0.005 / 0.011));
+  EXPECT_DOUBLE_EQ(d.force(0.0, 0.0, z), 1.5 * 0.005 / 0.011);  // Eq. 7.7
+  // At z = delta the internal state stops growing: |z| <= delta is invariant.
+  z[0] = 0.011;
+  d.internal_rates(0.0, 3.0, z, dz);
+  EXPECT_DOUBLE_EQ(dz[0], 0.0);
+  // Overshoot from integration error is projected: the force never exceeds F_max.
+  z[0] = 0.0110001;
+  EXPECT_DOUBLE_EQ(d.force(0.0, 0.0, z), 1.5);
+  EXPECT_EQ(d.internal_states(), 1u);
+}
+
+TEST(FrictionModelTest, HysteresisFrictionFollowsMasingAndCommitsReversals) {
+  HysteresisFriction h(std::make_shared<hysteresis::JenkinsBackbone>(100.0, 1.0));
+  EXPECT_DOUBLE_EQ(h.force(0.005, 1.0, {}), 0.5);
+  EXPECT_DOUBLE_EQ(h.force(0.05, 1.0, {}), 1.0);  // slid
+  h.commit_reversal(0.05);
+  EXPECT_NEAR(h.force(0.045, -1.0, {}), 0.5, 1e-12);  // unloading with the initial stiffness
+  EXPECT_DOUBLE_EQ(h.force(0.0, -1.0, {}), -1.0);    // slides the other way
+  auto copy = h.clone();
+  h.reset();
+  EXPECT_DOUBLE_EQ(h.force(0.0, -1.0, {}), 0.0);
+  EXPECT_DOUBLE_EQ(copy->force(0.0, -1.0, {}), -1.0);  // a clone keeps its memory
+}
+
+TEST(FrictionModelTest, ReversalRuleOfEq710ForgetsOlderLoops) {
+  // Masing memory closes an inner loop and continues on the outer branch; Eq. 7.10
+  // restarts every branch at the last reversal from the backbone value there.
+  auto bb = std::make_shared<hysteresis::FunctionBackbone>(
+      [](double x) { return 1.0 - std::exp(-x); }, 1.0, 1.0);
+  HysteresisFriction masing(bb), reset(bb, hysteresis::MemoryRule::reset_at_reversal);
+  for (auto* m : {&masing, &reset}) {
+    m->commit_reversal(2.0);
+    m->commit_reversal(1.0);
+  }
+  // Back past 2.0: Masing rejoins the virgin curve, Eq. 7.10 does not.
+  EXPECT_NEAR(masing.force(3.0, 1.0, {}), 1.0 - std::exp(-3.0), 1e-12);
+  EXPECT_GT(std::abs(reset.force(3.0, 1.0, {}) - (1.0 - std::exp(-3.0))), 1e-3);
+}
+
+// Segalman (2005), J. Appl. Mech. 72:752-760, Eq. 20-23: phi_max, R, S from
+// (F_S, K_T, chi, beta); the backbone has slope K_T at 0 and reaches F_S at phi_max.
+TEST(FrictionModelTest, SegalmanIwanBackboneIsConsistent) {
+  const SegalmanIwanParameters p{.F_S = 2.0, .K_T = 50.0, .chi = -0.5, .beta = 0.3};
+  const SegalmanBackbone b(p);
+  const double h = 1e-9;
+  EXPECT_NEAR(b.force(h) / h, 50.0, 50.0 * 1e-4);  // K_T (slope ~ u^{chi+1} correction)
+  EXPECT_NEAR(b.force(b.phi_max() * (1 - 1e-12)), 2.0, 1e-9);
+  EXPECT_DOUBLE_EQ(b.force(2.0 * b.phi_max()), 2.0);
+  // The density integrates to the stiffness: Int rho = R phi_max^{chi+1}/(chi+1) + S.
+  EXPECT_NEAR(b.R() * std::pow(b.phi_max(), 0.5) / 0.5 + b.S(), 50.0, 1e-10);
+  // Analytic integral against quadrature.
+  for (double x : {0.3 * b.phi_max(), b.phi_max(), 1.7 * b.phi_max()}) {
+    const double q = core::integrate([&](double s) { return b.force(s); }, 0.0, x, 1e-13).value;
+    EXPECT_NEAR(b.integral(x), q, 1e-10 * q) << x;
+  }
+  EXPECT_NEAR(b.force(b.displacement(1.3)), 1.3, 1e-10);
+  EXPECT_THROW(SegalmanBackbone({.chi = -1.0}), InvalidInput);
+  EXPECT_THROW(SegalmanBackbone({.beta = -0.1}), InvalidInput);
+}
+
+TEST(FrictionModelTest, SegalmanIwanDissipationPowerLaw) {
+  // Segalman 2005, Eq. 29: at small amplitude the energy per cycle grows as
+  // F0^{3+chi}, equivalently displacement^{3+chi}. Local slope over a decade at
+  // 1e-4 phi_max: within 1e-3 of 3 + chi.
+  const SegalmanBackbone b({.F_S = 1.0, .K_T = 1.0, .chi = -0.4, .beta = 0.2});
+  const double x1 = 1e-4 * b.phi_max(), x2 = 1e-3 * b.phi_max();
+  const double slope = std::log(hysteresis::energy_per_cycle(b, x2) /
+                                hysteresis::energy_per_cycle(b, x1)) /
+                       std::log(10.0);
+  EXPECT_NEAR(slope, 2.6, 1e-3);
+}
+
+TEST(FrictionModelTest, SaturatingBackboneApproachesJenkinsAtLargeAmplitude) {
+  // Coulomb and Jenkins limits (issue 6): a CFC-like saturating backbone (Cattaneo-
+  // Mindlin shape) has a loop whose energy per cycle approaches the Jenkins element's
+  // with the same sliding force as the amplitude grows past the slip displacement:
+  // both tend to 4 F x_max.
+  const double F = 1.0, s = 0.01;
+  const hysteresis::FunctionBackbone cfc(
+      [=](double x) { return x >= s ? F : F * (1.0 - std::pow(1.0 - x / s, 1.5)); }, F, 1.5 * F / s);
+  const hysteresis::JenkinsBackbone jenkins(1.5 * F / s, F);
+  double previous_gap = 1.0;
+  for (double amp : {0.02, 0.2, 2.0}) {
+    const double ratio = hysteresis::energy_per_cycle(cfc, amp) /
+                         hysteresis::energy_per_cycle(jenkins, amp);
+    const double gap = std::abs(ratio - 1.0);
+    EXPECT_LT(gap, previous_gap) << amp;
+    previous_gap = gap;
+  }
+  EXPECT_LT(previous_gap, 2e-3);
+}
+
+TEST(FrictionModelTest, PhysicsBasedScalesAnSiBackbone) {
+  // Q(x) in SI: Jenkins 1e7 N/m, 150 N. With k = 1e5 N/m and A = 1e-3 m the model sees
+  // F_s(u) = Q(A u)/(k A): stiffness 1e7 A / (k A) = 100, limit 150/(k A) = 1.5.
+  auto si = std::make_shared<hysteresis::JenkinsBackbone>(1e7, 150.0);
+  const auto m = make_physics_based(si, 1e5, 1e-3);
+  EXPECT_NEAR(m->force(0.01, 1.0, {}), 1.0, 1e-12);
+  EXPECT_NEAR(m->max_force(), 1.5, 1e-12);
+  EXPECT_THROW((void)make_physics_based(si, -1.0, 1.0), InvalidInput);
+}
+
+}  // namespace
+}  // namespace asperity::dynamics
