@@ -135,7 +135,8 @@ void bind_surface(nb::module_& m) {
         "Moments of the equivalent rough surface of two surfaces in contact: they add.");
   m.def(
       "equivalent_isotropic",
-      [](const SpectralMoments& max_slope, const SpectralMoments& min_slope, const std::string& rule) {
+      [](const SpectralMoments& max_slope, const SpectralMoments& min_slope,
+         const std::string& rule) {
         return equivalent_isotropic(max_slope, min_slope, parse_isotropic_rule(rule));
       },
       "max_slope"_a, "min_slope"_a, "rule"_a = "geometric",
@@ -144,7 +145,7 @@ void bind_surface(nb::module_& m) {
   m.def(
       "average_moments",
       [](const std::vector<SpectralMoments>& moments, const std::vector<double>& weights) {
-        return average(moments, weights);
+        return average_moments(moments, weights);
       },
       "moments"_a, "weights"_a, "Weighted mean of the moments of several scans of one direction.");
   m.def("plasticity_index", &plasticity_index, "pair"_a, "moments"_a,
@@ -207,7 +208,9 @@ void bind_surface(nb::module_& m) {
       "Moments along x (rows of z[iy, ix]) and y (columns), each averaged over its profiles.");
   m.def(
       "rms_height_about_plane",
-      [](const Array2& z, double dx, double dy) { return to_map(z, dx, dy).rms_height_about_plane(); },
+      [](const Array2& z, double dx, double dy) {
+        return to_map(z, dx, dy).rms_height_about_plane();
+      },
       "z"_a, "dx"_a = 1.0, "dy"_a = 1.0, "Areal Sq about the least-squares plane (NaN = invalid).");
 
   m.def(

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   std::function<int()> action;
   asperity::cli::add_sphere_command(app, action);
   asperity::cli::add_roughness_command(app, action);
+  asperity::cli::add_dynamics_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

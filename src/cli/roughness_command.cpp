@@ -45,7 +45,7 @@ struct RoughnessOptions {
 
 struct Scan {
   std::string file;
-  std::string direction;  // "isotropic", "max_slope", "min_slope", "x", "y"
+  std::string direction;   // "isotropic", "max_slope", "min_slope", "x", "y"
   std::size_t points = 0;  // points in the filtered profile (per profile for areal)
   std::size_t profiles = 1;
   double dx = 0.0;
@@ -100,8 +100,8 @@ SpectralMoments parse_params(const std::string& text, std::size_t index) {
   for (const auto& item : split(text, ',')) {
     const auto eq = item.find('=');
     if (eq == std::string::npos) {
-      throw InvalidInput(fmt::format("{}: \"{}\" is not key=value (expected sigma=..,eta=..,R=..)",
-                                     flag, item));
+      throw InvalidInput(
+          fmt::format("{}: \"{}\" is not key=value (expected sigma=..,eta=..,R=..)", flag, item));
     }
     const std::string key = trim(item.substr(0, eq));
     const std::string value = trim(item.substr(eq + 1));
@@ -154,15 +154,18 @@ AnalysedSurface analyse_files(const std::string& list, std::size_t index, const 
     items.push_back(it);
     out.files.push_back(it.path);
   }
-  const bool tagged = std::any_of(items.begin(), items.end(), [](const Item& i) { return !i.tag.empty(); });
-  if (tagged && !std::all_of(items.begin(), items.end(), [](const Item& i) { return !i.tag.empty(); })) {
-    throw InvalidInput(fmt::format(
-        "--surface #{}: tag every scan with @max or @min, or none of them", index + 1));
+  const bool tagged =
+      std::any_of(items.begin(), items.end(), [](const Item& i) { return !i.tag.empty(); });
+  if (tagged &&
+      !std::all_of(items.begin(), items.end(), [](const Item& i) { return !i.tag.empty(); })) {
+    throw InvalidInput(
+        fmt::format("--surface #{}: tag every scan with @max or @min, or none of them", index + 1));
   }
 
   std::vector<HeightMap> maps;
   for (const auto& it : items) maps.push_back(surface::read_height_file(it.path, s.text));
-  const bool any_areal = std::any_of(maps.begin(), maps.end(), [](const HeightMap& m) { return !m.is_profile(); });
+  const bool any_areal =
+      std::any_of(maps.begin(), maps.end(), [](const HeightMap& m) { return !m.is_profile(); });
 
   if (any_areal) {
     if (maps.size() != 1) {
@@ -189,7 +192,8 @@ AnalysedSurface analyse_files(const std::string& list, std::size_t index, const 
       for (const auto& row : rows) {
         const auto p = surface::process_profile(row, s.level, s.filter);
         if (!out.trace) out.trace = PlotTrace{row.source, row, p.levelled, p.filtered, {}};
-        out.trace->heights.insert(out.trace->heights.end(), p.filtered.z.begin(), p.filtered.z.end());
+        out.trace->heights.insert(out.trace->heights.end(), p.filtered.z.begin(),
+                                  p.filtered.z.end());
       }
     }
     HeightMap meta = map;
@@ -204,8 +208,8 @@ AnalysedSurface analyse_files(const std::string& list, std::size_t index, const 
     const auto profile = maps[k].as_profile();
     if (maps[k].invalid_count() > 0) out.invalid_points += maps[k].invalid_count();
     auto p = surface::process_profile(profile, s.level, s.filter);
-    Scan scan{profile.source, "isotropic", p.filtered.z.size(), 1, profile.dx, profile.length(),
-              p.filtered.length(), p.moments};
+    Scan scan{profile.source, "isotropic",      p.filtered.z.size(), 1,
+              profile.dx,     profile.length(), p.filtered.length(), p.moments};
     if (!out.trace) out.trace = PlotTrace{profile.source, profile, p.levelled, p.filtered, {}};
     out.trace->heights.insert(out.trace->heights.end(), p.filtered.z.begin(), p.filtered.z.end());
     out.scans.push_back(scan);
@@ -237,14 +241,18 @@ AnalysedSurface analyse_files(const std::string& list, std::size_t index, const 
       (is_max ? wx : wn).push_back(static_cast<double>(scan.points));
     }
     if (mx.empty() || mn.empty()) {
-      throw InvalidInput(fmt::format("--surface #{}: need at least one @max and one @min scan", index + 1));
+      throw InvalidInput(
+          fmt::format("--surface #{}: need at least one @max and one @min scan", index + 1));
     }
-    out.moments = surface::equivalent_isotropic(surface::average(mx, wx), surface::average(mn, wn), s.rule);
+    out.moments = surface::equivalent_isotropic(surface::average_moments(mx, wx),
+                                                surface::average_moments(mn, wn), s.rule);
   }
   return out;
 }
 
-Json nullable(std::optional<double> v) { return v ? Json(*v) : Json(nullptr); }
+Json nullable(std::optional<double> v) {
+  return v ? Json(*v) : Json(nullptr);
+}
 
 std::optional<double> try_sigma_a(const SpectralMoments& m) {
   try {
@@ -297,10 +305,12 @@ std::optional<contact::ContactPair> material_pair(const RoughnessOptions& o) {
     b2.nu = required_quantity(o.nu2, dim::dimensionless, "--nu2");
   }
   if (o.H) {
-    if (o.H1 || o.H2) throw InvalidInput("give either --H (softer material) or --H1/--H2, not both");
+    if (o.H1 || o.H2)
+      throw InvalidInput("give either --H (softer material) or --H1/--H2, not both");
     if (b1.nu != b2.nu) {
-      throw InvalidInput("--H does not say which half is softer and the Poisson's ratios differ: "
-                         "give --H1 and --H2");
+      throw InvalidInput(
+          "--H does not say which half is softer and the Poisson's ratios differ: "
+          "give --H1 and --H2");
     }
     b1.H = b2.H = required_quantity(o.H, dim::pressure, "--H");
   } else {
@@ -317,7 +327,8 @@ std::optional<contact::ContactPair> material_pair(const RoughnessOptions& o) {
 
 std::vector<double> decimate_x(const surface::Profile& p, std::size_t stride) {
   std::vector<double> x;
-  for (std::size_t i = 0; i < p.z.size(); i += stride) x.push_back((p.x0 + static_cast<double>(i) * p.dx) * 1e6);
+  for (std::size_t i = 0; i < p.z.size(); i += stride)
+    x.push_back((p.x0 + static_cast<double>(i) * p.dx) * 1e6);
   return x;
 }
 std::vector<double> decimate_z(const surface::Profile& p, std::size_t stride) {
@@ -342,7 +353,7 @@ void draw_plot(const std::string& path, const std::vector<AnalysedSurface>& surf
   std::ostringstream top;
   top << "set multiplot layout 2,1\n";
   top << "set title \"Profiles (first scan or row of each surface)\" noenhanced\n";
-  top << "set xlabel \"x [um]\"\nset ylabel \"z [um]\"\n";
+  top << "set xlabel \"x [um]\"\nset ylabel \"z [um]\"\nset autoscale xfix\n";
   std::vector<std::pair<std::string, std::pair<std::vector<double>, std::vector<double>>>> lines;
   PlotSpec hist{.title = "Height distribution of the filtered profiles",
                 .xlabel = "z [um]",
@@ -355,8 +366,10 @@ void draw_plot(const std::string& path, const std::vector<AnalysedSurface>& surf
     const std::size_t stride = std::max<std::size_t>(1, t.raw.z.size() / 4000);
     const std::string tag = fmt::format("surface {}", si);
     lines.push_back({tag + " raw", {decimate_x(t.raw, stride), decimate_z(t.raw, stride)}});
-    lines.push_back({tag + " levelled", {decimate_x(t.levelled, stride), decimate_z(t.levelled, stride)}});
-    lines.push_back({tag + " filtered", {decimate_x(t.filtered, stride), decimate_z(t.filtered, stride)}});
+    lines.push_back(
+        {tag + " levelled", {decimate_x(t.levelled, stride), decimate_z(t.levelled, stride)}});
+    lines.push_back(
+        {tag + " filtered", {decimate_x(t.filtered, stride), decimate_z(t.filtered, stride)}});
     // Histogram of the filtered heights of all scans (all rows of an areal map).
     const auto& z = t.heights;
     double mean = 0, ms = 0, lo = z.front(), hi = z.front();
@@ -407,7 +420,7 @@ void draw_plot(const std::string& path, const std::vector<AnalysedSurface>& surf
     }
     top << "e\n";
   }
-  top << "set title " << gp_quote(hist.title) << " noenhanced\n";
+  top << "set autoscale x\nset title " << gp_quote(hist.title) << " noenhanced\n";
   top << "set xlabel " << gp_quote(hist.xlabel) << "\nset ylabel " << gp_quote(hist.ylabel) << "\n";
   hist.extra = top.str();
   plot_png(path, hist);
@@ -425,7 +438,8 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
     s.filter.end = surface::parse_end_effects(o.end, "--end");
     s.filter.truncation = core::parse_quantity(o.truncation, dim::dimensionless, "--truncation");
   } else {
-    throw InvalidInput(fmt::format("--filter = \"{}\" is not allowed: use gaussian or none", o.filter));
+    throw InvalidInput(
+        fmt::format("--filter = \"{}\" is not allowed: use gaussian or none", o.filter));
   }
   s.filter.validate();
   if (o.dx) {
@@ -437,8 +451,9 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
 
   const std::size_t n = o.surfaces.size() + o.params.size();
   if (n == 0) {
-    throw InvalidInput("give the surfaces: --surface FILE[,FILE...] or --params sigma=..,eta=..,R=.. "
-                       "(once per joint half)");
+    throw InvalidInput(
+        "give the surfaces: --surface FILE[,FILE...] or --params sigma=..,eta=..,R=.. "
+        "(once per joint half)");
   }
   if (n > 2) throw InvalidInput(fmt::format("{} surfaces given: a joint has one or two halves", n));
   std::vector<AnalysedSurface> surfaces;
@@ -452,10 +467,13 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
       surfaces.push_back(std::move(a));
     }
   }
-  for (std::size_t k = 0; k < surfaces.size(); ++k) surfaces[k].moments.validate(fmt::format("surface {}", k + 1));
+  for (std::size_t k = 0; k < surfaces.size(); ++k)
+    surfaces[k].moments.validate(fmt::format("surface {}", k + 1));
   SpectralMoments combined = surfaces.front().moments;
-  for (std::size_t k = 1; k < surfaces.size(); ++k) combined = surface::combine(combined, surfaces[k].moments);
-  const bool any_files = std::any_of(surfaces.begin(), surfaces.end(), [](const auto& a) { return a.from_files; });
+  for (std::size_t k = 1; k < surfaces.size(); ++k)
+    combined = surface::combine(combined, surfaces[k].moments);
+  const bool any_files =
+      std::any_of(surfaces.begin(), surfaces.end(), [](const auto& a) { return a.from_files; });
 
   if (o.json) {
     Json j;
@@ -502,22 +520,25 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
     c["filter"] = any_files ? filter_json(s) : Json(nullptr);
     j["combined"] = c;
     if (pair) {
-      j["material"] = {{"E_star", pair->E_star}, {"H", pair->H}, {"nu", pair->nu}, {"K", pair->K()}};
+      j["material"] = {
+          {"E_star", pair->E_star}, {"H", pair->H}, {"nu", pair->nu}, {"K", pair->K()}};
     }
     out += j.dump(2) + "\n";
   } else {
     if (any_files) {
       out += s.filter.is_none()
                  ? fmt::format("filter: none; levelling: {}\n", surface::to_string(s.level))
-                 : fmt::format("filter: ISO 16610-21 Gaussian, lc = {}, ls = {} (ct = {:.3g}, ends: {}); "
-                               "levelling: {}; anisotropy rule: {}\n",
-                               s.filter.lc > 0 ? fmt::format("{:.4g} mm", s.filter.lc * 1e3) : "none",
-                               s.filter.ls > 0 ? fmt::format("{:.4g} um", s.filter.ls * 1e6) : "none",
-                               s.filter.truncation, surface::to_string(s.filter.end),
-                               surface::to_string(s.level), surface::to_string(s.rule));
+                 : fmt::format(
+                       "filter: ISO 16610-21 Gaussian, lc = {}, ls = {} (ct = {:.3g}, ends: {}); "
+                       "levelling: {}; anisotropy rule: {}\n",
+                       s.filter.lc > 0 ? fmt::format("{:.4g} mm", s.filter.lc * 1e3) : "none",
+                       s.filter.ls > 0 ? fmt::format("{:.4g} um", s.filter.ls * 1e6) : "none",
+                       s.filter.truncation, surface::to_string(s.filter.end),
+                       surface::to_string(s.level), surface::to_string(s.rule));
     }
-    out += fmt::format("{:<12}{:>11}{:>14}{:>11}{:>8}{:>8}{:>13}{}\n", "surface", "sigma[um]",
-                       "eta[um^-2]", "R[um]", "beta", "alpha", "sigma_a[um]", pair ? "      psi" : "");
+    out +=
+        fmt::format("{:<12}{:>11}{:>14}{:>11}{:>8}{:>8}{:>13}{}\n", "surface", "sigma[um]",
+                    "eta[um^-2]", "R[um]", "beta", "alpha", "sigma_a[um]", pair ? "      psi" : "");
     auto row = [&](const std::string& name, const SpectralMoments& m) {
       const auto sa = try_sigma_a(m);
       out += fmt::format("{:<12}{:>11.4f}{:>14.4e}{:>11.4f}{:>8.4f}{:>8.3f}{:>13}{}\n", name,
@@ -525,18 +546,21 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
                          sa ? fmt::format("{:.4f}", *sa * 1e6) : "-",
                          pair ? fmt::format("{:>9.4f}", surface::plasticity_index(*pair, m)) : "");
     };
-    for (std::size_t k = 0; k < surfaces.size(); ++k) row(fmt::format("{}", k + 1), surfaces[k].moments);
+    for (std::size_t k = 0; k < surfaces.size(); ++k)
+      row(fmt::format("{}", k + 1), surfaces[k].moments);
     row("combined", combined);
     for (std::size_t k = 0; k < surfaces.size(); ++k) {
       for (const auto& sc : surfaces[k].scans) {
-        out += fmt::format("  surface {} scan {} [{}]: m0 = {:.4g} m^2, m2 = {:.4g}, m4 = {:.4g} m^-2\n",
-                           k + 1, sc.file, sc.direction, sc.moments.m0, sc.moments.m2, sc.moments.m4);
+        out += fmt::format(
+            "  surface {} scan {} [{}]: m0 = {:.4g} m^2, m2 = {:.4g}, m4 = {:.4g} m^-2\n", k + 1,
+            sc.file, sc.direction, sc.moments.m0, sc.moments.m2, sc.moments.m4);
       }
       if (surfaces[k].areal) {
         const auto& a = *surfaces[k].areal;
-        out += fmt::format("  surface {}: areal {} x {} points, dx = {:.4g} um, dy = {:.4g} um, "
-                           "Sq = {:.4g} um\n",
-                           k + 1, a.nx, a.ny, a.dx * 1e6, a.dy * 1e6, surfaces[k].Sq * 1e6);
+        out += fmt::format(
+            "  surface {}: areal {} x {} points, dx = {:.4g} um, dy = {:.4g} um, "
+            "Sq = {:.4g} um\n",
+            k + 1, a.nx, a.ny, a.dx * 1e6, a.dy * 1e6, surfaces[k].Sq * 1e6);
       }
     }
   }
@@ -567,16 +591,19 @@ void add_roughness_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--lc", o->lc, "long-wave cut-off (default 0.8mm; none to skip)");
   cmd->add_option("--ls", o->ls, "short-wave cut-off (default 20um; none to skip)");
   cmd->add_option("--filter", o->filter, "gaussian (ISO 16610-21, default) or none");
-  cmd->add_option("--level", o->level, "form removal before filtering: none, mean or line (default)");
-  cmd->add_option("--end", o->end,
-                  "filter end effects: discard (default, drop ct*cut-off at each end) or regression "
-                  "(keep every point; Gaussian regression near the ends)");
+  cmd->add_option("--level", o->level,
+                  "form removal before filtering: none, mean or line (default)");
+  cmd->add_option(
+      "--end", o->end,
+      "filter end effects: discard (default, drop ct*cut-off at each end) or regression "
+      "(keep every point; Gaussian regression near the ends)");
   cmd->add_option("--truncation", o->truncation,
                   "ct: Gaussian weights kept within +-ct*cut-off, in [0.5, 3] (default 1)");
   cmd->add_option("--rule", o->rule,
                   "m2, m4 of the equivalent isotropic surface from max/min-slope scans: geometric "
                   "(McCool, default) or arithmetic mean; m0 is always the arithmetic mean");
-  cmd->add_option("--dx", o->dx, "sampling interval of single-column (z only) text files, e.g. 0.5um");
+  cmd->add_option("--dx", o->dx,
+                  "sampling interval of single-column (z only) text files, e.g. 0.5um");
   cmd->add_option("--E", o->E, "Young's modulus of both halves (for the plasticity index psi)");
   cmd->add_option("--nu", o->nu, "Poisson's ratio of both halves");
   cmd->add_option("--E1", o->E1, "Young's modulus of half 1");

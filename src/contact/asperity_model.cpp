@@ -45,20 +45,26 @@ FrictionLaw friction_law_of(ModelName m) {
 }
 
 AsperityLaws::AsperityLaws(ModelName model, double nu, const FrictionParameters& params)
-    : model_(model), nu_(nu), params_(params) {
+    : model_(model), nu_(nu), params_(params), K_(hardness_factor(nu)) {
   core::require_in_half_open("nu", nu, 0.0, 0.5);
   params.validate();
-  if (model == ModelName::bke) (void)BkeConstants::for_poisson(nu);
+  if (model == ModelName::bke) bke_ = BkeConstants::for_poisson(nu);
 }
 
+// Validated once in the constructor; these run in the statistical sums' inner loops.
 double AsperityLaws::load_star(double w) const {
-  return normal_load_star(normal_law_of(model_), w, nu_);
+  core::require_non_negative("interference w = omega/omega_c", w);
+  return detail::normal_load_star(normal_law_of(model_), w, K_, bke_);
 }
 double AsperityLaws::radius_star(double w) const {
-  return contact_radius_star(normal_law_of(model_), w, nu_);
+  core::require_non_negative("interference w = omega/omega_c", w);
+  return detail::contact_radius_star(normal_law_of(model_), w, bke_);
 }
 double AsperityLaws::mu(double w) const {
-  return friction_coefficient(friction_law_of(model_), w, nu_, params_);
+  if (model_ != ModelName::cfc && !(w > 0.0)) {
+    return friction_coefficient(friction_law_of(model_), w, nu_, params_);  // throws
+  }
+  return detail::friction_coefficient(friction_law_of(model_), w, nu_, bke_.delta_c, params_);
 }
 double AsperityLaws::interference_star(double P_star) const {
   return contact::interference_star(normal_law_of(model_), P_star, nu_);

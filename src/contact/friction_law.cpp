@@ -73,10 +73,9 @@ double ke_coefficient(double w) {
   return 0.0;
 }
 
-double bke_coefficient(double w, double nu) {
+double bke_coefficient(double w, double delta_c) {
   // B.13 (SEED_NOTES.md: this grouping of delta_c reproduces Table 3.2)
-  const auto c = BkeConstants::for_poisson(nu);
-  return 0.26 / std::tanh(0.27 * std::pow(w / c.delta_c, 0.46));
+  return 0.26 / std::tanh(0.27 * std::pow(w / delta_c, 0.46));
 }
 
 }  // namespace
@@ -94,14 +93,24 @@ double friction_coefficient(FrictionLaw law, double w, double nu, const Friction
         "> 0 (mu diverges at w = 0)",
         core::format_value(w), to_string(law)));
   }
+  const double delta_c = law == FrictionLaw::bke ? BkeConstants::for_poisson(nu).delta_c : 0.0;
+  return detail::friction_coefficient(law, w, nu, delta_c, params);
+}
+
+namespace detail {
+
+double friction_coefficient(FrictionLaw law, double w, double nu, double delta_c,
+                            const FrictionParameters& params) {
   switch (law) {
     case FrictionLaw::ceb: return ceb_coefficient(w, nu, params.zeta);
     case FrictionLaw::ke: return ke_coefficient(w);
-    case FrictionLaw::bke: return bke_coefficient(w, nu);
+    case FrictionLaw::bke: return bke_coefficient(w, delta_c);
     case FrictionLaw::cfc: break;
   }
   return params.mu_cfc;
 }
+
+}  // namespace detail
 
 std::optional<double> ceb_branch_crossing(double nu, double zeta) {
   auto diff = [&](double w) {

@@ -55,31 +55,34 @@ double bke_load(const BkeConstants& c, double w) {
   const double scale = c.l_c / std::pow(c.delta_c, 1.5);
   if (w <= c.delta_c) return scale * std::pow(w, 1.5);
   const double da = std::pow(c.delta_c, c.alpha);
-  return scale * std::pow(w, 1.5) * (1.0 - std::exp(da / (da - std::pow(w, c.alpha))));
+  const double gap = std::pow(w, c.alpha) - da;
+  // Just above delta_c the rounded gap can be 0: the factor is then exactly 1 (B.4's limit).
+  if (!(gap > 0.0)) return scale * std::pow(w, 1.5);
+  return scale * std::pow(w, 1.5) * (1.0 - std::exp(-da / gap));
 }
 
 }  // namespace
 
-double normal_load_star(NormalLaw law, double w, double nu) {
-  check_interference(w);
+namespace detail {
+
+double normal_load_star(NormalLaw law, double w, double K, const BkeConstants& bke) {
   switch (law) {
     case NormalLaw::hertz:  // B.1
-      return std::pow(w, 1.5);
+      return w * std::sqrt(w);
     case NormalLaw::ceb:  // B.2
-      return w <= 1.0 ? std::pow(w, 1.5) : 3.0 * (w - 0.5);
+      return w <= 1.0 ? w * std::sqrt(w) : 3.0 * (w - 0.5);
     case NormalLaw::ke:  // B.3
-      if (w <= 1.0) return std::pow(w, 1.5);
+      if (w <= 1.0) return w * std::sqrt(w);
       if (w <= 6.0) return 1.03 * std::pow(w, 1.425);
       if (w <= 110.0) return 1.4 * std::pow(w, 1.263);
-      return 3.0 / hardness_factor(nu) * w;
+      return 3.0 / K * w;
     case NormalLaw::bke:
-      return bke_load(BkeConstants::for_poisson(nu), w);
+      return bke_load(bke, w);
   }
   return 0.0;
 }
 
-double contact_radius_star(NormalLaw law, double w, double nu) {
-  check_interference(w);
+double contact_radius_star(NormalLaw law, double w, const BkeConstants& c) {
   switch (law) {
     case NormalLaw::hertz:  // B.5
       return std::sqrt(w);
@@ -91,14 +94,35 @@ double contact_radius_star(NormalLaw law, double w, double nu) {
       if (w <= 110.0) return 0.97 * std::pow(w, 0.57);
       return 1.41 * std::sqrt(w);
     case NormalLaw::bke: {  // B.8
-      const auto c = BkeConstants::for_poisson(nu);
       const double scale = 1.0 / std::sqrt(c.delta_c);
       if (w <= c.delta_c) return scale * std::sqrt(w);
       const double dg = std::pow(c.delta_c, c.gamma);
-      return scale * std::sqrt(w) * std::sqrt(1.0 + std::exp(dg / (dg - std::pow(w, c.gamma))));
+      const double gap = std::pow(w, c.gamma) - dg;
+      if (!(gap > 0.0)) return scale * std::sqrt(w);  // B.8's limit at delta_c
+      return scale * std::sqrt(w) * std::sqrt(1.0 + std::exp(-dg / gap));
     }
   }
   return 0.0;
+}
+
+}  // namespace detail
+
+namespace {
+BkeConstants constants_for(NormalLaw law, double nu) {
+  return law == NormalLaw::bke ? BkeConstants::for_poisson(nu) : BkeConstants{};
+}
+}  // namespace
+
+double normal_load_star(NormalLaw law, double w, double nu) {
+  check_interference(w);
+  core::require_in_half_open("nu", nu, 0.0, 0.5);
+  return detail::normal_load_star(law, w, hardness_factor(nu), constants_for(law, nu));
+}
+
+double contact_radius_star(NormalLaw law, double w, double nu) {
+  check_interference(w);
+  core::require_in_half_open("nu", nu, 0.0, 0.5);
+  return detail::contact_radius_star(law, w, constants_for(law, nu));
 }
 
 double interference_star(NormalLaw law, double P_star, double nu) {

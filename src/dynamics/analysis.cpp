@@ -53,9 +53,21 @@ Spectrum power_spectrum(const Periodogram& p, double f_min, double f_max, std::s
 
 ModalEstimate modal_estimate(const Periodogram& p, double f_min, double f_max, std::size_t bins) {
   const Spectrum s = power_spectrum(p, f_min, f_max, bins);
-  const auto it = std::max_element(s.power.begin(), s.power.end());
-  const std::size_t k = static_cast<std::size_t>(it - s.power.begin());
-  if (!(*it > 0.0)) throw NumericalError("power spectrum: the signal has no power in the range");
+  // The largest interior local maximum: a spectrum falling from the lower end (the
+  // slow creep of a regularized Coulomb contact, a drift) is not a mode.
+  std::size_t k = 0;
+  for (std::size_t i = 1; i + 1 < bins; ++i) {
+    if (s.power[i] >= s.power[i - 1] && s.power[i] > s.power[i + 1] &&
+        (k == 0 || s.power[i] > s.power[k])) {
+      k = i;
+    }
+  }
+  if (k == 0 || !(s.power[k] > 0.0)) {
+    throw NumericalError(fmt::format(
+        "power spectrum: no peak between {:.6g} and {:.6g} (the response may be overdamped)",
+        f_min, f_max));
+  }
+  const auto it = s.power.begin() + static_cast<std::ptrdiff_t>(k);
   const double df = s.frequency[1] - s.frequency[0];
   ModalEstimate m;
   {
@@ -134,13 +146,16 @@ std::vector<Extremum> extrema(const Trajectory& tr, double tau_start) {
   return out;
 }
 
-std::vector<DecayPoint> free_decay(const Trajectory& tr, double tau_start) {
+std::vector<DecayPoint> free_decay(const Trajectory& tr, double tau_start, double floor) {
+  core::require_in_half_open("free-decay amplitude floor", floor, 0.0, 1.0);
   const auto e = extrema(tr, tau_start);
   std::vector<DecayPoint> out;
+  double s_max = 0.0;
+  for (std::size_t k = 0; k + 1 < e.size(); ++k) s_max = std::max(s_max, std::abs(e[k + 1].u - e[k].u));
   for (std::size_t k = 0; k + 3 < e.size(); ++k) {
     const double s0 = std::abs(e[k + 1].u - e[k].u);
     const double s2 = std::abs(e[k + 3].u - e[k + 2].u);
-    if (!(s0 > 0.0 && s2 > 0.0)) break;
+    if (!(s0 > 0.0 && s2 > floor * s_max)) break;
     const double d = std::log(s0 / s2);
     out.push_back({.tau = e[k].tau,
                    .amplitude = 0.5 * s0,

@@ -74,15 +74,16 @@ FastLoadingSum::FastLoadingSum(const RoughFlat& flat, double d_star)
   cuts.insert(cuts.end(), law_breaks_.begin(), law_breaks_.end());
   cuts.push_back(u_max_);
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    // Halves with u = end + L s^2 towards both ends (u^{3/2} at 0, square roots at
+    // law branch points).
     const double a = cuts[i];
-    const double L = cuts[i + 1] - a;
-    const int chunks = std::max(1, static_cast<int>(std::ceil(2.0 * L / s_a_)));
+    const double half = 0.5 * (cuts[i + 1] - a);
+    const int chunks = std::max(1, static_cast<int>(std::ceil(2.0 * half / s_a_)));
     for (int c = 0; c < chunks; ++c) {
       for (int q = 0; q < 20; ++q) {
         const double s = (c + r.x[q]) / chunks;
-        const double u = (i == 0) ? a + L * s * s : a + L * s;  // u^{3/2} at 0: u = L s^2
-        const double jac = (i == 0) ? 2.0 * L * s : L;
-        total += r.w[q] / chunks * jac * point(u).W;
+        const double wq = r.w[q] / chunks * 2.0 * half * s;
+        total += wq * (point(a + half * s * s).W + point(cuts[i + 1] - half * s * s).W);
       }
     }
   }
@@ -128,7 +129,7 @@ LoadingMoments FastLoadingSum::at(double delta_star) const {
     bool sqrt_type;
   };
   std::vector<Cut> cuts{{0.0, true}};
-  for (double u : law_breaks_) cuts.push_back({u, false});
+  for (double u : law_breaks_) cuts.push_back({u, true});  // e.g. CEB mu ~ (1 - w)^{1/2}
   for (double u : boundaries(c)) cuts.push_back({u, true});
   cuts.push_back({u_max_, false});
   std::sort(cuts.begin(), cuts.end(), [](const Cut& x, const Cut& y) { return x.u < y.u; });

@@ -12,15 +12,18 @@ namespace asperity::surface {
 void Profile::validate() const {
   const std::string_view name = source.empty() ? std::string_view("profile") : source;
   if (z.size() < 2) {
-    throw InvalidInput(fmt::format("{}: a profile needs at least 2 points, it has {}", name, z.size()));
+    throw InvalidInput(
+        fmt::format("{}: a profile needs at least 2 points, it has {}", name, z.size()));
   }
   if (!std::isfinite(dx) || dx <= 0.0) {
-    throw InvalidInput(fmt::format("{}: the sampling interval dx = {:.6g} m must be > 0", name, dx));
+    throw InvalidInput(
+        fmt::format("{}: the sampling interval dx = {:.6g} m must be > 0", name, dx));
   }
   if (!std::isfinite(x0)) throw InvalidInput(fmt::format("{}: x0 is not finite", name));
   for (std::size_t i = 0; i < z.size(); ++i) {
     if (!std::isfinite(z[i])) {
-      throw InvalidInput(fmt::format("{}: height {} (point {}) is not a finite number", name, z[i], i));
+      throw InvalidInput(
+          fmt::format("{}: height {} (point {}) is not a finite number", name, z[i], i));
     }
   }
 }
@@ -49,7 +52,8 @@ void HeightMap::validate() const {
     throw InvalidInput(fmt::format("{}: {} heights for a {} x {} map", name, z.size(), nx, ny));
   }
   if (!valid.empty() && valid.size() != z.size()) {
-    throw InvalidInput(fmt::format("{}: {} validity flags for {} heights", name, valid.size(), z.size()));
+    throw InvalidInput(
+        fmt::format("{}: {} validity flags for {} heights", name, valid.size(), z.size()));
   }
   if (!std::isfinite(dx) || dx <= 0.0) {
     throw InvalidInput(fmt::format("{}: the x spacing dx = {:.6g} m must be > 0", name, dx));
@@ -120,11 +124,13 @@ std::vector<Profile> HeightMap::columns(std::size_t min_points) const {
 
 Profile HeightMap::as_profile() const {
   if (ny != 1) {
-    throw InvalidInput(fmt::format("{}: an areal map ({} x {}) is not a single profile", source, nx, ny));
+    throw InvalidInput(
+        fmt::format("{}: an areal map ({} x {}) is not a single profile", source, nx, ny));
   }
   auto r = rows(2);
   if (r.empty()) {
-    throw InvalidInput(fmt::format("{}: the profile has fewer than 2 consecutive valid points", source));
+    throw InvalidInput(
+        fmt::format("{}: the profile has fewer than 2 consecutive valid points", source));
   }
   return std::move(r.front());
 }
@@ -182,14 +188,18 @@ Levelling parse_levelling(std::string_view text, std::string_view field) {
   if (text == "none") return Levelling::none;
   if (text == "mean") return Levelling::mean;
   if (text == "line") return Levelling::line;
-  throw InvalidInput(fmt::format("{} = \"{}\" is not allowed: use none, mean or line", field, text));
+  throw InvalidInput(
+      fmt::format("{} = \"{}\" is not allowed: use none, mean or line", field, text));
 }
 
 std::string_view to_string(Levelling l) {
   switch (l) {
-    case Levelling::none: return "none";
-    case Levelling::mean: return "mean";
-    case Levelling::line: return "line";
+    case Levelling::none:
+      return "none";
+    case Levelling::mean:
+      return "mean";
+    case Levelling::line:
+      return "line";
   }
   return "?";
 }

@@ -100,8 +100,9 @@ bool numeric_line(std::string_view text, std::vector<double>* values = nullptr) 
 
 std::string lower(std::string_view s) {
   std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(),
-                 [](unsigned char c) { return static_cast<char>(c >= 'A' && c <= 'Z' ? c + 32 : c); });
+  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) {
+    return static_cast<char>(c >= 'A' && c <= 'Z' ? c + 32 : c);
+  });
   return out;
 }
 
@@ -163,7 +164,8 @@ Column parse_column_header(std::string_view field) {
   };
   for (auto [open, close] : {std::pair{'[', ']'}, std::pair{'(', ')'}}) {
     const auto o = field.rfind(open);
-    if (o != std::string_view::npos && !field.empty() && field.back() == close && o + 1 < field.size()) {
+    if (o != std::string_view::npos && !field.empty() && field.back() == close &&
+        o + 1 < field.size()) {
       take(o, field.substr(o + 1, field.size() - o - 2));
       return c;
     }
@@ -196,7 +198,8 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
                            const TextReadOptions& options) {
   if (content.size() >= 3 && content.substr(0, 3) == "\xEF\xBB\xBF") content.remove_prefix(3);
   if (content.find('\0') != std::string_view::npos) {
-    throw InvalidInput(fmt::format("{}: this is not a text profile (it contains NUL bytes)", source));
+    throw InvalidInput(
+        fmt::format("{}: this is not a text profile (it contains NUL bytes)", source));
   }
   const auto lines = split_lines(content);
   // The data block: the longest run of consecutive numeric lines.
@@ -215,7 +218,8 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
     i = j;
   }
   if (best_len == 0) {
-    throw InvalidInput(fmt::format("{}: no data: expected lines of numbers (x and z, or z)", source));
+    throw InvalidInput(
+        fmt::format("{}: no data: expected lines of numbers (x and z, or z)", source));
   }
   // A line after the block that starts with a number is a malformed data line.
   for (std::size_t k = best_start + best_len; k < lines.size(); ++k) {
@@ -241,8 +245,9 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
     header_line = lines[best_start - 1].number;
     if (!fields.empty()) {
       if (fields.size() != ncol) {
-        throw InvalidInput(fmt::format("{}: line {}: the header names {} columns but the data has {}",
-                                       source, header_line, fields.size(), ncol));
+        throw InvalidInput(
+            fmt::format("{}: line {}: the header names {} columns but the data has {}", source,
+                        header_line, fields.size(), ncol));
       }
       have_header = true;
       for (std::size_t c = 0; c < ncol; ++c) columns[c] = parse_column_header(fields[c]);
@@ -298,20 +303,21 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
     }
     for (std::size_t c = 0; c < ncol; ++c) {
       if (!std::isfinite(values[c])) {
-        throw InvalidInput(fmt::format("{}: line {}: column {} is {}, not a finite number",
-                                       source, lines[k].number, c + 1, values[c]));
+        throw InvalidInput(fmt::format("{}: line {}: column {} is {}, not a finite number", source,
+                                       lines[k].number, c + 1, values[c]));
       }
     }
     p.z.push_back(values[zcol] * zf);
     if (xcol < ncol) x.push_back(values[xcol] * xf);
   }
   if (p.z.size() < 2) {
-    throw InvalidInput(fmt::format("{}: only {} data point: a profile needs at least 2", source,
-                                   p.z.size()));
+    throw InvalidInput(
+        fmt::format("{}: only {} data point: a profile needs at least 2", source, p.z.size()));
   }
   if (xcol < ncol) {
     if (options.dx) {
-      throw InvalidInput(fmt::format("{}: the file has an x column, so --dx must not be given", source));
+      throw InvalidInput(
+          fmt::format("{}: the file has an x column, so --dx must not be given", source));
     }
     const std::size_t n = x.size();
     // The uniform grid x = x0 + i dx by least squares (robust to the rounding of the
@@ -333,9 +339,10 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
     const double dx = b;
     for (std::size_t i = 1; i < n; ++i) {
       if (!(x[i] > x[i - 1])) {
-        throw InvalidInput(fmt::format("{}: line {}: x = {:.9g} m does not increase (previous {:.9g} m): "
-                                       "x must increase with a uniform step",
-                                       source, lines[best_start + i].number, x[i], x[i - 1]));
+        throw InvalidInput(
+            fmt::format("{}: line {}: x = {:.9g} m does not increase (previous {:.9g} m): "
+                        "x must increase with a uniform step",
+                        source, lines[best_start + i].number, x[i], x[i - 1]));
       }
     }
     for (std::size_t i = 0; i < n; ++i) {

@@ -22,8 +22,8 @@ namespace {
 
 // Upper bounds that keep a hostile header from making us allocate: point count and
 // any single archive entry.
-constexpr std::uint64_t kMaxPoints = std::uint64_t{1} << 28;       // 268 M points
-constexpr std::uint64_t kMaxEntryBytes = std::uint64_t{1} << 31;   // 2 GiB
+constexpr std::uint64_t kMaxPoints = std::uint64_t{1} << 28;      // 268 M points
+constexpr std::uint64_t kMaxEntryBytes = std::uint64_t{1} << 31;  // 2 GiB
 
 struct ZipCloser {
   void operator()(zip_t* z) const { zip_discard(z); }
@@ -36,25 +36,35 @@ using ZipFilePtr = std::unique_ptr<zip_file_t, ZipFileCloser>;
 
 std::size_t type_size(X3pDataType t) {
   switch (t) {
-    case X3pDataType::int16: return 2;
-    case X3pDataType::int32: return 4;
-    case X3pDataType::float32: return 4;
-    case X3pDataType::float64: return 8;
+    case X3pDataType::int16:
+      return 2;
+    case X3pDataType::int32:
+      return 4;
+    case X3pDataType::float32:
+      return 4;
+    case X3pDataType::float64:
+      return 8;
   }
   return 8;
 }
 
 char type_letter(X3pDataType t) {
   switch (t) {
-    case X3pDataType::int16: return 'I';
-    case X3pDataType::int32: return 'L';
-    case X3pDataType::float32: return 'F';
-    case X3pDataType::float64: return 'D';
+    case X3pDataType::int16:
+      return 'I';
+    case X3pDataType::int32:
+      return 'L';
+    case X3pDataType::float32:
+      return 'F';
+    case X3pDataType::float64:
+      return 'D';
   }
   return 'D';
 }
 
-bool is_integer_type(X3pDataType t) { return t == X3pDataType::int16 || t == X3pDataType::int32; }
+bool is_integer_type(X3pDataType t) {
+  return t == X3pDataType::int16 || t == X3pDataType::int32;
+}
 
 class Reader {
  public:
@@ -176,7 +186,8 @@ class MainXml {
 
   pugi::xml_node root() const { return root_; }
 
-  pugi::xml_node require(pugi::xml_node parent, std::string_view name, std::string_view path) const {
+  pugi::xml_node require(pugi::xml_node parent, std::string_view name,
+                         std::string_view path) const {
     auto c = child(parent, name);
     if (!c) r_.fail("main.xml", fmt::format("element {} is missing", path));
     return c;
@@ -205,7 +216,8 @@ class MainXml {
     std::uint64_t v = 0;
     const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
     if (ec != std::errc() || ptr != s.data() + s.size() || v == 0 || v > kMaxPoints) {
-      r_.fail("main.xml", fmt::format("{} = \"{}\" is not a size between 1 and {}", path, s, kMaxPoints));
+      r_.fail("main.xml",
+              fmt::format("{} = \"{}\" is not a size between 1 and {}", path, s, kMaxPoints));
     }
     return v;
   }
@@ -221,11 +233,16 @@ class MainXml {
     a.axis_type = type[0];
     if (child(node, "DataType")) {
       const auto dt = text(node, "DataType", path + "/DataType");
-      if (dt == "I") a.data_type = X3pDataType::int16;
-      else if (dt == "L") a.data_type = X3pDataType::int32;
-      else if (dt == "F") a.data_type = X3pDataType::float32;
-      else if (dt == "D") a.data_type = X3pDataType::float64;
-      else r_.fail("main.xml", fmt::format("{}/DataType = \"{}\": expected I, L, F or D", path, dt));
+      if (dt == "I")
+        a.data_type = X3pDataType::int16;
+      else if (dt == "L")
+        a.data_type = X3pDataType::int32;
+      else if (dt == "F")
+        a.data_type = X3pDataType::float32;
+      else if (dt == "D")
+        a.data_type = X3pDataType::float64;
+      else
+        r_.fail("main.xml", fmt::format("{}/DataType = \"{}\": expected I, L, F or D", path, dt));
     }
     if (child(node, "Increment")) a.increment = number(node, "Increment", path + "/Increment");
     if (child(node, "Offset")) a.offset = number(node, "Offset", path + "/Offset");
@@ -241,7 +258,8 @@ class MainXml {
 bool same_hex(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i) {
-    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i]))) {
+    if (std::tolower(static_cast<unsigned char>(a[i])) !=
+        std::tolower(static_cast<unsigned char>(b[i]))) {
       return false;
     }
   }
@@ -288,8 +306,9 @@ HeightMap parse_x3p(std::string_view bytes, std::string_view source) {
   if (checksum_text.size() < 32) reader.fail(checksum_file, "expected a 32-digit MD5 of main.xml");
   const std::string actual_xml_md5 = detail::md5_hex(xml);
   if (!same_hex(std::string_view(checksum_text).substr(0, 32), actual_xml_md5)) {
-    reader.fail(checksum_file, fmt::format("MD5 checksum mismatch: main.xml has {}, the file says {}",
-                                           actual_xml_md5, std::string_view(checksum_text).substr(0, 32)));
+    reader.fail(checksum_file,
+                fmt::format("MD5 checksum mismatch: main.xml has {}, the file says {}",
+                            actual_xml_md5, std::string_view(checksum_text).substr(0, 32)));
   }
 
   // Record1: feature type and axes.
@@ -305,11 +324,13 @@ HeightMap parse_x3p(std::string_view bytes, std::string_view source) {
   const Axis cy = doc.axis(axes, "CY");
   const Axis cz = doc.axis(axes, "CZ");
   if (cx.axis_type != 'I' || cy.axis_type != 'I') {
-    reader.fail("main.xml", "absolute x or y axes (AxisType A: coordinates per point) are not "
-                            "supported; expected incremental axes (AxisType I)");
+    reader.fail("main.xml",
+                "absolute x or y axes (AxisType A: coordinates per point) are not "
+                "supported; expected incremental axes (AxisType I)");
   }
   if (!(cx.increment > 0.0)) {
-    reader.fail("main.xml", fmt::format("Record1/Axes/CX/Increment = {} must be > 0", cx.increment));
+    reader.fail("main.xml",
+                fmt::format("Record1/Axes/CX/Increment = {} must be > 0", cx.increment));
   }
   if (cz.axis_type != 'A') reader.fail("main.xml", "Record1/Axes/CZ/AxisType must be A");
   if (!cz.data_type) reader.fail("main.xml", "element Record1/Axes/CZ/DataType is missing");
@@ -322,16 +343,19 @@ HeightMap parse_x3p(std::string_view bytes, std::string_view source) {
   const std::uint64_t sx = doc.count(dims, "SizeX", "Record3/MatrixDimension/SizeX");
   const std::uint64_t sy = doc.count(dims, "SizeY", "Record3/MatrixDimension/SizeY");
   const std::uint64_t sz = doc.count(dims, "SizeZ", "Record3/MatrixDimension/SizeZ");
-  if (sz != 1) reader.fail("main.xml", fmt::format("SizeZ = {}: only one layer (SizeZ = 1) is supported", sz));
+  if (sz != 1)
+    reader.fail("main.xml", fmt::format("SizeZ = {}: only one layer (SizeZ = 1) is supported", sz));
   if (sx > kMaxPoints / sy) {
-    reader.fail("main.xml", fmt::format("SizeX x SizeY = {} x {} exceeds {} points", sx, sy, kMaxPoints));
+    reader.fail("main.xml",
+                fmt::format("SizeX x SizeY = {} x {} exceeds {} points", sx, sy, kMaxPoints));
   }
   const std::uint64_t n = sx * sy;
   if (feature == "PRF" && sy != 1) {
     reader.fail("main.xml", fmt::format("a profile (PRF) must have SizeY = 1, not {}", sy));
   }
   if (sy > 1 && !(cy.increment > 0.0)) {
-    reader.fail("main.xml", fmt::format("Record1/Axes/CY/Increment = {} must be > 0", cy.increment));
+    reader.fail("main.xml",
+                fmt::format("Record1/Axes/CY/Increment = {} must be > 0", cy.increment));
   }
 
   HeightMap map;
@@ -378,7 +402,8 @@ HeightMap parse_x3p(std::string_view bytes, std::string_view source) {
       map.z[k] = cz.offset + cz.increment * raw;
     }
     if (child(data_link, "ValidPointsLink")) {
-      const std::string vlink(doc.text(data_link, "ValidPointsLink", "Record3/DataLink/ValidPointsLink"));
+      const std::string vlink(
+          doc.text(data_link, "ValidPointsLink", "Record3/DataLink/ValidPointsLink"));
       const std::string mask = reader.read_entry(vlink);
       const std::uint64_t want_mask = (n + 7) / 8;
       if (mask.size() != want_mask) {
@@ -408,8 +433,9 @@ HeightMap parse_x3p(std::string_view bytes, std::string_view source) {
       if (d.type() == pugi::node_element && local_name(d.name()) == "Datum") ++count;
     }
     if (count != n) {
-      reader.fail("main.xml", fmt::format("Record3/DataList has {} Datum elements, but SizeX x SizeY = {}",
-                                          count, n));
+      reader.fail(
+          "main.xml",
+          fmt::format("Record3/DataList has {} Datum elements, but SizeX x SizeY = {}", count, n));
     }
     map.z.resize(static_cast<std::size_t>(n));
     valid.assign(static_cast<std::size_t>(n), 1);
@@ -428,8 +454,8 @@ HeightMap parse_x3p(std::string_view bytes, std::string_view source) {
       if (*first == '+') ++first;
       const auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), v);
       if (ec != std::errc() || ptr != s.data() + s.size()) {
-        reader.fail("main.xml", fmt::format("Record3/DataList/Datum {} = \"{}\" is not a number", k + 1,
-                                            s.substr(0, 40)));
+        reader.fail("main.xml", fmt::format("Record3/DataList/Datum {} = \"{}\" is not a number",
+                                            k + 1, s.substr(0, 40)));
       }
       map.z[k++] = cz.offset + cz.increment * v;
     }
@@ -495,9 +521,9 @@ X3pPackage make_x3p_package(const HeightMap& map, const X3pWriteOptions& options
     if (options.z_increment > 0.0) {
       increment = options.z_increment;
       if (std::max(std::abs(lo), std::abs(hi)) / increment > static_cast<double>(full)) {
-        throw InvalidInput(fmt::format("z_increment = {:.6g} m cannot represent heights up to {:.6g} m in type {}",
-                                       increment, std::max(std::abs(lo), std::abs(hi)),
-                                       type_letter(options.type)));
+        throw InvalidInput(fmt::format(
+            "z_increment = {:.6g} m cannot represent heights up to {:.6g} m in type {}", increment,
+            std::max(std::abs(lo), std::abs(hi)), type_letter(options.type)));
       }
     } else {
       offset = 0.5 * (lo + hi);
@@ -532,27 +558,38 @@ X3pPackage make_x3p_package(const HeightMap& map, const X3pWriteOptions& options
     }
     std::uint64_t bits = 0;
     switch (options.type) {
-      case X3pDataType::int16: bits = static_cast<std::uint16_t>(static_cast<std::int16_t>(iv)); break;
-      case X3pDataType::int32: bits = static_cast<std::uint32_t>(static_cast<std::int32_t>(iv)); break;
-      case X3pDataType::float32: bits = std::bit_cast<std::uint32_t>(static_cast<float>(v)); break;
-      case X3pDataType::float64: bits = std::bit_cast<std::uint64_t>(v); break;
+      case X3pDataType::int16:
+        bits = static_cast<std::uint16_t>(static_cast<std::int16_t>(iv));
+        break;
+      case X3pDataType::int32:
+        bits = static_cast<std::uint32_t>(static_cast<std::int32_t>(iv));
+        break;
+      case X3pDataType::float32:
+        bits = std::bit_cast<std::uint32_t>(static_cast<float>(v));
+        break;
+      case X3pDataType::float64:
+        bits = std::bit_cast<std::uint64_t>(v);
+        break;
     }
-    for (std::size_t b = 0; b < ts; ++b) data[k * ts + b] = static_cast<char>((bits >> (8 * b)) & 0xffu);
+    for (std::size_t b = 0; b < ts; ++b)
+      data[k * ts + b] = static_cast<char>((bits >> (8 * b)) & 0xffu);
   }
   std::string mask;
   if (any_invalid && !options.inline_data) {
     mask.assign((n + 7) / 8, '\0');
     for (std::size_t k = 0; k < n; ++k) {
-      if (ok[k]) mask[k / 8] = static_cast<char>(static_cast<unsigned char>(mask[k / 8]) | (1u << (k % 8)));
+      if (ok[k])
+        mask[k / 8] = static_cast<char>(static_cast<unsigned char>(mask[k / 8]) | (1u << (k % 8)));
     }
   }
   const char t = type_letter(options.type);
   std::string xml;
   xml += "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"no\" ?>\n";
-  xml += "<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\" "
-         "xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
-         "xsi:schemaLocation=\"http://www.opengps.eu/2008/ISO5436_2 "
-         "http://www.opengps.eu/2008/ISO5436_2/ISO5436_2.xsd\">\n";
+  xml +=
+      "<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\" "
+      "xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
+      "xsi:schemaLocation=\"http://www.opengps.eu/2008/ISO5436_2 "
+      "http://www.opengps.eu/2008/ISO5436_2/ISO5436_2.xsd\">\n";
   xml += fmt::format(
       "  <Record1>\n    <Revision>ISO5436 - 2000</Revision>\n    <FeatureType>{}</FeatureType>\n"
       "    <Axes>\n"
@@ -564,12 +601,13 @@ X3pPackage make_x3p_package(const HeightMap& map, const X3pWriteOptions& options
       "<Offset>{:.17g}</Offset></CZ>\n"
       "    </Axes>\n  </Record1>\n",
       sur ? "SUR" : "PRF", map.dx, map.x0, sur ? map.dy : map.dx, map.y0, t, increment, offset);
-  xml += "  <Record2>\n    <Date>1970-01-01T00:00:00</Date>\n    <Instrument>\n"
-         "      <Manufacturer>asperity</Manufacturer>\n      <Model>asperity</Model>\n"
-         "      <Serial>not available</Serial>\n      <Version>0.1.0</Version>\n"
-         "    </Instrument>\n    <CalibrationDate>1970-01-01T00:00:00</CalibrationDate>\n"
-         "    <ProbingSystem><Type>Software</Type><Identification>asperity</Identification>"
-         "</ProbingSystem>\n    <Comment>written by asperity</Comment>\n  </Record2>\n";
+  xml +=
+      "  <Record2>\n    <Date>1970-01-01T00:00:00</Date>\n    <Instrument>\n"
+      "      <Manufacturer>asperity</Manufacturer>\n      <Model>asperity</Model>\n"
+      "      <Serial>not available</Serial>\n      <Version>0.1.0</Version>\n"
+      "    </Instrument>\n    <CalibrationDate>1970-01-01T00:00:00</CalibrationDate>\n"
+      "    <ProbingSystem><Type>Software</Type><Identification>asperity</Identification>"
+      "</ProbingSystem>\n    <Comment>written by asperity</Comment>\n  </Record2>\n";
   xml += fmt::format(
       "  <Record3>\n    <MatrixDimension><SizeX>{}</SizeX><SizeY>{}</SizeY><SizeZ>1</SizeZ>"
       "</MatrixDimension>\n",
@@ -578,18 +616,21 @@ X3pPackage make_x3p_package(const HeightMap& map, const X3pWriteOptions& options
   if (options.inline_data) {
     xml += "    <DataList>" + datalist + "</DataList>\n";
   } else {
-    xml += fmt::format("    <DataLink>\n      <PointDataLink>bindata/data.bin</PointDataLink>\n"
-                       "      <MD5ChecksumPointData>{}</MD5ChecksumPointData>\n",
-                       detail::md5_hex(data));
+    xml += fmt::format(
+        "    <DataLink>\n      <PointDataLink>bindata/data.bin</PointDataLink>\n"
+        "      <MD5ChecksumPointData>{}</MD5ChecksumPointData>\n",
+        detail::md5_hex(data));
     if (!mask.empty()) {
-      xml += fmt::format("      <ValidPointsLink>bindata/valid.bin</ValidPointsLink>\n"
-                         "      <MD5ChecksumValidPoints>{}</MD5ChecksumValidPoints>\n",
-                         detail::md5_hex(mask));
+      xml += fmt::format(
+          "      <ValidPointsLink>bindata/valid.bin</ValidPointsLink>\n"
+          "      <MD5ChecksumValidPoints>{}</MD5ChecksumValidPoints>\n",
+          detail::md5_hex(mask));
     }
     xml += "    </DataLink>\n";
   }
-  xml += "  </Record3>\n  <Record4>\n    <ChecksumFile>md5checksum.hex</ChecksumFile>\n"
-         "  </Record4>\n</p:ISO5436_2>\n";
+  xml +=
+      "  </Record3>\n  <Record4>\n    <ChecksumFile>md5checksum.hex</ChecksumFile>\n"
+      "  </Record4>\n</p:ISO5436_2>\n";
   pkg.files.emplace_back("main.xml", std::move(xml));
   if (!options.inline_data) {
     pkg.files.emplace_back("bindata/data.bin", std::move(data));

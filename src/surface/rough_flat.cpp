@@ -19,7 +19,6 @@ namespace {
 constexpr double kTailExponent = 60.0;
 // Relative tolerance of every statistical-sum quadrature.
 constexpr double kQuadratureTol = 1e-13;
-constexpr unsigned kMaxDepth = 16;
 // Lowest separation accepted, in units of sigma_a.
 constexpr double kMinSeparationSigmaA = -5.0;
 
@@ -108,49 +107,36 @@ class Kernel {
     return roots;
   }
 
-  /// Integral over u in [0, u_max] of g, split at the law branch points and at the
-  /// given slip boundaries (where u = u_b + (b - a) t^2 removes the square-root
-  /// behaviour before Gauss-Kronrod).
+  /// Integral over u in [0, u_max] of g, split at u = 0, the law branch points and the
+  /// given slip boundaries, where the integrand may behave like (u - u_b)^{k/2} (or, for
+  /// CEB near w = 1, like a square root just outside the piece): tanh-sinh on each piece,
+  /// whose double-exponential clustering at the ends copes with both.
   template <class G>
   [[nodiscard]] double integrate(G g, const std::vector<double>& slip_breaks = {}) const {
-    std::vector<Break> breaks;
+    std::vector<double> breaks;
     breaks.reserve(law_breaks_.size() + slip_breaks.size() + 2);
-    breaks.push_back({0.0, false});
-    for (double u : law_breaks_) breaks.push_back({u, false});
+    breaks.push_back(0.0);
+    breaks.insert(breaks.end(), law_breaks_.begin(), law_breaks_.end());
     for (double u : slip_breaks) {
-      if (u > 0.0 && u < u_max_) breaks.push_back({u, true});
+      if (u > 0.0 && u < u_max_) breaks.push_back(u);
     }
-    breaks.push_back({u_max_, false});
-    std::sort(breaks.begin(), breaks.end(), [](const Break& x, const Break& y) { return x.u < y.u; });
+    breaks.push_back(u_max_);
+    std::sort(breaks.begin(), breaks.end());
     double total = 0.0;
     for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
-      const Break lo = breaks[i];
-      const Break hi = breaks[i + 1];
-      const double h = hi.u - lo.u;
-      if (!(h > 0.0)) continue;
-      // Stay strictly inside the piece: the laws may jump at its ends.
-      auto piece = [&](double a, double b, bool sqrt_at_a) {
-        const double len = b - a;
-        auto mapped = [&](double t) {
-          const double u = sqrt_at_a ? a + len * t * t : b - len * t * t;
-          return g(u) * 2.0 * len * t;
-        };
-        return core::integrate(mapped, 0.0, 1.0, kQuadratureTol, kMaxDepth,
-                               "rough-flat statistical sum")
-            .value;
+      if (!(breaks[i + 1] > breaks[i])) continue;
+      auto checked = [&](double u) {
+        const double v = g(u);
+        if (!std::isfinite(v)) {
+          throw NumericalError(fmt::format(
+              "rough-flat statistical sum: non-finite integrand {} at z* - d* = {:.17g} (d* = {})",
+              v, u, d_));
+        }
+        return v;
       };
-      if (lo.sqrt_type && hi.sqrt_type) {
-        const double mid = 0.5 * (lo.u + hi.u);
-        total += piece(lo.u, mid, true) + piece(mid, hi.u, false);
-      } else if (lo.sqrt_type) {
-        total += piece(lo.u, hi.u, true);
-      } else if (hi.sqrt_type) {
-        total += piece(lo.u, hi.u, false);
-      } else {
-        total += core::integrate(g, lo.u, hi.u, kQuadratureTol, kMaxDepth,
-                                 "rough-flat statistical sum")
-                     .value;
-      }
+      total += core::integrate_tanh_sinh(checked, breaks[i], breaks[i + 1], kQuadratureTol,
+                                         "rough-flat statistical sum")
+                   .value;
     }
     return total;
   }

@@ -20,7 +20,9 @@ constexpr double kSigmaAConstant = 3.717e-4;
 // ISO 16610-21: alpha = sqrt(ln 2 / pi).
 const double kGaussAlpha = std::sqrt(std::numbers::ln2 / kPi);
 
-std::string source_name(const Profile& p) { return p.source.empty() ? "profile" : p.source; }
+std::string source_name(const Profile& p) {
+  return p.source.empty() ? "profile" : p.source;
+}
 
 }  // namespace
 
@@ -29,18 +31,29 @@ std::string source_name(const Profile& p) { return p.source.empty() ? "profile" 
 void SpectralMoments::validate(std::string_view name) const {
   for (auto [field, v] : {std::pair{"m0", m0}, std::pair{"m2", m2}, std::pair{"m4", m4}}) {
     if (!std::isfinite(v) || v <= 0.0) {
-      throw InvalidInput(fmt::format("{}: {} = {:.6g} must be a finite number > 0 (a flat or "
-                                     "constant profile has no roughness parameters)",
-                                     name, field, v));
+      throw InvalidInput(
+          fmt::format("{}: {} = {:.6g} must be a finite number > 0 (a flat or "
+                      "constant profile has no roughness parameters)",
+                      name, field, v));
     }
   }
 }
 
-double SpectralMoments::sigma() const { return std::sqrt(m0); }
-double SpectralMoments::eta() const { return m4 / (kEtaFactor * m2); }
-double SpectralMoments::R() const { return 0.375 * std::sqrt(kPi / m4); }
-double SpectralMoments::alpha() const { return m0 * m4 / (m2 * m2); }
-double SpectralMoments::beta() const { return sigma() * R() * eta(); }
+double SpectralMoments::sigma() const {
+  return std::sqrt(m0);
+}
+double SpectralMoments::eta() const {
+  return m4 / (kEtaFactor * m2);
+}
+double SpectralMoments::R() const {
+  return 0.375 * std::sqrt(kPi / m4);
+}
+double SpectralMoments::alpha() const {
+  return m0 * m4 / (m2 * m2);
+}
+double SpectralMoments::beta() const {
+  return sigma() * R() * eta();
+}
 
 double SpectralMoments::sigma_a() const {
   const double b = beta();
@@ -63,7 +76,9 @@ SpectralMoments SpectralMoments::from_parameters(double sigma, double eta, doubl
   return {sigma * sigma, m4 / (kEtaFactor * eta), m4};
 }
 
-SpectralMoments combine(const SpectralMoments& a, const SpectralMoments& b) { return a + b; }
+SpectralMoments combine(const SpectralMoments& a, const SpectralMoments& b) {
+  return a + b;
+}
 
 IsotropicRule parse_isotropic_rule(std::string_view text, std::string_view field) {
   if (text == "geometric") return IsotropicRule::geometric;
@@ -92,11 +107,12 @@ SpectralMoments equivalent_isotropic(const SpectralMoments& max_slope,
   return e;
 }
 
-SpectralMoments average(const std::vector<SpectralMoments>& moments,
-                        const std::vector<double>& weights) {
+SpectralMoments average_moments(const std::vector<SpectralMoments>& moments,
+                                const std::vector<double>& weights) {
   if (moments.empty()) throw InvalidInput("no profile to average the spectral moments over");
   if (weights.size() != moments.size()) {
-    throw InvalidInput(fmt::format("{} weights for {} sets of moments", weights.size(), moments.size()));
+    throw InvalidInput(
+        fmt::format("{} weights for {} sets of moments", weights.size(), moments.size()));
   }
   SpectralMoments sum;
   double w = 0.0;
@@ -283,8 +299,9 @@ SpectralMoments spectral_moments(const Profile& profile) {
   const auto& y = profile.z;
   const std::size_t n = y.size();
   if (n < 3) {
-    throw InvalidInput(fmt::format("{}: spectral moments need at least 3 points, the profile has {}",
-                                   source_name(profile), n));
+    throw InvalidInput(
+        fmt::format("{}: spectral moments need at least 3 points, the profile has {}",
+                    source_name(profile), n));
   }
   double s0 = 0, s2 = 0, s4 = 0;
   for (std::size_t i = 0; i < n; ++i) s0 += y[i] * y[i];
@@ -315,7 +332,8 @@ DirectionalMoments areal_moments(const HeightMap& map, Levelling levelling,
                                  const GaussianFilter& filter) {
   map.validate();
   if (map.ny < 2) {
-    throw InvalidInput(fmt::format("{}: a profile has no second direction; give two scans", map.source));
+    throw InvalidInput(
+        fmt::format("{}: a profile has no second direction; give two scans", map.source));
   }
   filter.validate();
   DirectionalMoments out;
@@ -337,7 +355,7 @@ DirectionalMoments areal_moments(const HeightMap& map, Levelling levelling,
           map.source, axis, min_pts, spacing * 1e6, map.nx, map.ny));
     }
     count = m.size();
-    return average(m, w);
+    return average_moments(m, w);
   };
   out.x = run(map.rows(), map.dx, "x (rows)", out.x_profiles);
   out.y = run(map.columns(), map.dy, "y (columns)", out.y_profiles);

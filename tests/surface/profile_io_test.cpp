@@ -24,7 +24,8 @@ TEST(ProfileMd5, Rfc1321Vectors) {
   EXPECT_EQ(detail::md5_hex(""), "d41d8cd98f00b204e9800998ecf8427e");
   EXPECT_EQ(detail::md5_hex("abc"), "900150983cd24fb0d6963f7d28e17f72");
   EXPECT_EQ(detail::md5_hex("message digest"), "f96b697d7cb7938d525a2f31aaf161d0");
-  EXPECT_EQ(detail::md5_hex("12345678901234567890123456789012345678901234567890123456789012345678901234567890"),
+  EXPECT_EQ(detail::md5_hex(
+                "12345678901234567890123456789012345678901234567890123456789012345678901234567890"),
             "57edf4a22be3c955ac49da2e2107b67a");
 }
 
@@ -57,18 +58,22 @@ TEST(ProfileText, HeaderUnitForms) {
   const auto b = parse_profile_text("x_um;z_nm\r\n0;10\r\n0.5;20\r\n1.0;30\r\n", "b.csv");
   EXPECT_NEAR(b.dx, 0.5 * um, 1e-15);
   EXPECT_NEAR(b.z[0], 10e-9, 1e-20);
-  const auto c = parse_profile_text("# scan\nx (mm)\tz (\xB5m)\n0\t1\n0.01\t2\n", "c.txt");  // Latin-1 µ
+  const auto c =
+      parse_profile_text("# scan\nx (mm)\tz (\xB5m)\n0\t1\n0.01\t2\n", "c.txt");  // Latin-1 µ
   EXPECT_NEAR(c.z[1], 2 * um, 1e-18);
-  const auto d = parse_profile_text("\xEF\xBB\xBFx[\xC2\xB5m] z[\xC2\xB5m]\n0 1\n1 2\n2 3\n", "d.txt");
+  const auto d =
+      parse_profile_text("\xEF\xBB\xBFx[\xC2\xB5m] z[\xC2\xB5m]\n0 1\n1 2\n2 3\n", "d.txt");
   EXPECT_NEAR(d.dx, 1 * um, 1e-15);
   const auto e = parse_profile_text("z[um]\n1\n2\n3\n4\n", "e.csv", {.dx = 0.5 * um});
   EXPECT_EQ(e.z.size(), 4u);
   EXPECT_NEAR(e.dx, 0.5 * um, 1e-18);
-  const auto f = parse_profile_text("Lateral um,Raw Micrometer,\n0.0,1,,\n0.2,2,,\n0.3,3,,\n0.5,4,,\n", "f.csv");
+  const auto f = parse_profile_text(
+      "Lateral um,Raw Micrometer,\n0.0,1,,\n0.2,2,,\n0.3,3,,\n0.5,4,,\n", "f.csv");
   EXPECT_NEAR(f.dx, 0.16 * um, 1e-15);  // least-squares grid through 0, 0.2, 0.3, 0.5
 }
 
-void expect_refused(std::string_view content, std::string_view fragment, const TextReadOptions& o = {}) {
+void expect_refused(std::string_view content, std::string_view fragment,
+                    const TextReadOptions& o = {}) {
   try {
     (void)parse_profile_text(content, "bad.csv", o);
     ADD_FAILURE() << "accepted: " << content;
@@ -122,11 +127,13 @@ HeightMap test_map(std::size_t nx, std::size_t ny, bool holes) {
 TEST(X3p, RoundTripEveryTypeAndStorage) {
   for (bool sur : {false, true}) {
     for (bool inline_data : {false, true}) {
-      for (auto type : {X3pDataType::int16, X3pDataType::int32, X3pDataType::float32, X3pDataType::float64}) {
+      for (auto type :
+           {X3pDataType::int16, X3pDataType::int32, X3pDataType::float32, X3pDataType::float64}) {
         SCOPED_TRACE(::testing::Message() << "sur " << sur << " inline " << inline_data << " type "
                                           << static_cast<int>(type));
         const auto m = test_map(37, sur ? 13 : 1, true);
-        const auto bytes = zip_x3p_package(make_x3p_package(m, {.type = type, .inline_data = inline_data}));
+        const auto bytes =
+            zip_x3p_package(make_x3p_package(m, {.type = type, .inline_data = inline_data}));
         const auto r = parse_x3p(bytes, "round trip");
         ASSERT_EQ(r.nx, m.nx);
         ASSERT_EQ(r.ny, m.ny);
@@ -136,10 +143,10 @@ TEST(X3p, RoundTripEveryTypeAndStorage) {
         }
         EXPECT_DOUBLE_EQ(r.x0, m.x0);
         EXPECT_EQ(r.invalid_count(), m.invalid_count());
-        const double tol = type == X3pDataType::float64 ? 0.0
+        const double tol = type == X3pDataType::float64   ? 0.0
                            : type == X3pDataType::float32 ? 1e-13
-                           : type == X3pDataType::int32  ? 1e-15
-                                                         : 1e-10;
+                           : type == X3pDataType::int32   ? 1e-15
+                                                          : 1e-10;
         for (std::size_t k = 0; k < m.z.size(); ++k) {
           if (!m.valid[k]) {
             EXPECT_FALSE(r.is_valid(k % m.nx, k / m.nx));
@@ -220,11 +227,13 @@ TEST(X3p, BadInputIsRefusedWithClearMessages) {
   }
   {  // absurd size claimed in the header: refused before allocation
     auto pkg = good;
-    pkg.file("main.xml") = replace(pkg.file("main.xml"), "<SizeX>20</SizeX>", "<SizeX>100000000</SizeX>");
+    pkg.file("main.xml") =
+        replace(pkg.file("main.xml"), "<SizeX>20</SizeX>", "<SizeX>100000000</SizeX>");
     pkg.update_main_checksum();
     expect_x3p_refused(zip_x3p_package(pkg), "exceeds");
     pkg = good;
-    pkg.file("main.xml") = replace(pkg.file("main.xml"), "<SizeX>20</SizeX>", "<SizeX>2000</SizeX>");
+    pkg.file("main.xml") =
+        replace(pkg.file("main.xml"), "<SizeX>20</SizeX>", "<SizeX>2000</SizeX>");
     pkg.update_main_checksum();
     expect_x3p_refused(zip_x3p_package(pkg), "need");
   }
@@ -254,7 +263,8 @@ TEST(X3p, BadInputIsRefusedWithClearMessages) {
     pkg.update_main_checksum();
     expect_x3p_refused(zip_x3p_package(pkg), "not well-formed");
     pkg = good;
-    pkg.file("main.xml") = replace(pkg.file("main.xml"), "<DataType>D</DataType><Incr", "<DataType>Q</DataType><Incr");
+    pkg.file("main.xml") =
+        replace(pkg.file("main.xml"), "<DataType>D</DataType><Incr", "<DataType>Q</DataType><Incr");
     pkg.update_main_checksum();
     expect_x3p_refused(zip_x3p_package(pkg), "expected I, L, F or D");
   }

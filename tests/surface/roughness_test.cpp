@@ -42,10 +42,20 @@ void expect_combination(const TableColumn& c) {
 }
 
 TEST(RoughnessTable, Table54CombinedColumnsFollowFromTheHalves) {
-  expect_combination({"Table 5.4 before", {1.763, 3.34e-4, 40.76}, {2.015, 2.51e-4, 44.77},
-                      {2.677, 2.91e-4, 30.14}, 0.0005, 0.005e-4, 0.005});
-  expect_combination({"Table 5.4 after", {1.859, 2.87e-4, 44.75}, {1.847, 2.68e-4, 47.37},
-                      {2.620, 2.77e-4, 32.53}, 0.0005, 0.005e-4, 0.005});
+  expect_combination({"Table 5.4 before",
+                      {1.763, 3.34e-4, 40.76},
+                      {2.015, 2.51e-4, 44.77},
+                      {2.677, 2.91e-4, 30.14},
+                      0.0005,
+                      0.005e-4,
+                      0.005});
+  expect_combination({"Table 5.4 after",
+                      {1.859, 2.87e-4, 44.75},
+                      {1.847, 2.68e-4, 47.37},
+                      {2.620, 2.77e-4, 32.53},
+                      0.0005,
+                      0.005e-4,
+                      0.005});
 }
 
 TEST(RoughnessTable, Table54CombinedToThePrintedDigits) {
@@ -63,18 +73,55 @@ TEST(RoughnessTable, Table54CombinedToThePrintedDigits) {
 
 TEST(RoughnessTable, Table62CombinedColumnsFollowFromTheHalves) {
   const TableColumn cols[] = {
-      {"smooth Al before", {0.507, 3.87e-4, 129.451}, {0.655, 3.26e-4, 152.867}, {0.828, 3.59e-4, 98.788}, 0.0005, 0.005e-4, 0.0005},
-      {"smooth Al after", {0.506, 4.09e-4, 130.186}, {0.537, 3.58e-4, 138.147}, {0.738, 3.83e-4, 94.745}, 0.0005, 0.005e-4, 0.0005},
-      {"rough Al before", {2.243, 3.00e-4, 39.119}, {1.791, 3.35e-4, 40.071}, {2.870, 3.16e-4, 27.992}, 0.0005, 0.005e-4, 0.0005},
-      {"rough Al after", {1.903, 3.12e-4, 41.142}, {1.812, 3.28e-4, 43.410}, {2.628, 3.20e-4, 29.862}, 0.0005, 0.005e-4, 0.0005},
-      {"smooth steel before", {0.387, 3.63e-4, 194.631}, {0.424, 3.56e-4, 163.532}, {0.574, 3.59e-4, 125.204}, 0.0005, 0.005e-4, 0.0005},
-      {"smooth steel after", {0.357, 3.68e-4, 210.931}, {0.438, 3.55e-4, 167.981}, {0.566, 3.60e-4, 131.403}, 0.0005, 0.005e-4, 0.0005},
+      {"smooth Al before",
+       {0.507, 3.87e-4, 129.451},
+       {0.655, 3.26e-4, 152.867},
+       {0.828, 3.59e-4, 98.788},
+       0.0005,
+       0.005e-4,
+       0.0005},
+      {"smooth Al after",
+       {0.506, 4.09e-4, 130.186},
+       {0.537, 3.58e-4, 138.147},
+       {0.738, 3.83e-4, 94.745},
+       0.0005,
+       0.005e-4,
+       0.0005},
+      {"rough Al before",
+       {2.243, 3.00e-4, 39.119},
+       {1.791, 3.35e-4, 40.071},
+       {2.870, 3.16e-4, 27.992},
+       0.0005,
+       0.005e-4,
+       0.0005},
+      {"rough Al after",
+       {1.903, 3.12e-4, 41.142},
+       {1.812, 3.28e-4, 43.410},
+       {2.628, 3.20e-4, 29.862},
+       0.0005,
+       0.005e-4,
+       0.0005},
+      {"smooth steel before",
+       {0.387, 3.63e-4, 194.631},
+       {0.424, 3.56e-4, 163.532},
+       {0.574, 3.59e-4, 125.204},
+       0.0005,
+       0.005e-4,
+       0.0005},
+      {"smooth steel after",
+       {0.357, 3.68e-4, 210.931},
+       {0.438, 3.55e-4, 167.981},
+       {0.566, 3.60e-4, 131.403},
+       0.0005,
+       0.005e-4,
+       0.0005},
   };
   for (const auto& c : cols) expect_combination(c);
   // Rough steel: the R row of this block is cut off in the seed's text; sigma and eta
   // are checked.
-  for (const auto& [a, b, s, e] : {std::tuple{Half{1.848, 3.23e-4, 40.0}, Half{1.863, 3.05e-4, 40.0}, 2.624, 3.14e-4},
-                                   std::tuple{Half{1.608, 3.55e-4, 40.0}, Half{1.714, 3.51e-4, 40.0}, 2.351, 3.53e-4}}) {
+  for (const auto& [a, b, s, e] :
+       {std::tuple{Half{1.848, 3.23e-4, 40.0}, Half{1.863, 3.05e-4, 40.0}, 2.624, 3.14e-4},
+        std::tuple{Half{1.608, 3.55e-4, 40.0}, Half{1.714, 3.51e-4, 40.0}, 2.351, 3.53e-4}}) {
     const auto m = combine(moments_of(a), moments_of(b));
     EXPECT_NEAR(m.sigma() / um, s, 0.001);
     // eta of the combination weights each half by m2, which needs R; with equal R
@@ -96,9 +143,10 @@ TEST(RoughnessTable, Table54PlasticityIndexWithinOnePercent) {
     Half h;
     double psi, beta;
   };
-  const Col cols[] = {{{1.763, 3.34e-4, 40.76}, 3.374, 0.024}, {{2.015, 2.51e-4, 44.77}, 3.230, 0.023},
-                      {{2.677, 2.91e-4, 30.14}, 4.725, 0.023}, {{1.859, 2.87e-4, 44.75}, 3.284, 0.024},
-                      {{1.847, 2.68e-4, 47.37}, 3.122, 0.023}, {{2.620, 2.77e-4, 32.53}, 4.534, 0.024}};
+  const Col cols[] = {
+      {{1.763, 3.34e-4, 40.76}, 3.374, 0.024}, {{2.015, 2.51e-4, 44.77}, 3.230, 0.023},
+      {{2.677, 2.91e-4, 30.14}, 4.725, 0.023}, {{1.859, 2.87e-4, 44.75}, 3.284, 0.024},
+      {{1.847, 2.68e-4, 47.37}, 3.122, 0.023}, {{2.620, 2.77e-4, 32.53}, 4.534, 0.024}};
   for (const auto& c : cols) {
     const auto m = moments_of(c.h);
     SCOPED_TRACE(c.h.sigma_um);
@@ -189,7 +237,8 @@ TEST(RoughnessFilter, FiftyPercentTransmissionAtLc) {
 
 TEST(RoughnessFilter, FiftyPercentTransmissionAtLs) {
   const GaussianFilter f{.lc = 0.0, .ls = 20 * um};
-  const auto p = sampled(50 * f.ls, 0.25 * um, [&](double x) { return std::sin(2 * kPi * x / f.ls); });
+  const auto p =
+      sampled(50 * f.ls, 0.25 * um, [&](double x) { return std::sin(2 * kPi * x / f.ls); });
   const auto r = f.apply(p);
   EXPECT_NEAR(amplitude(r, f.ls), 0.5, 1e-3);
   EXPECT_NEAR(f.transmission(f.ls), 0.5, 1e-12);
@@ -199,7 +248,8 @@ TEST(RoughnessFilter, BandPassMatchesAnalyticTransmission) {
   const GaussianFilter f{};  // lc = 0.8 mm, ls = 20 um
   for (double lambda : {30 * um, 50 * um, 100 * um, 250 * um, 400 * um, 1.6 * mm}) {
     SCOPED_TRACE(lambda);
-    const auto p = sampled(16 * mm, 0.5 * um, [&](double x) { return std::sin(2 * kPi * x / lambda); });
+    const auto p =
+        sampled(16 * mm, 0.5 * um, [&](double x) { return std::sin(2 * kPi * x / lambda); });
     const auto r = f.apply(p);
     EXPECT_NEAR(amplitude(r, lambda), f.transmission(lambda), 2e-3);
   }
@@ -300,7 +350,8 @@ TEST(RoughnessMoments, GaussianRandomProfileWithSetSpectrumWithinOnePercent) {
     const double S = 1e-20 / (k * k);  // m^2 per (1/m)
     cs.push_back({std::sqrt(2.0 * S * dk), lambda, phase(rng)});
   }
-  const auto r = process_profile(sum_of(cs, static_cast<double>(n - 1) * dx, dx), Levelling::line, f);
+  const auto r =
+      process_profile(sum_of(cs, static_cast<double>(n - 1) * dx, dx), Levelling::line, f);
   ASSERT_EQ(r.filtered.z.size(), n - 2 * h);
   const auto want = analytic(cs, f);
   EXPECT_NEAR(r.moments.m0 / want.m0, 1.0, 0.01);
@@ -310,7 +361,8 @@ TEST(RoughnessMoments, GaussianRandomProfileWithSetSpectrumWithinOnePercent) {
 }
 
 TEST(RoughnessMoments, LevellingRemovesMeanAndTilt) {
-  const auto p = sampled(1 * mm, 1 * um, [](double x) { return 5e-6 + 2e-3 * x + 1e-7 * std::sin(x / (20 * um)); });
+  const auto p = sampled(1 * mm, 1 * um,
+                         [](double x) { return 5e-6 + 2e-3 * x + 1e-7 * std::sin(x / (20 * um)); });
   const auto l = level(p, Levelling::line);
   double mean = 0;
   for (double v : l.z) mean += v;
@@ -334,7 +386,8 @@ TEST(RoughnessMoments, ArealMapGivesBothDirections) {
   for (std::size_t iy = 0; iy < map.ny; ++iy) {
     for (std::size_t ix = 0; ix < map.nx; ++ix) {
       const double x = static_cast<double>(ix) * map.dx, y = static_cast<double>(iy) * map.dy;
-      map.z[ix + map.nx * iy] = 1e-6 * std::cos(2 * kPi * x / lx) + 2e-6 * std::cos(2 * kPi * y / ly);
+      map.z[ix + map.nx * iy] =
+          1e-6 * std::cos(2 * kPi * x / lx) + 2e-6 * std::cos(2 * kPi * y / ly);
     }
   }
   const auto d = areal_moments(map, Levelling::line, GaussianFilter::none());

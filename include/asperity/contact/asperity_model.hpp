@@ -44,6 +44,8 @@ class AsperityLaws {
   ModelName model_;
   double nu_;
   FrictionParameters params_;
+  double K_;
+  BkeConstants bke_{};
 };
 
 /// A sphere under a constant normal load with one of the four models: the normal

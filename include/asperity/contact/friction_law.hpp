@@ -43,4 +43,11 @@ struct FrictionParameters {
                                           double normal_load_star,
                                           const FrictionParameters& params = {});
 
+namespace detail {
+/// Unchecked mu for hot loops: w > 0 (any w >= 0 for CFC), parameters validated;
+/// `delta_c` is BKE's constant (unused otherwise).
+[[nodiscard]] double friction_coefficient(FrictionLaw law, double w, double nu, double delta_c,
+                                          const FrictionParameters& params);
+}  // namespace detail
+
 }  // namespace asperity::contact

@@ -37,4 +37,10 @@ struct BkeConstants {
 /// Closed forms where they exist, TOMS 748 for BKE's plastic branch.
 [[nodiscard]] double interference_star(NormalLaw law, double P_star, double nu);
 
+namespace detail {
+/// Unchecked forms for hot loops: w >= 0 and the constants already validated.
+[[nodiscard]] double normal_load_star(NormalLaw law, double w, double K, const BkeConstants& bke);
+[[nodiscard]] double contact_radius_star(NormalLaw law, double w, const BkeConstants& bke);
+}  // namespace detail
+
 }  // namespace asperity::contact

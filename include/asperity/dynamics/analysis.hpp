@@ -53,7 +53,7 @@ struct ModalEstimate {
   double f_high = 0.0;  ///< half-power point above the peak
 };
 
-/// Finds the largest peak on a grid of `bins` frequencies in [f_min, f_max], refines it
+/// Finds the largest interior peak (a local maximum, not a range end) on a grid of `bins` frequencies in [f_min, f_max], refines it
 /// by Brent's method on the periodogram, and locates the half-power points by root
 /// finding on the periodogram (not on the grid). Throws NumericalError if a half-power
 /// point lies outside [f_min, f_max] (widen the range or lengthen the record).
@@ -86,8 +86,11 @@ struct DecayPoint {
 /// decrement over each full cycle, using swings between successive extrema so that a
 /// shifted equilibrium (a stuck friction contact) does not bias it:
 ///   s_k = |u_{k+1} - u_k|,  delta_k = ln(s_k / s_{k+2}),  zeta_k = delta_k/sqrt(4 pi^2 + delta_k^2).
-/// Exact for a linear viscously damped oscillator.
-[[nodiscard]] std::vector<DecayPoint> free_decay(const Trajectory& tr, double tau_start = 0.0);
+/// Exact for a linear viscously damped oscillator. Stops when a swing falls below
+/// `floor` times the largest one (there the motion is at the level of the integration
+/// tolerance, or the contact has stuck).
+[[nodiscard]] std::vector<DecayPoint> free_decay(const Trajectory& tr, double tau_start = 0.0,
+                                                 double floor = 1e-4);
 
 /// Stick and slip intervals: the contact sticks while |v| < velocity_threshold.
 struct MotionInterval {

@@ -34,8 +34,8 @@ struct HeightMap {
   double dy = 0.0;  ///< spacing along y (columns) [m], > 0 when ny > 1
   double x0 = 0.0;
   double y0 = 0.0;
-  std::vector<double> z;             ///< nx * ny heights [m]; invalid points hold NaN
-  std::vector<std::uint8_t> valid;   ///< 1 = measured point; empty means all valid
+  std::vector<double> z;            ///< nx * ny heights [m]; invalid points hold NaN
+  std::vector<std::uint8_t> valid;  ///< 1 = measured point; empty means all valid
   std::string source;
 
   [[nodiscard]] bool is_profile() const { return ny == 1; }

@@ -39,7 +39,8 @@ struct TextReadOptions {
 [[nodiscard]] Profile parse_profile_text(std::string_view content, std::string_view source,
                                          const TextReadOptions& options = {});
 /// Reads a file with parse_profile_text().
-[[nodiscard]] Profile read_profile_text(const std::string& path, const TextReadOptions& options = {});
+[[nodiscard]] Profile read_profile_text(const std::string& path,
+                                        const TextReadOptions& options = {});
 
 /// X3P data types of the Z axis (ISO 5436-2): I int16, L int32, F float32, D float64.
 enum class X3pDataType { int16, int32, float32, float64 };
@@ -86,7 +87,8 @@ struct X3pPackage {
 /// Builds the archive's files for a height map (or profile, ny = 1): main.xml with
 /// Record1-4, point data, the valid-points mask when the map has invalid points,
 /// and md5checksum.hex.
-[[nodiscard]] X3pPackage make_x3p_package(const HeightMap& map, const X3pWriteOptions& options = {});
+[[nodiscard]] X3pPackage make_x3p_package(const HeightMap& map,
+                                          const X3pWriteOptions& options = {});
 /// Zips a package (deflate) into the bytes of an .x3p file.
 [[nodiscard]] std::string zip_x3p_package(const X3pPackage& package);
 /// Writes `map` as an X3P file.

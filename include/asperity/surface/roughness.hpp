@@ -69,8 +69,8 @@ std::string_view to_string(IsotropicRule r);
 
 /// Weighted mean of the moments of several scans along one direction (weights are
 /// typically the numbers of points). Throws InvalidInput when empty.
-[[nodiscard]] SpectralMoments average(const std::vector<SpectralMoments>& moments,
-                                      const std::vector<double>& weights);
+[[nodiscard]] SpectralMoments average_moments(const std::vector<SpectralMoments>& moments,
+                                              const std::vector<double>& weights);
 
 /// Plasticity index psi = (2 E* / (pi K H)) sqrt(sigma_a / R) with the spread of
 /// asperity heights sigma_a (SEED_NOTES.md "Rough flat"; reproduces Table 5.4 with
@@ -101,9 +101,9 @@ std::string_view to_string(EndEffects e);
 /// precision (no FFT), with the weights truncated at +-ct*cut-off and renormalised
 /// to unit sum on the grid.
 struct GaussianFilter {
-  double lc = 0.8e-3;        ///< long-wave cut-off [m]; 0 = no long-wave filter
-  double ls = 20e-6;         ///< short-wave cut-off [m]; 0 = no short-wave filter
-  double truncation = 1.0;   ///< ct: weights kept for |x| <= ct * cut-off, in [0.5, 3]
+  double lc = 0.8e-3;       ///< long-wave cut-off [m]; 0 = no long-wave filter
+  double ls = 20e-6;        ///< short-wave cut-off [m]; 0 = no short-wave filter
+  double truncation = 1.0;  ///< ct: weights kept for |x| <= ct * cut-off, in [0.5, 3]
   EndEffects end = EndEffects::discard;
 
   /// No filtering at all.

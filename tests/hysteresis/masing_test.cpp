@@ -1,0 +1,216 @@
+// Masing hysteresis engine: branches against closed forms, loop closing, inverse,
+// and properties over random histories.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include "asperity/contact/mindlin.hpp"
+#include "asperity/core/error.hpp"
+#include "asperity/hysteresis/backbones.hpp"
+#include "asperity/hysteresis/masing.hpp"
+
+namespace asperity::hysteresis {
+namespace {
+
+// Micro-scale experiment 1 of Table 3.2 with CEB's mu: any Mindlin contact will do.
+contact::MindlinContact mindlin() { return contact::MindlinContact(0.528, 35.0, 24.32e9, 83.25e-6); }
+
+std::shared_ptr<const Backbone> mindlin_backbone() {
+  return std::make_shared<MindlinBackbone>(mindlin());
+}
+
+// Fine path from a to b (excluding a).
+std::vector<double> segment(double a, double b, int n) {
+  std::vector<double> out;
+  for (int i = 1; i <= n; ++i) out.push_back(a + (b - a) * i / n);
+  return out;
+}
+
+TEST(Masing, SymmetricCycleEqualsMindlinDeresiewicz) {
+  // Unloading/reloading of Cattaneo-Mindlin (B.16/B.17 solved for Q) is the Masing
+  // construction on the B.15 backbone.
+  const auto c = mindlin();
+  const double dm = 0.6 * c.slip_displacement();
+  Hysteresis h(mindlin_backbone());
+  for (double x : segment(0.0, dm, 50)) EXPECT_NEAR(h.update(x), c.loading_force(x), 1e-12 * c.Q_max());
+  for (double x : segment(dm, -dm, 100)) {
+    EXPECT_NEAR(h.update(x), c.unloading_force(x, dm), 1e-12 * c.Q_max());
+  }
+  for (double x : segment(-dm, dm, 100)) {
+    EXPECT_NEAR(h.update(x), c.reloading_force(x, dm), 1e-12 * c.Q_max());
+  }
+  // Independent check through B.16: the displacement for the force on the unloading branch.
+  Hysteresis h2(mindlin_backbone());
+  h2.update(dm);
+  const double Qm = h2.Q();
+  for (double x : segment(dm, -dm, 20)) {
+    const double Q = h2.update(x);
+    EXPECT_NEAR(c.unloading_displacement(Q, Qm), x, 1e-10 * dm);
+  }
+}
+
+TEST(Masing, LoopClosingForgetsInnerLoop) {
+  const auto bb = mindlin_backbone();
+  const double s = mindlin().slip_displacement();
+  Hysteresis h(bb);
+  h.update(0.8 * s);   // virgin to A
+  h.update(-0.7 * s);  // reversal at A, down to D (short of -A)
+  h.update(0.3 * s);   // reversal at D, up to B
+  h.update(-0.1 * s);  // reversal at B, down to C
+  ASSERT_EQ(h.reversals().size(), 3u);
+  // Up from C past B: the inner loop B-C closes and the path continues on the branch
+  // that started at D.
+  const double QA = bb->force(0.8 * s);
+  const double QD = QA - 2.0 * bb->force(0.75 * s);  // unloading branch from A at D
+  const double x = 0.5 * s;
+  const double expected = QD + 2.0 * bb->force((x + 0.7 * s) / 2.0);
+  EXPECT_NEAR(h.update(x), expected, 1e-12 * QA);
+  EXPECT_EQ(h.reversals().size(), 2u);  // A and D remain
+  // Past A: back on the virgin curve, nothing remembered.
+  EXPECT_NEAR(h.update(0.9 * s), bb->force(0.9 * s), 1e-12 * QA);
+  EXPECT_TRUE(h.reversals().empty());
+}
+
+TEST(Masing, ForceBetweenEventsMatchesUpdate) {
+  // The dynamics interface: force(x) const between events, commit_reversal at events.
+  Hysteresis a(mindlin_backbone());
+  Hysteresis b(mindlin_backbone());
+  const double s = mindlin().slip_displacement();
+  const std::vector<double> turns{0.7 * s, -0.4 * s, 0.2 * s, -0.9 * s, 0.5 * s};
+  double x0 = 0.0;
+  for (double turn : turns) {
+    for (double x : segment(x0, turn, 25)) {
+      EXPECT_DOUBLE_EQ(b.force(x), a.update(x));
+    }
+    b.commit_reversal(turn);
+    x0 = turn;
+  }
+}
+
+TEST(Masing, InverseRecoversDisplacementHistory) {
+  const double s = mindlin().slip_displacement();
+  Hysteresis h(mindlin_backbone());
+  std::vector<double> xs;
+  for (double turn : {0.7 * s, -0.4 * s, 0.2 * s, -0.6 * s, 0.65 * s}) {
+    const auto seg = segment(xs.empty() ? 0.0 : xs.back(), turn, 40);
+    xs.insert(xs.end(), seg.begin(), seg.end());
+  }
+  const auto Qs = h.forces(xs);
+  const auto back = h.displacements(Qs);
+  for (std::size_t i = 0; i < xs.size(); ++i) EXPECT_NEAR(back[i], xs[i], 1e-9 * s) << i;
+}
+
+TEST(Masing, ForceControlBeyondLimitIsAnError) {
+  Hysteresis h(mindlin_backbone());
+  EXPECT_THROW(h.update_force(1.01 * mindlin().Q_max()), InvalidInput);
+}
+
+TEST(Masing, EnergyPerCycleFormulaEqualsLoopArea) {
+  // W = 8 Int Q_l - 4 x Q_l(x) against B.19 and against the trapezoidal loop area.
+  const auto c = mindlin();
+  const auto bb = mindlin_backbone();
+  for (double frac : {0.05, 0.3, 0.9, 1.0, 3.0}) {
+    const double dm = frac * c.slip_displacement();
+    EXPECT_NEAR(energy_per_cycle(*bb, dm), c.energy_per_cycle(dm), 1e-12 * c.Q_max() * dm * 4);
+    Hysteresis h(bb);
+    h.update(dm);
+    double area = 0.0;
+    double xp = dm, Qp = h.Q();
+    for (const auto& seg : {segment(dm, -dm, 20000), segment(-dm, dm, 20000)}) {
+      for (double x : seg) {
+        const double Q = h.update(x);
+        area += 0.5 * (Q + Qp) * (x - xp);  // work done on the contact, Oint Q dx
+        xp = x;
+        Qp = Q;
+      }
+    }
+    EXPECT_NEAR(area, c.energy_per_cycle(dm), 1e-6 * c.energy_per_cycle(dm) + 1e-15);
+  }
+}
+
+TEST(Masing, ResetRuleEqualsMasingForSteadySymmetricCycles) {
+  // Thesis Eq. 7.10 resets u_max at every reversal: the same loop when the cycles are
+  // symmetric...
+  const double s = mindlin().slip_displacement();
+  Hysteresis masing(mindlin_backbone());
+  Hysteresis reset(mindlin_backbone(), MemoryRule::reset_at_reversal);
+  std::vector<double> xs = segment(0.0, 0.5 * s, 30);
+  for (int k = 0; k < 3; ++k) {
+    for (double x : segment(0.5 * s, -0.5 * s, 60)) xs.push_back(x);
+    for (double x : segment(-0.5 * s, 0.5 * s, 60)) xs.push_back(x);
+  }
+  const auto a = masing.forces(xs);
+  const auto b = reset.forces(xs);
+  for (std::size_t i = 0; i < xs.size(); ++i) EXPECT_NEAR(a[i], b[i], 1e-12 * mindlin().Q_max());
+  // ...but not for a decaying (transient) history, where the rule's reversal force
+  // Q_l(u_max) differs from the actual force.
+  std::vector<double> decay = segment(0.0, 0.8 * s, 30);
+  for (double x : segment(0.8 * s, -0.5 * s, 60)) decay.push_back(x);
+  for (double x : segment(-0.5 * s, 0.3 * s, 60)) decay.push_back(x);
+  const auto c = masing.forces(decay);
+  const auto d = reset.forces(decay);
+  EXPECT_GT(std::abs(c.back() - d.back()), 1e-3 * mindlin().Q_max());
+}
+
+// Random histories on random backbones: |Q| <= limit, continuity, oddness, and
+// non-negative dissipation over a closed cycle.
+class MasingProperties : public ::testing::TestWithParam<int> {};
+
+TEST_P(MasingProperties, HoldOnRandomHistories) {
+  std::mt19937_64 rng(1234 + GetParam());
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  std::shared_ptr<const Backbone> bb;
+  if (GetParam() % 2 == 0) {
+    bb = std::make_shared<MindlinBackbone>(
+        contact::MindlinContact(0.1 + uni(rng), 1.0 + 100.0 * uni(rng), 1e10, 1e-5 * (1 + uni(rng))));
+  } else {
+    bb = std::make_shared<JenkinsBackbone>(1e6 * (1 + uni(rng)), 1.0 + uni(rng));
+  }
+  const double scale = 3.0 * bb->limit() / bb->initial_stiffness();
+  std::vector<double> xs;
+  double x = 0.0;
+  for (int i = 0; i < 40; ++i) {
+    const double target = scale * (2.0 * uni(rng) - 1.0);
+    const auto seg = segment(x, target, 50);
+    xs.insert(xs.end(), seg.begin(), seg.end());
+    x = target;
+  }
+  // Close with three identical cycles between two points, wide enough to slip.
+  const double a = 0.6 * scale, b = -0.5 * scale;
+  for (int k = 0; k < 3; ++k) {
+    for (double v : segment(xs.back(), a, 2000)) xs.push_back(v);
+    for (double v : segment(a, b, 2000)) xs.push_back(v);
+  }
+  Hysteresis h(bb);
+  const auto Q = h.forces(xs);
+  std::vector<double> neg(xs.size());
+  for (std::size_t i = 0; i < xs.size(); ++i) neg[i] = -xs[i];
+  const auto Qn = h.forces(neg);
+  const double k0 = bb->initial_stiffness();
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    ASSERT_LE(std::abs(Q[i]), bb->limit() * (1 + 1e-12));
+    ASSERT_EQ(Qn[i], -Q[i]);  // odd response
+    if (i > 0) {  // Lipschitz with the initial stiffness: no jumps
+      ASSERT_LE(std::abs(Q[i] - Q[i - 1]), k0 * std::abs(xs[i] - xs[i - 1]) * (1 + 1e-9) + 1e-12);
+    }
+  }
+  // The last two cycles (b -> a -> b) are closed: the work done on the contact over each
+  // is >= 0, and they are equal.
+  const std::size_t n = xs.size();
+  auto cycle_work = [&](std::size_t begin, std::size_t end) {
+    double w = 0.0;
+    for (std::size_t i = begin + 1; i <= end; ++i) w += 0.5 * (Q[i] + Q[i - 1]) * (xs[i] - xs[i - 1]);
+    return w;
+  };
+  const double last = cycle_work(n - 4001, n - 1);
+  const double previous = cycle_work(n - 8001, n - 4001);
+  EXPECT_GT(last, 0.0);
+  EXPECT_NEAR(last, previous, 1e-9 * bb->limit() * scale);
+}
+
+INSTANTIATE_TEST_SUITE_P(Random, MasingProperties, ::testing::Range(0, 8));
+
+}  // namespace
+}  // namespace asperity::hysteresis
