@@ -7,6 +7,7 @@
 namespace asperity::cli {
 
 void add_sphere_command(CLI::App& app, std::function<int()>& action);
+void add_flat_command(CLI::App& app, std::function<int()>& action);
 void add_roughness_command(CLI::App& app, std::function<int()>& action);
 void add_dynamics_command(CLI::App& app, std::function<int()>& action);
 

@@ -11,7 +11,9 @@
 #include <random>
 #include <sstream>
 
+#include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/validate.hpp"
 
 namespace asperity::cli {
 
@@ -27,6 +29,53 @@ double required_quantity(const std::optional<std::string>& text, core::Dimension
   return core::parse_quantity(*text, d, flag);
 }
 
+void MaterialOptions::add_to(CLI::App* cmd, const std::string& body1, const std::string& body2) {
+  cmd->add_option("--E1", E1, "Young's modulus of " + body1)->required();
+  cmd->add_option("--nu1", nu1, "Poisson's ratio of " + body1 + ", in [0, 0.5)")->required();
+  cmd->add_option("--G1", G1, "shear modulus of " + body1 + " (default E1/(2(1+nu1)))");
+  cmd->add_option("--H1", H1, "hardness of " + body1);
+  cmd->add_option("--E2", E2, "Young's modulus of " + body2)->required();
+  cmd->add_option("--nu2", nu2, "Poisson's ratio of " + body2 + ", in [0, 0.5)")->required();
+  cmd->add_option("--G2", G2, "shear modulus of " + body2 + " (default E2/(2(1+nu2)))");
+  cmd->add_option("--H2", H2, "hardness of " + body2);
+  cmd->add_option("--H", H, "hardness of the softer material (when nu1 = nu2)");
+}
+
+std::pair<contact::Material, contact::Material> MaterialOptions::parse() const {
+  namespace dim = core::dim;
+  contact::Material b1{.E = required_quantity(E1, dim::pressure, "--E1"),
+                       .nu = required_quantity(nu1, dim::dimensionless, "--nu1"),
+                       .G = quantity(G1, dim::pressure, "--G1").value_or(0.0),
+                       .H = quantity(H1, dim::pressure, "--H1").value_or(0.0)};
+  contact::Material b2{.E = required_quantity(E2, dim::pressure, "--E2"),
+                       .nu = required_quantity(nu2, dim::dimensionless, "--nu2"),
+                       .G = quantity(G2, dim::pressure, "--G2").value_or(0.0),
+                       .H = quantity(H2, dim::pressure, "--H2").value_or(0.0)};
+  // Check each value under its flag's name (Material::validate would say "body1.E").
+  core::require_positive("--E1", b1.E);
+  core::require_positive("--E2", b2.E);
+  core::require_in_half_open("--nu1", b1.nu, 0.0, 0.5);
+  core::require_in_half_open("--nu2", b2.nu, 0.0, 0.5);
+  if (G1) core::require_positive("--G1", b1.G);
+  if (G2) core::require_positive("--G2", b2.G);
+  if (H1) core::require_positive("--H1", b1.H);
+  if (H2) core::require_positive("--H2", b2.H);
+  if (H) {
+    if (H1 || H2) throw InvalidInput("give either --H (softer material) or --H1/--H2, not both");
+    if (b1.nu != b2.nu) {
+      throw InvalidInput(
+          "--H does not say which body is softer and --nu1 differs from --nu2: give --H1 and "
+          "--H2 instead");
+    }
+    b1.H = b2.H = required_quantity(H, dim::pressure, "--H");
+    core::require_positive("--H", b1.H);
+  }
+  if (b1.H == 0.0 && b2.H == 0.0) {
+    throw InvalidInput("the hardness is required: give --H (or --H1/--H2)");
+  }
+  return {b1, b2};
+}
+
 namespace {
 
 std::filesystem::path temporary_sibling(const std::filesystem::path& path) {
@@ -38,30 +87,7 @@ std::filesystem::path temporary_sibling(const std::filesystem::path& path) {
 }  // namespace
 
 void write_file_atomically(const std::string& path, const std::string& content) {
-  const std::filesystem::path target(path);
-  if (target.filename().empty()) throw InvalidInput(fmt::format("output path \"{}\" names no file", path));
-  const auto tmp = temporary_sibling(target);
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      throw InvalidInput(fmt::format("cannot write \"{}\": the directory does not exist or is not "
-                                     "writable",
-                                     path));
-    }
-    out << content;
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw InvalidInput(fmt::format("writing \"{}\" failed", path));
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, target, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw InvalidInput(fmt::format("cannot write \"{}\": {}", path, ec.message()));
-  }
+  core::write_file_atomically(path, content);
 }
 
 namespace {

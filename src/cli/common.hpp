@@ -6,11 +6,21 @@
 #include <string>
 #include <vector>
 
+#include "asperity/contact/material.hpp"
 #include "asperity/core/units.hpp"
 
 namespace asperity::cli {
 
 using Json = nlohmann::ordered_json;
+
+/// The flags of two materials (--E1 --nu1 --G1 --H1, --E2 ..., or --H for the softer
+/// one when nu1 = nu2), shared by the subcommands.
+struct MaterialOptions {
+  std::optional<std::string> E1, nu1, G1, H1, E2, nu2, G2, H2, H;
+  void add_to(CLI::App* cmd, const std::string& body1, const std::string& body2);
+  /// Parses and checks each value under its flag's name.
+  [[nodiscard]] std::pair<contact::Material, contact::Material> parse() const;
+};
 
 /// Parses an optional option's text as a quantity of the given dimension; the error
 /// names the flag.

@@ -33,6 +33,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/units.hpp"
 #include "asperity/dynamics/analysis.hpp"
+#include "asperity/dynamics/epb.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 #include "commands.hpp"
 #include "common.hpp"
@@ -134,6 +135,51 @@ struct Case {
   double decay_start = -1.0;
 };
 
+// The physics-based (EPB) law of section 7.3 from Table 7.2-style inputs: combined
+// E*, G*, hardness H and Poisson's ratio nu of the softer material, combined roughness
+// (sigma, R, eta), nominal area A0 and normal load P (or P~ = P/(k A), the reading of
+// Table 7.2's "P~ = 5" under which mu P~ = F~max = 1.5 with mu ~ 0.3); see
+// dynamics/epb.hpp. Its SI backbone is seen in the variables of section 7.2 through k, A.
+std::unique_ptr<FrictionModel> rough_flat_friction(const toml::table& t, const Scales& s,
+                                                   hysteresis::MemoryRule rule) {
+  const std::string where = "dynamics.friction";
+  check_keys(t, where, {"model", "backbone", "memory", "asperity_model", "mu_cfc", "E_star", "G_star",
+                        "H", "nu", "sigma", "R", "eta", "A0", "P", "P_tilde"});
+  if (!s.k || !s.A) {
+    throw InvalidInput(
+        "dynamics.friction: the rough_flat backbone needs the scales stiffness and amplitude in "
+        "[dynamics] (forces are divided by k A, displacements by A)");
+  }
+  auto q = [&](const std::string& key, Dimension d) {
+    const auto* n = t.get(key);
+    if (!n) throw InvalidInput(fmt::format("{}: the rough_flat backbone needs {}", where, key));
+    if (auto str = n->value<std::string>()) return core::parse_quantity(*str, d, where + "." + key);
+    throw InvalidInput(fmt::format("{}.{} must be a quantity with units, e.g. \"2.7 um\"", where, key));
+  };
+  const double E_star = q("E_star", dim::pressure);
+  const double G_star = q("G_star", dim::pressure);
+  const double H = q("H", dim::pressure);
+  const double sigma = q("sigma", dim::length);
+  const double R = q("R", dim::length);
+  const double eta = q("eta", dim::inverse_area);
+  const double A0 = q("A0", dim::area);
+  const double nu = number(t, "nu", where, 0.3);
+  double P = 0.0;
+  if (t.get("P") && t.get("P_tilde")) throw InvalidInput(where + ": give P or P_tilde, not both");
+  if (t.get("P")) {
+    P = q("P", dim::force);
+  } else {
+    P = number(t, "P_tilde", where, 5.0) * *s.k * *s.A;
+  }
+  if (!(P > 0.0)) throw InvalidInput(fmt::format("{}: the normal load P = {} N must be > 0", where, P));
+  EpbContact c{.E_star = E_star, .G_star = G_star, .H = H, .nu = nu, .sigma = sigma, .R = R,
+               .eta = eta, .A0 = A0, .P = P,
+               .model = contact::parse_model_name(text(t, "asperity_model", where, "bke"))};
+  if (t.get("mu_cfc")) c.friction.mu_cfc = number(t, "mu_cfc", where, 0.3);
+  const auto si = epb_backbone(c);
+  return make_physics_based(si, *s.k, *s.A, rule);
+}
+
 std::unique_ptr<FrictionModel> parse_friction(const toml::table* t, const Scales& s) {
   const std::string where = "dynamics.friction";
   if (!t) return std::make_unique<NoFriction>();
@@ -186,14 +232,15 @@ std::unique_ptr<FrictionModel> parse_friction(const toml::table* t, const Scales
                                .beta = number(*t, "beta", where, 0.1)});
   }
   if (model == "physics") {
+    const std::string bb = text(*t, "backbone", where, "mindlin");
+    if (bb == "rough_flat") return rough_flat_friction(*t, s, memory());
+    if (bb != "mindlin") {
+      throw InvalidInput(fmt::format("{}.backbone = \"{}\": use \"rough_flat\" or \"mindlin\"", where, bb));
+    }
     // A Cattaneo-Mindlin-shaped saturating backbone (the CFC limit of the rough flat:
     // Q = F_max (1 - (1 - x/s)^{3/2}) up to the slip displacement s) through Masing's
-    // rules. The rough-flat backbone of a [joint] is wired in by the joint layer.
+    // rules: a quick stand-in with two parameters.
     check_keys(*t, where, {"model", "backbone", "F_max", "slip_displacement", "memory"});
-    const std::string bb = text(*t, "backbone", where, "mindlin");
-    if (bb != "mindlin") {
-      throw InvalidInput(fmt::format("{}.backbone = \"{}\": only \"mindlin\" is available here", where, bb));
-    }
     const double F = need(force("F_max"), "F_max");
     const double sd = need(length("slip_displacement"), "slip_displacement");
     if (!(F > 0.0 && sd > 0.0)) {

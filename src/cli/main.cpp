@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "asperity 0.1.0");
   std::function<int()> action;
   asperity::cli::add_sphere_command(app, action);
+  asperity::cli::add_flat_command(app, action);
   asperity::cli::add_roughness_command(app, action);
   asperity::cli::add_dynamics_command(app, action);
   try {

@@ -456,9 +456,14 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
         "(once per joint half)");
   }
   if (n > 2) throw InvalidInput(fmt::format("{} surfaces given: a joint has one or two halves", n));
+  std::vector<bool> order = o.order;
+  if (order.size() != n) {  // should not happen; keep files first, then parameters
+    order.assign(o.surfaces.size(), true);
+    order.insert(order.end(), o.params.size(), false);
+  }
   std::vector<AnalysedSurface> surfaces;
   std::size_t next_file = 0, next_param = 0;
-  for (bool is_file : o.order) {
+  for (bool is_file : order) {
     if (is_file) {
       surfaces.push_back(analyse_files(o.surfaces[next_file++], surfaces.size(), s));
     } else {

@@ -21,7 +21,8 @@ namespace dim = core::dim;
 namespace {
 
 struct SphereOptions {
-  std::optional<std::string> E1, nu1, G1, H1, E2, nu2, G2, H2, H, R1, R2;
+  MaterialOptions materials;
+  std::optional<std::string> R1, R2;
   std::optional<std::string> P, omega_star, delta_max, Q_max;
   std::optional<std::string> mu_cfc, zeta;
   std::string model = "all";
@@ -45,34 +46,7 @@ struct ModelResult {
 Json opt(const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); }
 
 void run_sphere(const SphereOptions& o, std::string& out) {
-  contact::Material b1{.E = required_quantity(o.E1, dim::pressure, "--E1"),
-                       .nu = dimensionless(o.nu1, "--nu1"),
-                       .G = quantity(o.G1, dim::pressure, "--G1").value_or(0.0),
-                       .H = quantity(o.H1, dim::pressure, "--H1").value_or(0.0)};
-  contact::Material b2{.E = required_quantity(o.E2, dim::pressure, "--E2"),
-                       .nu = dimensionless(o.nu2, "--nu2"),
-                       .G = quantity(o.G2, dim::pressure, "--G2").value_or(0.0),
-                       .H = quantity(o.H2, dim::pressure, "--H2").value_or(0.0)};
-  // Check each value under its flag's name (Material::validate would say "body1.E").
-  core::require_positive("--E1", b1.E);
-  core::require_positive("--E2", b2.E);
-  core::require_in_half_open("--nu1", b1.nu, 0.0, 0.5);
-  core::require_in_half_open("--nu2", b2.nu, 0.0, 0.5);
-  if (o.G1) core::require_positive("--G1", b1.G);
-  if (o.G2) core::require_positive("--G2", b2.G);
-  if (o.H1) core::require_positive("--H1", b1.H);
-  if (o.H2) core::require_positive("--H2", b2.H);
-  if (o.H) {
-    if (o.H1 || o.H2) throw InvalidInput("give either --H (softer material) or --H1/--H2, not both");
-    if (b1.nu != b2.nu) {
-      throw InvalidInput(
-          "--H does not say which body is softer and --nu1 differs from --nu2: give --H1 and "
-          "--H2 instead");
-    }
-    b1.H = b2.H = required_quantity(o.H, dim::pressure, "--H");
-  }
-  if (o.H) core::require_positive("--H", b1.H);
-  if (b1.H == 0.0 && b2.H == 0.0) throw InvalidInput("the hardness is required: give --H (or --H1/--H2)");
+  const auto [b1, b2] = o.materials.parse();
   const double R1 = required_quantity(o.R1, dim::length, "--R1");
   const double R2 = o.R2 ? required_quantity(o.R2, dim::length, "--R2")
                          : std::numeric_limits<double>::infinity();
@@ -273,15 +247,7 @@ void add_sphere_command(CLI::App& app, std::function<int()>& action) {
       "One asperity: a sphere on a flat (or two spheres) under a normal load, with the CFC, "
       "CEB, KE and BKE partial slip models (thesis ch. 3). Quantities carry units, e.g. "
       "207GPa, 2.5mm, 35N, 1.5um.");
-  cmd->add_option("--E1", o->E1, "Young's modulus of body 1 (the sphere)")->required();
-  cmd->add_option("--nu1", o->nu1, "Poisson's ratio of body 1, in [0, 0.5)")->required();
-  cmd->add_option("--G1", o->G1, "shear modulus of body 1 (default E1/(2(1+nu1)))");
-  cmd->add_option("--H1", o->H1, "hardness of body 1");
-  cmd->add_option("--E2", o->E2, "Young's modulus of body 2 (the flat)")->required();
-  cmd->add_option("--nu2", o->nu2, "Poisson's ratio of body 2, in [0, 0.5)")->required();
-  cmd->add_option("--G2", o->G2, "shear modulus of body 2 (default E2/(2(1+nu2)))");
-  cmd->add_option("--H2", o->H2, "hardness of body 2");
-  cmd->add_option("--H", o->H, "hardness of the softer material (when nu1 = nu2)");
+  o->materials.add_to(cmd, "body 1 (the sphere)", "body 2 (the flat)");
   cmd->add_option("--R1", o->R1, "radius of body 1")->required();
   cmd->add_option("--R2", o->R2, "radius of body 2 (default: a flat)");
   cmd->add_option("--P", o->P, "normal load");

@@ -404,8 +404,13 @@ HeightMap parse_x3p(std::string_view bytes, std::string_view source) {
     if (child(data_link, "ValidPointsLink")) {
       const std::string vlink(
           doc.text(data_link, "ValidPointsLink", "Record3/DataLink/ValidPointsLink"));
-      const std::string mask = reader.read_entry(vlink);
       const std::uint64_t want_mask = (n + 7) / 8;
+      zip_int64_t mask_index = 0;
+      if (reader.entry_size(vlink, &mask_index) != want_mask) {
+        reader.fail(vlink, fmt::format("{} bytes, but {} points need {} bytes of validity bits",
+                                       reader.entry_size(vlink, &mask_index), n, want_mask));
+      }
+      const std::string mask = reader.read_entry(vlink);
       if (mask.size() != want_mask) {
         reader.fail(vlink, fmt::format("{} bytes, but {} points need {} bytes of validity bits",
                                        mask.size(), n, want_mask));

@@ -34,8 +34,10 @@ std::array<double, 6> quintic(double y0, double m0, double a0, double y1, double
           -6 * y0 - 3 * m0 - 0.5 * a0 + 6 * y1 - 3 * m1 + 0.5 * a1};
 }
 
+// Estrin's scheme: shorter dependency chain than Horner for the hot force() path.
 double horner(const double* c, double t) {
-  return c[0] + t * (c[1] + t * (c[2] + t * (c[3] + t * (c[4] + t * c[5]))));
+  const double t2 = t * t;
+  return (c[0] + c[1] * t) + t2 * ((c[2] + c[3] * t) + t2 * (c[4] + c[5] * t));
 }
 
 struct NodeData {

@@ -3,7 +3,7 @@
 
 Usage: cli_cases.py ASPERITY_EXE CASE   (CASE: one of CASES below, or "list")
 
-Standard library only. Exit 0 = pass, 1 = fail, 77 = skipped (gnuplot missing).
+Standard library only. Exit 0 = pass, 1 = fail (also when gnuplot, which setup.sh installs, is missing).
 Contract checked (issue 2, "Bad input"): every input error exits 2, prints one message
 on stderr naming the flag, and prints nothing on stdout (no partial JSON); an amplitude
 beyond gross slip is not an error (exit 0, regime gross_slip); --loop and --plot write
@@ -149,8 +149,8 @@ def loop_file(exe):
 
 def plot_file(exe):
     if shutil.which("gnuplot") is None:
-        print("gnuplot not installed: skipped", file=sys.stderr)
-        return 77
+        print("gnuplot is not installed: scripts/setup.sh installs it", file=sys.stderr)
+        return 1
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "loop.png")
         r = run(exe, args(extra=["--delta-max=1.5um", f"--plot={path}"]))

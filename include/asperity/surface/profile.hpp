@@ -51,8 +51,8 @@ struct HeightMap {
   [[nodiscard]] std::vector<Profile> rows(std::size_t min_points = 2) const;
   /// The columns (profiles along y), with the same rule as rows().
   [[nodiscard]] std::vector<Profile> columns(std::size_t min_points = 2) const;
-  /// A profile file (ny = 1) as a Profile; throws if it has invalid points that
-  /// split it (the longest valid run is used and the rest reported in the message).
+  /// A profile file (ny = 1) as a Profile. With invalid points, the longest run of
+  /// consecutive valid points; throws if that has fewer than 2 points or ny > 1.
   [[nodiscard]] Profile as_profile() const;
 
   /// Areal rms height Sq of the valid points about their least-squares plane [m].

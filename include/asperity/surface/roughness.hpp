@@ -99,7 +99,10 @@ std::string_view to_string(EndEffects e);
 /// cut-off lc removes waviness), smoothed by s_ls (short-wave cut-off ls removes
 /// noise and stylus effects). The filter is a direct convolution in double
 /// precision (no FFT), with the weights truncated at +-ct*cut-off and renormalised
-/// to unit sum on the grid.
+/// to unit sum on the grid. With the default ct = 1 the neglected weight is 1e-7 and
+/// the transmission at the cut-offs is 50 % to 1e-7; the shorter ct = 0.5 often used
+/// with ISO 16610-21 neglects 0.76 % and passes 51.1 % (low-pass) / 48.9 %
+/// (roughness) at the cut-off.
 struct GaussianFilter {
   double lc = 0.8e-3;       ///< long-wave cut-off [m]; 0 = no long-wave filter
   double ls = 20e-6;        ///< short-wave cut-off [m]; 0 = no short-wave filter

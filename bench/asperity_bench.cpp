@@ -1,0 +1,153 @@
+// Performance targets of the friction law (issue: "Coulomb-fast evaluation"), measured
+// as ratios against references computed in the same run:
+//   BM_RoughFlatForce            tabulated backbone through the Masing engine
+//   BM_RoughFlatForceQuadrature  the same forces with the backbone by direct quadrature
+//   BM_TanhCoulombForce          regularized Coulomb F tanh(k v) (Eq. 7.2)
+//   BM_RoughFlatTableBuild       building the table for one load case
+// Targets: RoughFlatForce <= 2x TanhCoulombForce, >= 300x faster than the quadrature,
+// table build < 5 ms. Each force benchmark processes one history sample per iteration.
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "asperity/hysteresis/masing.hpp"
+#include "asperity/surface/rough_flat.hpp"
+#include "ratio_reporter.hpp"
+
+namespace {
+
+using namespace asperity;
+
+// Fig. 4.4 conditions with the BKE model: beta = 0.04, psi = 0.5, P* = 1e-3.
+const surface::RoughFlat& flat() {
+  static const surface::RoughFlat f(surface::RoughFlatParameters{
+      .model = contact::ModelName::bke, .beta = 0.04, .psi = 0.5, .nu = 0.3,
+      .G_over_E = 0.7 / 3.4});
+  return f;
+}
+
+double separation() {
+  static const double d = flat().separation_star(1e-3);
+  return d;
+}
+
+// A random displacement history: random reversal points, 16 steps between them, within
+// +-1.2 delta* (partial slip and some gross slip).
+const std::vector<double>& history() {
+  static const std::vector<double> h = [] {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> uni(-1.2, 1.2);
+    std::vector<double> out;
+    double x = 0.0;
+    while (out.size() < (1u << 16)) {
+      const double target = uni(rng);
+      for (int k = 1; k <= 16; ++k) out.push_back(x + (target - x) * k / 16.0);
+      x = target;
+    }
+    return out;
+  }();
+  return h;
+}
+
+// The backbone by direct (adaptive) quadrature of Eq. 4.10 at every call.
+class QuadratureBackbone final : public hysteresis::Backbone {
+ public:
+  QuadratureBackbone(const surface::RoughFlat& f, double d)
+      : flat_(f), d_(d), limit_(f.static_friction_star(d)), k0_(f.stiffness_star(d)) {}
+  double force(double x) const override { return flat_.loading_force_star(x, d_); }
+  double displacement(double) const override { return 0.0; }
+  double limit() const override { return limit_; }
+  double initial_stiffness() const override { return k0_; }
+
+ private:
+  const surface::RoughFlat& flat_;
+  double d_;
+  double limit_;
+  double k0_;
+};
+
+void BM_RoughFlatForce(benchmark::State& state) {
+  hysteresis::Hysteresis h(flat().backbone(separation()));
+  const auto& xs = history();
+  std::size_t i = 0;
+  double sink = 0.0;
+  for (auto _ : state) {
+    sink += h.update(xs[i]);
+    i = (i + 1) & (xs.size() - 1);
+  }
+  benchmark::DoNotOptimize(sink);
+}
+BENCHMARK(BM_RoughFlatForce);
+
+void BM_RoughFlatForceQuadrature(benchmark::State& state) {
+  hysteresis::Hysteresis h(std::make_shared<QuadratureBackbone>(flat(), separation()));
+  const auto& xs = history();
+  std::size_t i = 0;
+  double sink = 0.0;
+  for (auto _ : state) {
+    sink += h.update(xs[i]);
+    i = (i + 1) & (xs.size() - 1);
+  }
+  benchmark::DoNotOptimize(sink);
+}
+BENCHMARK(BM_RoughFlatForceQuadrature)->MinTime(0.5);
+
+void BM_TanhCoulombForce(benchmark::State& state) {
+  // F tanh(k v) with the velocity of the same history (finite differences).
+  const auto& xs = history();
+  const double F = 2e-3;
+  const double k = 1e3;
+  std::size_t i = 1;
+  double sink = 0.0;
+  for (auto _ : state) {
+    const double v = xs[i] - xs[i - 1];
+    sink += F * std::tanh(k * v);
+    i = i + 1 < xs.size() ? i + 1 : 1;
+  }
+  benchmark::DoNotOptimize(sink);
+}
+BENCHMARK(BM_TanhCoulombForce);
+
+void BM_RoughFlatTableBuild(benchmark::State& state) {
+  const double d = separation();
+  for (auto _ : state) {
+    auto table = flat().backbone(d);
+    benchmark::DoNotOptimize(table);
+  }
+}
+BENCHMARK(BM_RoughFlatTableBuild)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  asperity::bench::RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  const auto& t = reporter.seconds();
+  auto get = [&](const char* name) {
+    const auto it = t.find(name);
+    return it == t.end() ? 0.0 : it->second;
+  };
+  const double table = get("BM_RoughFlatForce");
+  const double quad = get("BM_RoughFlatForceQuadrature");
+  const double tanh = get("BM_TanhCoulombForce");
+  const double build = get("BM_RoughFlatTableBuild");
+  std::printf("\nRatios (same run):\n");
+  if (table > 0 && tanh > 0) {
+    std::printf("  RoughFlatForce / TanhCoulombForce       = %6.2f   (target <= 2)\n", table / tanh);
+  }
+  if (table > 0 && quad > 0) {
+    std::printf("  RoughFlatForceQuadrature / RoughFlatForce = %8.0f (target >= 300)\n", quad / table);
+  }
+  if (build > 0) std::printf("  table build                              = %6.2f ms (target < 5)\n", build * 1e3);
+  for (const auto& [name, seconds] : t) {
+    if (name.rfind("BM_Dynamics", 0) == 0) std::printf("  %s: %.3g s\n", name.c_str(), seconds);
+  }
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,325 @@
+// asperity flat: a nominally flat rough contact (thesis ch. 4), normalized or
+// dimensional, with its fretting loop and the response to any displacement history.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "asperity/core/csv.hpp"
+#include "asperity/core/error.hpp"
+#include "asperity/core/validate.hpp"
+#include "asperity/hysteresis/masing.hpp"
+#include "asperity/surface/rough_flat.hpp"
+#include "commands.hpp"
+#include "common.hpp"
+
+namespace asperity::cli {
+
+namespace dim = core::dim;
+
+namespace {
+
+struct FlatOptions {
+  // Normalized
+  std::optional<std::string> beta, psi, nu, P_star, G_over_E, delta_star_max;
+  // Dimensional
+  MaterialOptions materials;
+  std::optional<std::string> sigma, eta, R, area, P, delta_max;
+  // Common
+  std::string model = "bke";
+  std::optional<std::string> mu_cfc, zeta;
+  std::string slip_scaling = "elastic";
+  bool json = false;
+  std::optional<std::string> history_csv, out_csv, loop_csv, plot_png;
+  std::size_t points = 201;
+};
+
+bool any_material_flag(const MaterialOptions& m) {
+  return m.E1 || m.nu1 || m.G1 || m.H1 || m.E2 || m.nu2 || m.G2 || m.H2 || m.H;
+}
+
+double number(const std::optional<std::string>& text, const std::string& flag) {
+  return required_quantity(text, dim::dimensionless, flag);
+}
+
+void run_flat(const FlatOptions& o, std::string& out) {
+  const auto model = contact::parse_model_name(o.model);
+  contact::FrictionParameters friction;
+  if (o.mu_cfc) {
+    friction.mu_cfc = number(o.mu_cfc, "--mu-cfc");
+    core::require_positive("--mu-cfc", friction.mu_cfc);
+  } else if (model == contact::ModelName::cfc) {
+    throw InvalidInput("the cfc model needs its friction coefficient: give --mu-cfc (e.g. 0.3)");
+  }
+  if (o.zeta) {
+    friction.zeta = number(o.zeta, "--zeta");
+    core::require_positive("--zeta", friction.zeta);
+  }
+  surface::SlipScaling scaling;
+  if (o.slip_scaling == "elastic") {
+    scaling = surface::SlipScaling::elastic;
+  } else if (o.slip_scaling == "own-law") {
+    scaling = surface::SlipScaling::own_law;
+  } else {
+    throw InvalidInput(fmt::format(
+        "--slip-scaling \"{}\" is unknown: allowed are elastic (Eq. 4.8, default) and own-law",
+        o.slip_scaling));
+  }
+
+  const bool dimensional = any_material_flag(o.materials) || o.sigma || o.eta || o.R || o.area || o.P;
+  const bool normalized = o.beta || o.psi || o.nu || o.P_star || o.G_over_E || o.delta_star_max;
+  if (dimensional && normalized) {
+    throw InvalidInput(
+        "mixing normalized flags (--beta --psi --nu --P-star --G-over-E --delta-star-max) with "
+        "dimensional ones (materials, --sigma --eta --R --area --P --delta-max): use one set");
+  }
+  if (!dimensional && !normalized) {
+    throw InvalidInput("give either the normalized inputs (--beta --psi --nu --P-star) or the "
+                       "dimensional ones (materials, --sigma --eta --R --area --P)");
+  }
+
+  std::optional<surface::RoughFlat> flat;
+  double P_star = 0.0;
+  std::optional<double> amplitude_star;
+  if (normalized) {
+    surface::RoughFlatParameters p{.model = model, .friction = friction, .slip_scaling = scaling};
+    p.beta = number(o.beta, "--beta");
+    p.psi = number(o.psi, "--psi");
+    p.nu = number(o.nu, "--nu");
+    core::require_in_half_open("--nu", p.nu, 0.0, 0.5);
+    // Identical materials: G*/E* = (1 - nu)/(2 (2 - nu)).
+    p.G_over_E = o.G_over_E ? number(o.G_over_E, "--G-over-E") : (1.0 - p.nu) / (2.0 * (2.0 - p.nu));
+    core::require_positive("--G-over-E", p.G_over_E);
+    core::require_positive("--psi", p.psi);
+    flat.emplace(p);
+    P_star = number(o.P_star, "--P-star");
+    core::require_positive("--P-star", P_star);
+    if (o.delta_star_max) {
+      amplitude_star = number(o.delta_star_max, "--delta-star-max");
+      core::require_non_negative("--delta-star-max", *amplitude_star);
+    }
+  } else {
+    const auto [b1, b2] = o.materials.parse();
+    const double sigma = required_quantity(o.sigma, dim::length, "--sigma");
+    const double eta = required_quantity(o.eta, dim::inverse_area, "--eta");
+    const double R = required_quantity(o.R, dim::length, "--R");
+    const double A0 = required_quantity(o.area, dim::area, "--area");
+    const double P = required_quantity(o.P, dim::force, "--P");
+    core::require_positive("--sigma", sigma);
+    core::require_positive("--eta", eta);
+    core::require_positive("--R", R);
+    core::require_positive("--area", A0);
+    core::require_positive("--P", P);
+    flat.emplace(surface::RoughFlat::from_dimensional(b1, b2, sigma, eta, R, A0, model, friction, scaling));
+    P_star = P / flat->scales()->force;
+    if (o.delta_max) {
+      const double dm = required_quantity(o.delta_max, dim::length, "--delta-max");
+      core::require_non_negative("--delta-max", dm);
+      amplitude_star = dm / sigma;
+    }
+  }
+  if (o.points < 2 || o.points > 100000) throw InvalidInput("--points must lie in [2, 100000]");
+
+  const auto& params = flat->parameters();
+  const double d = flat->separation_star(P_star);
+  const double Q_max = flat->static_friction_star(d);
+  const double k = flat->stiffness_star(d);
+  const auto& scales = flat->scales();
+  std::shared_ptr<const surface::RoughFlatBackbone> table;
+  if (Q_max > 0.0) table = flat->backbone(d);
+
+  std::optional<double> Q_amp, energy;
+  std::optional<std::string> regime;
+  if (amplitude_star) {
+    Q_amp = table ? table->force(*amplitude_star) : 0.0;
+    energy = table ? hysteresis::energy_per_cycle(*table, *amplitude_star) : 0.0;
+    // Gross slip when the loading curve has reached the static friction (to the table's
+    // saturation tolerance).
+    regime = (!table || *amplitude_star >= table->table_end()) ? "gross_slip" : "partial_slip";
+  }
+
+  if (o.json) {
+    Json j;
+    j["model"] = o.model;
+    j["beta"] = params.beta;
+    j["psi"] = params.psi;
+    j["nu"] = params.nu;
+    j["G_over_E"] = params.G_over_E;
+    j["sigma_a_over_sigma"] = flat->sigma_a_over_sigma();
+    j["omega_c_star"] = flat->omega_c_star();
+    j["separation_star"] = d;
+    j["P_star"] = P_star;
+    j["Q_max_star"] = Q_max;
+    j["mu"] = Q_max / P_star;
+    j["stiffness_star"] = k;
+    j["contact_area_ratio"] = flat->contact_area_ratio(d);
+    j["contact_fraction"] = flat->contact_fraction(d);
+    if (table) j["table_error"] = table->verified_error();
+    if (amplitude_star) {
+      j["delta_max_star"] = *amplitude_star;
+      j["Q_at_delta_max_star"] = *Q_amp;
+      j["energy_star"] = *energy;
+      j["regime"] = *regime;
+    }
+    if (scales) {
+      j["separation"] = d * scales->sigma;
+      j["P"] = P_star * scales->force;
+      j["Q_max"] = Q_max * scales->force;
+      j["stiffness"] = k * scales->force / scales->sigma;
+      j["real_contact_area"] = flat->contact_area_ratio(d) * scales->A0;
+      j["contacting_asperities"] = flat->contact_fraction(d) * scales->eta * scales->A0;
+      if (amplitude_star) {
+        j["delta_max"] = *amplitude_star * scales->sigma;
+        j["Q_at_delta_max"] = *Q_amp * scales->force;
+        j["energy"] = *energy * scales->force * scales->sigma;
+      }
+    }
+    out += j.dump(2) + "\n";
+  } else {
+    out += fmt::format("rough flat, {} model: beta = {:.4g}, psi = {:.4g}, nu = {:.3g}, G*/E* = {:.4g}, "
+                       "sigma_a/sigma = {:.4g}, omega_c/sigma = {:.4g}\n",
+                       o.model, params.beta, params.psi, params.nu, params.G_over_E,
+                       flat->sigma_a_over_sigma(), flat->omega_c_star());
+    out += fmt::format("  P* = {:.5g}   separation d* = {:.5g}   Q*_max = {:.5g}   mu = {:.4g}   "
+                       "stiffness* = {:.5g}\n",
+                       P_star, d, Q_max, Q_max / P_star, k);
+    if (scales) {
+      out += fmt::format("  P = {:.5g} N   separation = {:.4g} um   Q_max = {:.5g} N   "
+                         "stiffness = {:.5g} N/um   real contact area = {:.4g} mm^2   "
+                         "contacting asperities = {:.4g}\n",
+                         P_star * scales->force, d * scales->sigma * 1e6, Q_max * scales->force,
+                         k * scales->force / scales->sigma * 1e-6,
+                         flat->contact_area_ratio(d) * scales->A0 * 1e6,
+                         flat->contact_fraction(d) * scales->eta * scales->A0);
+    }
+    if (amplitude_star) {
+      out += fmt::format("  amplitude delta* = {:.5g}: Q* = {:.5g}, energy per cycle* = {:.5g}, {}\n",
+                         *amplitude_star, *Q_amp, *energy, *regime);
+      if (scales) {
+        out += fmt::format("  amplitude delta = {:.5g} um: Q = {:.5g} N, energy per cycle = {:.5g} uJ\n",
+                           *amplitude_star * scales->sigma * 1e6, *Q_amp * scales->force,
+                           *energy * scales->force * scales->sigma * 1e6);
+      }
+    }
+  }
+
+  if ((o.loop_csv || o.plot_png) && !amplitude_star) {
+    throw InvalidInput("--loop and --plot need an amplitude: give --delta-star-max or --delta-max");
+  }
+  if (o.history_csv && !o.out_csv) throw InvalidInput("--history needs --out FILE.csv for the forces");
+  if (o.out_csv && !o.history_csv) throw InvalidInput("--out writes the force history of --history: give both");
+  if (!table && (o.loop_csv || o.plot_png || o.history_csv)) {
+    throw InvalidInput(fmt::format("the {} model carries no friction force here (Q*_max = 0)", o.model));
+  }
+  const double xs = scales ? scales->sigma : 1.0;
+  const double fs = scales ? scales->force : 1.0;
+  if (o.loop_csv || o.plot_png) {
+    hysteresis::Hysteresis h(table);
+    const double dm = *amplitude_star;
+    std::vector<double> x, q;
+    const std::size_t n = o.points;
+    auto run = [&](double from, double to) {
+      for (std::size_t i = 1; i <= n; ++i) {
+        const double v = from + (to - from) * static_cast<double>(i) / static_cast<double>(n);
+        x.push_back(v);
+        q.push_back(h.update(v));
+      }
+    };
+    x.push_back(0.0);
+    q.push_back(0.0);
+    run(0.0, dm);
+    run(dm, -dm);
+    run(-dm, dm);
+    if (o.loop_csv) {
+      std::vector<double> xo(x), qo(q);
+      for (auto& v : xo) v *= xs;
+      for (auto& v : qo) v *= fs;
+      core::write_csv_table(*o.loop_csv, scales ? std::vector<std::string>{"delta[m]", "Q[N]"}
+                                                : std::vector<std::string>{"delta_star", "Q_star"},
+                            {xo, qo});
+    }
+    if (o.plot_png) {
+      Series s{.title = o.model};
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        s.x.push_back(scales ? x[i] * xs * 1e6 : x[i]);
+        s.y.push_back(scales ? q[i] * fs : q[i]);
+      }
+      plot_png(*o.plot_png, PlotSpec{.title = "Fretting loop of the rough flat (Masing on Eq. 4.10)",
+                                     .xlabel = scales ? "delta [um]" : "delta* = delta/sigma",
+                                     .ylabel = scales ? "Q [N]" : "Q* = Q/(K H A0)",
+                                     .series = {s}});
+    }
+  }
+  if (o.history_csv) {
+    const auto csv = core::read_csv_table(*o.history_csv);
+    std::vector<double> x;
+    bool si = false;
+    if (const auto* c = csv.find("delta_star")) {
+      x = csv.si_values(*c, dim::dimensionless);
+    } else if (const auto* c2 = csv.find("delta")) {
+      if (!scales) {
+        throw InvalidInput(fmt::format("{}: a \"delta\" column needs the dimensional inputs; with "
+                                       "normalized inputs give a \"delta_star\" column",
+                                       *o.history_csv));
+      }
+      x = csv.si_values(*c2, dim::length);
+      for (auto& v : x) v /= scales->sigma;
+      si = true;
+    } else {
+      throw InvalidInput(fmt::format(
+          "{}: no \"delta_star\" column and no \"delta[unit]\" column in the header", *o.history_csv));
+    }
+    const hysteresis::Hysteresis h(table);
+    auto Q = h.forces(x);
+    if (si) {
+      for (auto& v : x) v *= scales->sigma;
+      for (auto& v : Q) v *= scales->force;
+      core::write_csv_table(*o.out_csv, {"delta[m]", "Q[N]"}, {x, Q});
+    } else {
+      core::write_csv_table(*o.out_csv, {"delta_star", "Q_star"}, {x, Q});
+    }
+  }
+}
+
+}  // namespace
+
+void add_flat_command(CLI::App& app, std::function<int()>& action) {
+  auto o = std::make_shared<FlatOptions>();
+  auto* cmd = app.add_subcommand(
+      "flat",
+      "A nominally flat rough contact (thesis ch. 4): separation, static friction, stiffness, "
+      "fretting loop and energy per cycle, normalized (--beta --psi --nu --P-star) or "
+      "dimensional (materials, --sigma --eta --R --area --P).");
+  cmd->add_option("--beta", o->beta, "roughness parameter sigma R eta (> 0.01928)");
+  cmd->add_option("--psi", o->psi, "plasticity index on sigma_a (> 0)");
+  cmd->add_option("--nu", o->nu, "Poisson's ratio of the softer material");
+  cmd->add_option("--P-star", o->P_star, "normal load over K H A0");
+  cmd->add_option("--G-over-E", o->G_over_E,
+                  "G*/E* (default for identical materials: (1-nu)/(2(2-nu)))");
+  cmd->add_option("--delta-star-max", o->delta_star_max, "displacement amplitude over sigma");
+  o->materials.add_to(cmd, "body 1", "body 2");
+  for (const char* flag : {"--E1", "--nu1", "--E2", "--nu2"}) cmd->get_option(flag)->required(false);
+  cmd->add_option("--sigma", o->sigma, "combined rms roughness, e.g. 2.677um");
+  cmd->add_option("--eta", o->eta, "areal density of asperities, e.g. 2.91e-4um^-2");
+  cmd->add_option("--R", o->R, "mean asperity radius, e.g. 30.14um");
+  cmd->add_option("--area", o->area, "nominal contact area, e.g. 170mm^2");
+  cmd->add_option("--P", o->P, "normal load, e.g. 526N");
+  cmd->add_option("--delta-max", o->delta_max, "displacement amplitude, e.g. 1um");
+  cmd->add_option("--model", o->model, "cfc, ceb, ke or bke")->default_str("bke");
+  cmd->add_option("--mu-cfc", o->mu_cfc, "friction coefficient of the cfc model");
+  cmd->add_option("--zeta", o->zeta, "CEB yield depth over contact radius (default 0.48)");
+  cmd->add_option("--slip-scaling", o->slip_scaling,
+                  "elastic (Eq. 4.8, default) or own-law (each law's a/P)");
+  cmd->add_flag("--json", o->json, "print one JSON object instead of a table");
+  cmd->add_option("--history", o->history_csv,
+                  "displacement history CSV (column delta_star, or delta[unit])");
+  cmd->add_option("--out", o->out_csv, "where --history writes the force history (CSV)");
+  cmd->add_option("--loop", o->loop_csv, "write the fretting loop to this CSV file");
+  cmd->add_option("--plot", o->plot_png, "draw the fretting loop into this PNG file");
+  cmd->add_option("--points", o->points, "points per loop branch (default 201)");
+  cmd->callback([o, &action] {
+    action = [o] { return run_guarded([o](std::string& out) { run_flat(*o, out); }); };
+  });
+}
+
+}  // namespace asperity::cli
