@@ -46,6 +46,7 @@ set xrange [*:*]; set key top right
 
 set output 'fig_7_6.png'
 set multiplot layout 2,2 title 'Fig. 7.6: steady harmonic response, Coulomb (left) and Dankowicz (right)'
+unset title; set xtics rotate by 30 right
 set xlabel 'u'; set ylabel "u'"; unset key
 plot 'harmonic_coulomb/timeseries.csv' every ::1 using ($1 >= 55 ? $2 : 1/0):3 with lines lw 2
 plot 'harmonic_dankowicz/timeseries.csv' every ::1 using ($1 >= 55 ? $2 : 1/0):3 with lines lw 2
@@ -56,6 +57,7 @@ unset multiplot
 
 set output 'fig_7_7.png'
 set multiplot layout 2,2 title 'Fig. 7.7: steady harmonic response, EPB smooth (left) and rough (right)'
+unset title; set xtics rotate by 30 right
 set xlabel 'u'; set ylabel "u'"
 plot 'harmonic_physics_smooth/timeseries.csv' every ::1 using ($1 >= 55 ? $2 : 1/0):3 with lines lw 2
 plot 'harmonic_physics_rough/timeseries.csv' every ::1 using ($1 >= 55 ? $2 : 1/0):3 with lines lw 2

@@ -15,7 +15,9 @@ physics. Conventions:
   :class:`NumericalError` (a ``RuntimeError``) for a failed solve; both derive from
   :class:`Error`.
 
-Layers: ``contact`` (one asperity, thesis ch. 2-3 and appendices A-B) is bound here;
+Layers: ``contact`` (one asperity, thesis ch. 2-3 and appendices A-B), ``surface``
+(profiles and roughness, ch. 5-6; :class:`RoughFlat`, the rough flat of ch. 4) and
+``hysteresis`` (:class:`Hysteresis`, Masing's rules over any :class:`Backbone`) are bound here;
 Cattaneo-Mindlin tilde functions live in :mod:`asperity.mindlin`; matplotlib helpers in
 :mod:`asperity.plotting`; the thesis's experiments in :mod:`asperity.thesis`.
 """

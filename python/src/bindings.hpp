@@ -16,4 +16,9 @@ void bind_contact(nb::module_& m);
 /// surface/: profiles (read, level, filter), spectral moments, roughness parameters.
 void bind_surface(nb::module_& m);
 
+/// hysteresis/: backbones and the Masing engine.
+void bind_hysteresis(nb::module_& m);
+/// surface/rough_flat: the Greenwood-Williamson rough flat and its tabulated backbone.
+void bind_rough_flat(nb::module_& m);
+
 }  // namespace asperity::python

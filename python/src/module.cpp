@@ -9,4 +9,6 @@ NB_MODULE(_core, m) {
   asperity::python::bind_core(m);
   asperity::python::bind_contact(m);
   asperity::python::bind_surface(m);
+  asperity::python::bind_hysteresis(m);
+  asperity::python::bind_rough_flat(m);
 }

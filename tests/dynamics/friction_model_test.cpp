@@ -8,6 +8,7 @@
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/numerics.hpp"
+#include "asperity/dynamics/epb.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 
 namespace asperity::dynamics {
@@ -119,6 +120,29 @@ TEST(FrictionModelTest, SaturatingBackboneApproachesJenkinsAtLargeAmplitude) {
     previous_gap = gap;
   }
   EXPECT_LT(previous_gap, 2e-3);
+}
+
+TEST(FrictionModelTest, RoughFlatWithCfcApproachesJenkinsAtLargeAmplitude) {
+  // Issue 6, "Coulomb and Jenkins limits": the physics-based law with CFC asperities
+  // (constant mu) saturates at mu P; far beyond its slip displacement its loop tends to
+  // the Jenkins loop with the same limit, W -> 4 Q_max x_max.
+  auto c = table_7_2_rough();
+  c.model = contact::ModelName::cfc;
+  c.friction.mu_cfc = 0.3;
+  c.A0 = 1e-4;
+  c.P = 9.0;
+  const auto bb = epb_backbone(c);
+  EXPECT_NEAR(bb->limit() / (0.3 * 9.0), 1.0, 1e-3);  // Q*_max = 0.3 P* for CFC (SEED_NOTES)
+  const hysteresis::JenkinsBackbone jenkins(bb->initial_stiffness(), bb->limit());
+  const double slip = bb->limit() / bb->initial_stiffness();
+  double previous_gap = 1.0;
+  for (double amp : {3.0 * slip, 30.0 * slip, 300.0 * slip}) {
+    const double gap = std::abs(hysteresis::energy_per_cycle(*bb, amp) /
+                                    hysteresis::energy_per_cycle(jenkins, amp) - 1.0);
+    EXPECT_LT(gap, previous_gap) << amp;
+    previous_gap = gap;
+  }
+  EXPECT_LT(previous_gap, 0.02);
 }
 
 TEST(FrictionModelTest, PhysicsBasedScalesAnSiBackbone) {

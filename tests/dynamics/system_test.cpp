@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "asperity/core/error.hpp"
+#include "asperity/dynamics/epb.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 #include "linear_reference.hpp"
 
@@ -89,6 +90,11 @@ std::vector<std::pair<std::string, std::unique_ptr<FrictionModel>>> all_models()
   m.emplace_back("physics-masing", std::make_unique<HysteresisFriction>(mindlin_like));
   m.emplace_back("physics-eq7.10", std::make_unique<HysteresisFriction>(
                                        mindlin_like, hysteresis::MemoryRule::reset_at_reversal));
+  // The rough flat of Table 7.2 (rough), A0 = 1 cm^2, A = 18 um, P = 5 k A.
+  auto rough = table_7_2_rough();
+  rough.A0 = 1e-4;
+  rough.P = 5.0 * 1e5 * 18e-6;
+  m.emplace_back("physics-rough-flat", make_physics_based(epb_backbone(rough), 1e5, 18e-6));
   return m;
 }
 
