@@ -12,7 +12,13 @@
 //   [dynamics.ramp]      alpha = 1, or velocity = "1 mm/s"
 //   [dynamics.harmonic]  frequency = 1 (f~ = sqrt(m/k) f), or "10 Hz"; amplitude = 1
 //   [dynamics.free]      u0 = 1, v0 = 0
-//   [dynamics.friction]  model = "none|coulomb|dankowicz|jenkins|iwan|physics", ...
+//   [dynamics.friction]  model = "none|coulomb|dankowicz|jenkins|iwan|physics", and
+//       coulomb: F_max, k_tan; dankowicz: F_max, delta; jenkins: F_max, stiffness;
+//       iwan: F_S, K_T, chi, beta; physics: memory = "masing|reset_at_reversal" and
+//         backbone = "rough_flat": asperity_model, E_star, G_star, H, nu, sigma, R, eta,
+//                                  A0, P or P_tilde (= P/(k A)), mu_cfc (needs stiffness
+//                                  and amplitude in [dynamics]); or
+//         backbone = "mindlin": F_max, slip_displacement (a two-parameter stand-in)
 //   [dynamics.integrator] method = "dp54|bs23", rtol, atol (number or per-state array),
 //                         max_step, initial_step, min_step (collapse threshold),
 //                         max_steps, output_interval

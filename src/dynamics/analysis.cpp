@@ -111,10 +111,14 @@ std::vector<double> uniform_samples(const Trajectory& tr, double output_interval
   core::require_positive("output_interval", output_interval);
   std::vector<double> out;
   out.reserve(tr.size());
+  double last = -1.0;
   for (std::size_t i = 0; i < tr.size(); ++i) {
-    if (tr.is_event[i] || tr.tau[i] < tau_start) continue;
+    if (tr.tau[i] < tau_start) continue;
     const double n = tr.tau[i] / output_interval;
-    if (std::abs(n - std::round(n)) > 1e-6) continue;  // the final state off the grid
+    const double k = std::round(n);
+    // Events and the final state are recorded off the grid: skip them (once per node).
+    if (std::abs(n - k) > 1e-9 * std::max(1.0, k) || k <= last) continue;
+    last = k;
     out.push_back(tr.u[i]);
   }
   return out;

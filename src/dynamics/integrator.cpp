@@ -409,9 +409,12 @@ IntegratorStats integrate(OdeProblem& problem, std::span<const double> y0, doubl
       continue;  // keep absh: the step size of the rejected long step is still fine
     }
 
-    // Step-size update after a successful step (ode23/ode45).
-    const double temp = 1.25 * std::pow(err / rtol, tab.pow);
-    absh = temp > 0.2 ? absh / temp : 5.0 * absh;
+    // Step-size update after a successful step, only if it did not fail first
+    // (ode23/ode45: "if there were no failures compute a new h").
+    if (nofailed) {
+      const double temp = 1.25 * std::pow(err / rtol, tab.pow);
+      absh = temp > 0.2 ? absh / temp : 5.0 * absh;
+    }
   }
   return stats;
 }

@@ -211,7 +211,7 @@ Trajectory simulate(const SystemParameters& system, const Excitation& excitation
         } else {
           step.dense(ts, ys);
         }
-        record(ts, ys, false);
+        record(ts, ys, step.is_event && ts == step.t);
         ++next_sample;
       }
       // Events and the final state are recorded exactly, off the uniform grid.

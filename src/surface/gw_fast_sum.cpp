@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <boost/math/quadrature/gauss.hpp>
+#include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <numbers>
 
@@ -88,6 +89,37 @@ FastLoadingSum::FastLoadingSum(const RoughFlat& flat, double d_star)
     }
   }
   Q_max_ = total;
+}
+
+std::vector<double> FastLoadingSum::critical_displacements() const {
+  std::vector<double> levels;
+  const std::size_t per = kGridPerSegment + 1;
+  const std::size_t segments = grid_u_.size() / per;
+  for (std::size_t seg = 0; seg < segments; ++seg) {
+    const std::size_t b = seg * per;
+    // One-sided limits at the segment's ends (law branch points; not u = 0 or u_max).
+    if (seg > 0) levels.push_back(grid_lambda_[b]);
+    if (seg + 1 < segments) levels.push_back(grid_lambda_[b + per - 1]);
+    // Interior extrema, refined by Brent's method on -lambda or lambda.
+    for (std::size_t i = b + 1; i + 1 < b + per; ++i) {
+      const double l0 = grid_lambda_[i - 1], l1 = grid_lambda_[i], l2 = grid_lambda_[i + 1];
+      const bool is_max = l1 > l0 && l1 >= l2;
+      const bool is_min = l1 < l0 && l1 <= l2;
+      if (!is_max && !is_min) continue;
+      const double sign = is_max ? -1.0 : 1.0;
+      std::uintmax_t iters = 100;
+      const auto r = boost::math::tools::brent_find_minima(
+          [&](double u) { return sign * point(u).lambda; }, grid_u_[i - 1], grid_u_[i + 1], 52, iters);
+      levels.push_back(sign * r.second);
+    }
+  }
+  std::vector<double> out;
+  for (double l : levels) {
+    if (l > 0.0 && std::isfinite(l)) out.push_back(l / g_);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
 }
 
 FastLoadingSum::Point FastLoadingSum::point(double u) const {

@@ -22,6 +22,10 @@ class FastLoadingSum {
   FastLoadingSum(const RoughFlat& flat, double d_star);
   [[nodiscard]] LoadingMoments at(double delta_star) const;
   [[nodiscard]] double static_friction() const { return Q_max_; }
+  /// Values of 4 (G*/E*) delta* where Q*_l is less smooth: the slip length lambda(u) on
+  /// either side of each law branch point, and its interior extrema (where two slip
+  /// boundaries meet). The table puts knots there.
+  [[nodiscard]] std::vector<double> critical_displacements() const;
 
  private:
   struct Point {

@@ -14,7 +14,7 @@ namespace asperity::surface {
 
 namespace {
 
-constexpr std::size_t kInitialIntervals = 16;
+constexpr std::size_t kInitialIntervals = 16;  // over the whole range; per segment pro rata
 constexpr std::size_t kMaxIntervals = 1u << 12;
 // Beyond the table's end, Q_max - Q_l < kSaturation * Q_max.
 constexpr double kSaturation = 1e-12;
@@ -72,9 +72,11 @@ RoughFlatBackbone::RoughFlatBackbone(const RoughFlat& flat, double d_star, doubl
     if (i > 120) throw NumericalError("rough-flat backbone: the loading curve does not saturate");
   }
 
-  // Nodes uniform in s = sqrt(delta*), tabulating G(s) = Q_l(s^2)/s^2 (G(0) = k0): near 0,
-  // Q_l = k0 x + Q''(0) x^2/2 + O(x^{5/2}), so G is a smooth function of s with the same
-  // relative accuracy near 0 as elsewhere.
+  // Nodes uniform in s = sqrt(delta*) on each segment between knots, tabulating
+  // G(s) = Q_l(s^2)/s^2 (G(0) = k0): near 0, Q_l = k0 x + Q''(0) x^2/2 + O(x^{5/2}), so G
+  // is a smooth function of s with the same relative accuracy near 0 as elsewhere. Knots
+  // sit where Q_l is less smooth (critical_displacements); nodes at a knot are sampled a
+  // hair inside their own segment, so each segment sees its one-sided derivatives.
   const double s_end = std::sqrt(x_end_);
   auto sample = [&](double s) -> NodeData {
     if (s == 0.0) return {k0_, 0.0, origin.d2Q};
@@ -85,107 +87,135 @@ RoughFlatBackbone::RoughFlatBackbone(const RoughFlat& flat, double d_star, doubl
     const double Gxx = (x * x * q.d2Q - 2.0 * x * q.dQ + 2.0 * q.Q) / (x * x * x);
     return {G, 2.0 * s * Gx, 4.0 * x * Gxx + 2.0 * Gx};
   };
-  n_ = kInitialIntervals;
-  std::vector<NodeData> nodes(n_ + 1);
-  for (std::size_t i = 0; i <= n_; ++i) {
-    nodes[i] = sample(s_end * static_cast<double>(i) / static_cast<double>(n_));
+  std::vector<double> knots{0.0};
+  for (double x : sum.critical_displacements()) {
+    const double s = std::sqrt(x);
+    if (s > 1e-6 * s_end && s < s_end * (1.0 - 1e-6) && s - knots.back() > 1e-6 * s_end) {
+      knots.push_back(s);
+    }
   }
-  auto coefficients = [&](const NodeData& a, const NodeData& b, double h) {
+  knots.push_back(s_end);
+
+  auto coefficients = [](const NodeData& a, const NodeData& b, double h) {
     return quintic(a.G, a.Gs * h, a.Gss * h * h, b.G, b.Gs * h, b.Gss * h * h);
   };
-  while (true) {
-    // Verify at every interval midpoint; keep those samples for the refinement.
-    const double h = s_end / static_cast<double>(n_);
-    std::vector<NodeData> mids(n_);
+  constexpr double kInside = 1e-10;  // relative offset of knot samples into their segment
+  verified_error_ = 0.0;
+  n_ = 0;
+  for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
+    const double a = knots[k];
+    const double b = knots[k + 1];
+    const bool knot_a = k > 0;
+    const bool knot_b = k + 2 < knots.size();
+    std::size_t n = std::max<std::size_t>(4, kInitialIntervals * static_cast<std::size_t>(
+                                                 std::ceil((b - a) / s_end * 4.0)) / 4);
+    auto node_s = [&](std::size_t i, std::size_t count) {
+      const double s = a + (b - a) * static_cast<double>(i) / static_cast<double>(count);
+      if (i == 0 && knot_a) return s * (1.0 + kInside);
+      if (i == count && knot_b) return s * (1.0 - kInside);
+      return s;
+    };
+    std::vector<NodeData> nodes(n + 1);
+    for (std::size_t i = 0; i <= n; ++i) nodes[i] = sample(node_s(i, n));
     double worst = 0.0;
-    for (std::size_t i = 0; i < n_; ++i) {
-      mids[i] = sample(h * (static_cast<double>(i) + 0.5));
+    while (true) {
+      const double h = (b - a) / static_cast<double>(n);
+      std::vector<NodeData> mids(n);
+      worst = 0.0;
+      for (std::size_t i = 0; i < n; ++i) {
+        mids[i] = sample(a + h * (static_cast<double>(i) + 0.5));
+        const auto c = coefficients(nodes[i], nodes[i + 1], h);
+        // The relative error of Q = x G equals that of G.
+        worst = std::max(worst, std::abs(horner(c.data(), 0.5) - mids[i].G) / mids[i].G);
+      }
+      if (worst <= rel_tol) break;
+      if (n_ + 2 * n > kMaxIntervals) {
+        throw NumericalError(fmt::format(
+            "rough-flat backbone: table error {:.3g} still above {:.3g} with {} intervals on "
+            "delta* in [{:.4g}, {:.4g}]",
+            worst, rel_tol, n, a * a, b * b));
+      }
+      std::vector<NodeData> refined(2 * n + 1);
+      for (std::size_t i = 0; i < n; ++i) {
+        refined[2 * i] = nodes[i];
+        refined[2 * i + 1] = mids[i];
+      }
+      refined[2 * n] = nodes[n];
+      nodes = std::move(refined);
+      n *= 2;
+    }
+    verified_error_ = std::max(verified_error_, worst);
+    const double h = (b - a) / static_cast<double>(n);
+    segments_.push_back({a, h, 1.0 / h, n, n_});
+    for (std::size_t i = 0; i < n; ++i) {
       const auto c = coefficients(nodes[i], nodes[i + 1], h);
-      // The relative error of Q = x G equals that of G.
-      worst = std::max(worst, std::abs(horner(c.data(), 0.5) - mids[i].G) / mids[i].G);
+      coef_.insert(coef_.end(), c.begin(), c.end());
     }
-    verified_error_ = worst;
-    if (worst <= rel_tol) break;
-    if (2 * n_ > kMaxIntervals) {
-      throw NumericalError(fmt::format(
-          "rough-flat backbone: table error {:.3g} still above {:.3g} with {} intervals", worst,
-          rel_tol, n_));
-    }
-    std::vector<NodeData> refined(2 * n_ + 1);
-    for (std::size_t i = 0; i < n_; ++i) {
-      refined[2 * i] = nodes[i];
-      refined[2 * i + 1] = mids[i];
-    }
-    refined[2 * n_] = nodes[n_];
-    nodes = std::move(refined);
-    n_ *= 2;
+    n_ += n;
   }
-  s_scale_ = static_cast<double>(n_) / s_end;
-  const double h = s_end / static_cast<double>(n_);
-  coef_.resize(6 * n_);
-  for (std::size_t i = 0; i < n_; ++i) {
-    const auto c = coefficients(nodes[i], nodes[i + 1], h);
-    std::copy(c.begin(), c.end(), coef_.begin() + static_cast<std::ptrdiff_t>(6 * i));
-  }
-  // Int_0^x Q dx at the nodes.
+  // Int_0^x Q dx at every interval start.
   cumulative_.assign(n_ + 1, 0.0);
-  for (std::size_t i = 0; i < n_; ++i) cumulative_[i + 1] = cumulative_[i] + partial_integral(i, 1.0);
+  for (const auto& seg : segments_) {
+    for (std::size_t i = 0; i < seg.n; ++i) {
+      cumulative_[seg.offset + i + 1] = cumulative_[seg.offset + i] + partial_integral(seg, i, 1.0);
+    }
+  }
 }
 
-double RoughFlatBackbone::partial_integral(std::size_t i, double f) const {
+double RoughFlatBackbone::partial_integral(const Segment& seg, std::size_t i, double f) const {
   // Q dx = s^2 G(s) 2 s ds: degree 8 in s on an interval; 5-point Gauss-Legendre is exact.
   static constexpr double kNodes[5] = {0.0469100770306680, 0.2307653449471585, 0.5,
                                        0.7692346550528415, 0.9530899229693320};
   static constexpr double kWeights[5] = {0.1184634425280945, 0.2393143352496832,
                                          0.2844444444444444, 0.2393143352496832,
                                          0.1184634425280945};
-  const double h = 1.0 / s_scale_;
-  const double* c = &coef_[6 * i];
+  const double* c = &coef_[6 * (seg.offset + i)];
   double acc = 0.0;
   for (int q = 0; q < 5; ++q) {
     const double t = f * kNodes[q];
-    const double s = h * (static_cast<double>(i) + t);
+    const double s = seg.s0 + seg.h * (static_cast<double>(i) + t);
     acc += kWeights[q] * 2.0 * s * s * s * horner(c, t);
   }
-  return acc * f * h;
+  return acc * f * seg.h;
+}
+
+std::pair<const RoughFlatBackbone::Segment*, double> RoughFlatBackbone::locate(double s) const {
+  std::size_t k = 0;
+  while (k + 1 < segments_.size() && s >= segments_[k + 1].s0) ++k;
+  return {&segments_[k], (s - segments_[k].s0) * segments_[k].inv_h};
 }
 
 double RoughFlatBackbone::force(double delta_star) const {
   if (!(delta_star > 0.0)) return 0.0;
   if (delta_star >= x_end_) return Q_max_;
-  const double t = std::sqrt(delta_star) * s_scale_;
-  const auto i = std::min(static_cast<std::size_t>(t), n_ - 1);
-  return delta_star * horner(&coef_[6 * i], t - static_cast<double>(i));
+  const auto [seg, t] = locate(std::sqrt(delta_star));
+  const auto i = std::min(static_cast<std::size_t>(t), seg->n - 1);
+  return delta_star * horner(&coef_[6 * (seg->offset + i)], t - static_cast<double>(i));
 }
 
 double RoughFlatBackbone::displacement(double Q_star) const {
   core::require_non_negative("tangential force Q*", Q_star);
   if (Q_star == 0.0) return 0.0;
-  const double h = 1.0 / s_scale_;
-  auto node_force = [&](std::size_t i) {
-    if (i == n_) return x_end_ * horner(&coef_[6 * (n_ - 1)], 1.0);
-    const double s = h * static_cast<double>(i);
-    return s * s * coef_[6 * i];
-  };
-  if (Q_star >= node_force(n_)) {
+  const double top = force(x_end_ * (1.0 - 1e-15));
+  if (Q_star >= top) {
     throw InvalidInput(fmt::format(
         "tangential force Q* = {} reaches the static friction limit Q*_max = {}: the contact "
         "slides (no finite displacement under force control)",
         core::format_value(Q_star), core::format_value(Q_max_)));
   }
-  std::size_t lo = 0, hi = n_;
-  while (hi - lo > 1) {
-    const std::size_t mid = (lo + hi) / 2;
-    if (node_force(mid) <= Q_star) lo = mid; else hi = mid;
+  // Q_l is increasing: bracket in s by bisection on the interval starts, then solve the
+  // interval's quintic with TOMS 748.
+  double lo = 0.0;
+  double hi = std::sqrt(x_end_) * (1.0 - 1e-15);
+  for (const auto& seg : segments_) {
+    for (std::size_t i = 0; i < seg.n; ++i) {
+      const double s = seg.s0 + seg.h * static_cast<double>(i);
+      if (s * s * coef_[6 * (seg.offset + i)] <= Q_star) lo = s; else { hi = std::min(hi, s); break; }
+    }
+    if (hi < std::sqrt(x_end_) * (1.0 - 1e-15)) break;
   }
-  const std::size_t i = lo;
-  const double* c = &coef_[6 * i];
-  auto q_of = [&](double t) {
-    const double s = h * (static_cast<double>(i) + t);
-    return s * s * horner(c, t) - Q_star;
-  };
-  const double t = core::find_root(q_of, 0.0, 1.0, "rough-flat backbone inverse", 52);
-  const double s = (static_cast<double>(i) + t) * h;
+  const double s = core::find_root([&](double v) { return force(v * v) - Q_star; }, lo, hi,
+                                   "rough-flat backbone inverse", 52);
   return s * s;
 }
 
@@ -193,9 +223,9 @@ double RoughFlatBackbone::integral(double delta_star) const {
   core::require_non_negative("tangential displacement delta*", delta_star);
   if (delta_star == 0.0) return 0.0;
   if (delta_star >= x_end_) return cumulative_[n_] + Q_max_ * (delta_star - x_end_);
-  const double t = std::sqrt(delta_star) * s_scale_;
-  const auto i = std::min(static_cast<std::size_t>(t), n_ - 1);
-  return cumulative_[i] + partial_integral(i, t - static_cast<double>(i));
+  const auto [seg, t] = locate(std::sqrt(delta_star));
+  const auto i = std::min(static_cast<std::size_t>(t), seg->n - 1);
+  return cumulative_[seg->offset + i] + partial_integral(*seg, i, t - static_cast<double>(i));
 }
 
 }  // namespace asperity::surface

@@ -4,6 +4,7 @@
 // reach it, so the checks use 1e-11 (a factor 10 for the error estimate's slack).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -68,6 +69,44 @@ TEST(IntegrateTanhSinh, EndpointSingularities) {
             1e-11);
   EXPECT_LT(rel(integrate_tanh_sinh([](double x) { return std::log(x); }, 0.0, 1.0).value, -1.0),
             1e-11);
+}
+
+TEST(IntegrateTanhSinh, SingularitiesAtEndpointsAwayFromZero) {
+  // int_2^3 (x-2)^{-1/2} dx = 2 and int_{-3}^{-2} (-2-x)^{-1/2} dx = 2: the same
+  // singularities as above on intervals with |a|, |b| >= 0.5. Boost 1.74's one-argument
+  // tanh_sinh mishandles the left end there (a missing `else` overwrites the accurate
+  // abscissa, so f can be called at x = a: inf in release, an assertion in debug).
+  // Tolerance: a one-argument f only sees x, which resolves the distance to an end at
+  // |a| only to ~eps |a|; the unresolved piece of x^{-1/2} is 2 sqrt(eps |a|), 2e-8
+  // relative here, so 1e-7. For ln the missing piece is ~eps |a| ln(eps |a|): 1e-11.
+  const auto left = [](double x) { return 1.0 / std::sqrt(x - 2.0); };
+  EXPECT_LT(rel(integrate_tanh_sinh(left, 2.0, 3.0).value, 2.0), 1e-7);
+  const auto right = [](double x) { return 1.0 / std::sqrt(-2.0 - x); };
+  EXPECT_LT(rel(integrate_tanh_sinh(right, -3.0, -2.0).value, 2.0), 1e-7);
+  // int_{10}^{11} ln(x - 10) dx = -1; int_{1e3}^{1e3+1} sqrt(1e3 + 1 - x) dx = 2/3.
+  EXPECT_LT(
+      rel(integrate_tanh_sinh([](double x) { return std::log(x - 10.0); }, 10.0, 11.0).value, -1.0),
+      1e-11);
+  EXPECT_LT(
+      rel(integrate_tanh_sinh([](double x) { return std::sqrt(1001.0 - x); }, 1000.0, 1001.0).value,
+          2.0 / 3.0),
+      1e-11);
+}
+
+TEST(IntegrateTanhSinh, NeverEvaluatesAtAnEndpoint) {
+  // An interval found by a random search on which the unpatched Boost 1.74 path calls
+  // f(a) exactly. int_a^b sqrt(x - a) dx = 2/3 (b - a)^{3/2}; the relative tolerance
+  // 1e-6 covers the ~eps a / (b - a) = 1e-9 resolution of x - a near the ends.
+  const double a = 9.0786803595606358;
+  const double b = 9.0786826265127534;
+  bool outside = false;
+  const auto f = [&](double x) {
+    if (!(x > a && x < b)) outside = true;
+    return std::sqrt(std::max(x - a, 0.0));
+  };
+  const double value = integrate_tanh_sinh(f, a, b, 1e-10).value;
+  EXPECT_FALSE(outside);
+  EXPECT_LT(rel(value, 2.0 / 3.0 * std::pow(b - a, 1.5)), 1e-6);
 }
 
 TEST(IntegrateTanhSinh, InvalidInterval) {

@@ -61,7 +61,7 @@ struct ModalEstimate {
                                            std::size_t bins = 4000);
 
 /// The uniformly sampled displacement of a trajectory recorded with output_interval > 0
-/// (events, recorded off the grid, are skipped), from tau_start on.
+/// (events and the final state, recorded off the grid, are skipped), from tau_start on.
 [[nodiscard]] std::vector<double> uniform_samples(const Trajectory& tr, double output_interval,
                                                   double tau_start = 0.0);
 

@@ -6,9 +6,11 @@
 //    SIAM J. Sci. Comput. 18 (1997) 1-22): error per step
 //      err = max_i |h sum_j E_j k_ij| / max(max(|y_i|, |ynew_i|), atol_i/rtol),
 //    accepted if err <= rtol; a failed step shrinks h by max(0.5, 0.8 (rtol/err)^(1/3))
-//    the first time and by 1/2 after that; a successful one grows it by
-//    1/max(0.2, 1.25 (err/rtol)^(1/3)); the initial step and hmin = 16 eps(t) as in
-//    ode23. This reproduces the thesis's integrations (rtol 1e-6, atol 1e-7).
+//    the first time and by 1/2 after that; a step that succeeds at the first attempt
+//    sets the next to h/max(0.2, 1.25 (err/rtol)^(1/3)); the initial step,
+//    hmax = (t1 - t0)/10 and hmin = 16 eps(t) as in ode23. This reproduces the thesis's
+//    integrations (rtol 1e-6, atol 1e-7) up to the event handling: MATLAB takes the
+//    state at an event from the interpolant, this code redoes the step to end there.
 //  - Dormand-Prince 5(4) (the default), with the same control and exponent 1/5 and
 //    ode45's factor 0.1 on the first failure.
 // Both are FSAL and have continuous extensions (ode23's ntrp23, ode45's ntrp45).

@@ -106,7 +106,8 @@ class RoughFlat {
   /// Tangential stiffness at every reversal, dQ*_l/d delta* at 0 (over K H A0/sigma_s).
   [[nodiscard]] double stiffness_star(double d_star) const;
 
-  /// The tabulated backbone at separation d* (see RoughFlatBackbone).
+  /// The tabulated backbone at separation d* (see RoughFlatBackbone); rel_tol is the
+  /// verified bound on its relative error.
   [[nodiscard]] std::shared_ptr<const RoughFlatBackbone> backbone(double d_star,
                                                                   double rel_tol = 1e-9) const;
 
@@ -120,9 +121,10 @@ class RoughFlat {
 };
 
 /// The virgin loading curve Q*_l(delta*) of a rough flat at one separation, tabulated
-/// once: Q_l = delta* G(sqrt(delta*)) with G a quintic Hermite interpolant on a uniform
-/// grid in s = sqrt(delta*); node values and first and second derivatives come from one
-/// fixed-rule quadrature pass per node (internal FastLoadingSum). The grid is refined until the interpolant matches the
+/// once: Q_l = delta* G(sqrt(delta*)) with G a quintic Hermite interpolant, uniform in
+/// s = sqrt(delta*) on segments between knots placed where Q_l is less smooth (a slip
+/// boundary crossing a jump or extremum of the asperities' slip length); node values and
+/// first and second derivatives come from one fixed-rule quadrature pass per node. The grid is refined until the interpolant matches the
 /// quadrature at every interval midpoint to `rel_tol` (the verified error bound);
 /// beyond the table's end Q_l equals Q_max to < 1e-12 relative. Evaluation costs a
 /// square root and a quintic: as cheap as a regularized Coulomb law.
@@ -148,10 +150,18 @@ class RoughFlatBackbone final : public hysteresis::Backbone {
   double Q_max_;
   double k0_;
   double x_end_;       // delta* where the table ends
-  double s_scale_;     // n / sqrt(x_end)
-  std::size_t n_ = 0;  // intervals
-  [[nodiscard]] double partial_integral(std::size_t i, double fraction) const;
+  std::size_t n_ = 0;  // intervals over all segments
+  struct Segment {     // uniform in s = sqrt(delta*) between two knots
+    double s0;
+    double h;
+    double inv_h;
+    std::size_t n;
+    std::size_t offset;  // index of its first interval
+  };
+  [[nodiscard]] double partial_integral(const Segment& seg, std::size_t i, double fraction) const;
+  [[nodiscard]] std::pair<const Segment*, double> locate(double s) const;
 
+  std::vector<Segment> segments_;
   std::vector<double> coef_;  // quintic in t per interval: G(s) = Q_l/delta*, s = sqrt(delta*)
   std::vector<double> cumulative_;  // Int_0^{x_i} Q dx at nodes
   double verified_error_ = 0.0;
