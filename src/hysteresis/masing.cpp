@@ -163,23 +163,12 @@ void Hysteresis::commit_reversal(double x) {
   Q_ = stack_.back().Q;
 }
 
-double Hysteresis::update(double x) {
-  if (!std::isfinite(x)) core::require_finite("displacement", x);
+double Hysteresis::update_general(double x) {
+  core::require_finite("displacement", x);
   const int d = sign_of(x - x_);
   if (d == 0) return Q_;
   if (direction_ != 0 && d != direction_) commit_reversal(x_);
   direction_ = d;
-  // Fast path: still on the newest branch, short of its closing point.
-  if (const std::size_t n = stack_.size(); n > 0) {
-    const ReversalPoint& r = stack_[n - 1];
-    const int dir = dirs_[n - 1];
-    const double target = n >= 2 ? stack_[n - 2].x : -stack_[0].x;
-    if ((x - r.x) * dir >= 0.0 && (rule_ == MemoryRule::reset_at_reversal || (x - target) * dir < 0.0)) {
-      Q_ = r.Q + dir * 2.0 * backbone_->force(std::abs(x - r.x) * 0.5);
-      x_ = x;
-      return Q_;
-    }
-  }
   const std::size_t k = active_branch(x);
   const double Q = branch_force(k, x);
   move_to(k, x, Q);

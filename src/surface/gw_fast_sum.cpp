@@ -97,9 +97,15 @@ std::vector<double> FastLoadingSum::critical_displacements() const {
   const std::size_t segments = grid_u_.size() / per;
   for (std::size_t seg = 0; seg < segments; ++seg) {
     const std::size_t b = seg * per;
-    // One-sided limits at the segment's ends (law branch points; not u = 0 or u_max).
-    if (seg > 0) levels.push_back(grid_lambda_[b]);
-    if (seg + 1 < segments) levels.push_back(grid_lambda_[b + per - 1]);
+    // One-sided limits at a law branch point where lambda jumps (not u = 0 or u_max).
+    if (seg + 1 < segments) {
+      const double left = grid_lambda_[b + per - 1];
+      const double right = grid_lambda_[b + per];
+      if (std::abs(left - right) > 1e-9 * std::max(std::abs(left), std::abs(right))) {
+        levels.push_back(left);
+        levels.push_back(right);
+      }
+    }
     // Interior extrema, refined by Brent's method on -lambda or lambda.
     for (std::size_t i = b + 1; i + 1 < b + per; ++i) {
       const double l0 = grid_lambda_[i - 1], l1 = grid_lambda_[i], l2 = grid_lambda_[i + 1];

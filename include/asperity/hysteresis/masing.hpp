@@ -15,6 +15,7 @@
 // The thesis's Eq. 7.10 rule (reset u_max at every velocity reversal) is available as
 // MemoryRule::reset_at_reversal: every branch starts at the last reversal and nothing
 // is remembered before it.
+#include <cmath>
 #include <memory>
 #include <span>
 #include <vector>
@@ -65,8 +66,25 @@ class Hysteresis {
   [[nodiscard]] MemoryRule rule() const { return rule_; }
 
   /// Displacement-driven step: moves to x, detecting a reversal when the direction of
-  /// motion changes, and returns the force there. O(1) amortized.
-  double update(double x);
+  /// motion changes, and returns the force there. O(1) amortized; inline fast path for
+  /// motion along the newest branch, short of its closing point.
+  double update(double x) {
+    const double dx = x - x_;
+    const int d = (dx > 0.0) - (dx < 0.0);
+    if (d == direction_ && d != 0 && std::isfinite(x)) {
+      if (const std::size_t n = stack_.size(); n > 0) {
+        const ReversalPoint& r = stack_[n - 1];
+        const double dir = dirs_[n - 1];
+        const double target = n >= 2 ? stack_[n - 2].x : -stack_[0].x;
+        if (rule_ == MemoryRule::reset_at_reversal || (x - target) * dir < 0.0) {
+          Q_ = r.Q + dir * 2.0 * backbone_->force(std::abs(x - r.x) * 0.5);
+          x_ = x;
+          return Q_;
+        }
+      }
+    }
+    return update_general(x);
+  }
   /// Force-driven step: moves to force Q, returns the displacement. Throws
   /// InvalidInput if a branch would need |Q| beyond the static limit (gross slip
   /// under force control has no finite displacement).
@@ -98,6 +116,7 @@ class Hysteresis {
   [[nodiscard]] std::vector<double> displacements(std::span<const double> Q_history) const;
 
  private:
+  double update_general(double x);
   // Index of the active branch for motion to x: the number of stack entries that stay
   // after loop closing. Branch k >= 1 starts at stack_[k-1]; 0 is the virgin curve.
   [[nodiscard]] std::size_t active_branch(double x) const;
