@@ -106,7 +106,13 @@ double energy_tilde_small_amplitude(double Q_max_tilde) {
 
 double energy_tilde_for_displacement(double delta_max_tilde) {
   core::require_non_negative("delta~max", delta_max_tilde);
-  if (delta_max_tilde <= 1.0) return energy_tilde(loading_force_tilde(delta_max_tilde));
+  if (delta_max_tilde <= 1.0) {
+    const double Q = loading_force_tilde(delta_max_tilde);
+    if (Q <= 0.25) return energy_tilde(Q);  // its series, exact for small amplitudes
+    // B.19 in r = 1 - delta~ (1 - Q~ = r^{3/2}): no digits lost near gross slip.
+    const double r = 1.0 - delta_max_tilde;
+    return 1.0 - std::pow(r, 2.5) - 5.0 / 6.0 * (1.0 - r * std::sqrt(r)) * (1.0 + r);
+  }
   // Gross slip: the partial-slip loop at onset (1/6) plus the rectangle 4 mu P (delta_max -
   // delta_slip), in tilde units 5/6 (delta~max - 1).
   return 1.0 / 6.0 + 5.0 / 6.0 * (delta_max_tilde - 1.0);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <random>
+#include <thread>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/numerics.hpp"
@@ -253,6 +254,42 @@ TEST(RoughFlat, BadInputIsRejectedWithTheFieldName) {
   const auto flat = make(0.04, 0.5);
   EXPECT_THROW((void)flat.loading_force_star(-0.1, 1.0), InvalidInput);
   EXPECT_THROW((void)flat.unloading_force_star(0.5, 0.2, 1.0), InvalidInput);
+}
+
+}  // namespace
+}  // namespace asperity::surface
+
+namespace asperity::surface {
+namespace {
+
+TEST(RoughFlatThreads, ConstEvaluationIsThreadSafe) {
+  // One RoughFlat and one table shared by four threads: every thread's batch history
+  // through its own Hysteresis copy, and the const quadratures, give the serial results.
+  const RoughFlat flat(RoughFlatParameters{.model = contact::ModelName::ke, .beta = 0.04,
+                                           .psi = 0.8, .nu = 0.3, .G_over_E = 0.7 / 3.4});
+  const double d = flat.separation_star(2e-3);
+  const auto table = flat.backbone(d);
+  std::vector<double> xs;
+  for (int i = 0; i < 4000; ++i) xs.push_back(std::sin(0.01 * i) * (0.2 + 1e-4 * i));
+  const hysteresis::Hysteresis h(table);
+  const auto serial = h.forces(xs);
+  const double serial_q = flat.loading_force_star(0.3, d);
+  std::vector<std::vector<double>> results(4);
+  std::vector<double> quad(4);
+  {
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t) {
+      threads.emplace_back([&, t] {
+        results[t] = h.forces(xs);
+        quad[t] = flat.loading_force_star(0.3, d);
+      });
+    }
+    for (auto& th : threads) th.join();
+  }
+  for (int t = 0; t < 4; ++t) {
+    EXPECT_EQ(results[t], serial);
+    EXPECT_EQ(quad[t], serial_q);
+  }
 }
 
 }  // namespace

@@ -16,12 +16,12 @@ namespace asperity::dynamics {
 /// Power spectrum P(f) = |dt sum_n (x_n - mean) exp(-2 pi i f t_n)|^2 of a uniformly
 /// sampled signal (a periodogram with a rectangular window).
 ///
-/// Computed by a direct DFT in double precision at any frequencies rather than with
-/// KISS FFT: Debian ships KISS FFT in single precision only, and the half-power
-/// points need the spectrum between FFT bins (resolution 1/T), which the direct sum
-/// gives without zero padding. Cost O(N) per frequency (a trigonometric recurrence
-/// with periodic re-seeding), so a few thousand frequencies on 1e5 samples take
-/// milliseconds.
+/// Computed by a direct DFT in double precision (Goertzel's recurrence) at any
+/// frequency rather than with KISS FFT: Debian ships KISS FFT in single precision
+/// only, and the peak and its half-power points need the spectrum between FFT bins
+/// (resolution 1/T), which the direct sum gives without zero padding. Cost O(N) per
+/// frequency: 4000 frequencies on 8000 samples (a 400-tau record every 0.05) take
+/// ~30 ms. For very long records sample coarser (output_interval).
 class Periodogram {
  public:
   Periodogram(std::span<const double> x, double dt);
