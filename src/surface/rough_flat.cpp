@@ -69,6 +69,22 @@ class Kernel {
     return a > 0.0 ? m * wc_ * load(u) / a : 0.0;
   }
 
+  /// (2 pi/3) beta omega_c* times the sum over asperities of mu P/P_c * response(lambda):
+  /// the common form of Eq. 4.7, 4.10, 4.12 and 4.14 (asperities with mu = 0 carry no
+  /// tangential force), split at the given slip boundaries.
+  template <class Response>
+  [[nodiscard]] double tangential_sum(double prefactor, Response response,
+                                      const std::vector<double>& slip_breaks) const {
+    return prefactor * integrate(
+                           [&](double u) {
+                             if (u <= 0.0) return 0.0;
+                             const double m = mu(u);
+                             if (m == 0.0) return 0.0;
+                             return m * load(u) * response(lambda(u)) * phi(u);
+                           },
+                           slip_breaks);
+  }
+
   /// Roots of lambda(u) = level in (0, u_max), found by sampling each law segment and
   /// refining sign changes with TOMS 748.
   [[nodiscard]] std::vector<double> slip_boundaries(double level) const {
@@ -216,9 +232,7 @@ double RoughFlat::normal_load_star(double d_star) const {
 double RoughFlat::static_friction_star(double d_star) const {
   require_separation(d_star);
   const Kernel k(*this, d_star);
-  return prefactor_ * k.integrate([&](double u) {  // Eq. 4.7
-    return u > 0.0 ? k.mu(u) * k.load(u) * k.phi(u) : 0.0;
-  });
+  return k.tangential_sum(prefactor_, [](double) { return 1.0; }, {});  // Eq. 4.7
 }
 
 double RoughFlat::contact_area_ratio(double d_star) const {
@@ -281,14 +295,7 @@ double RoughFlat::loading_force_star(double delta_star, double d_star) const {
   const Kernel k(*this, d_star);
   const double c = 4.0 * params_.G_over_E * delta_star;
   // Eq. 4.9-4.10 with the erratum: full slip (Q = mu P) where delta~ = c/lambda >= 1.
-  return prefactor_ * k.integrate(
-                          [&](double u) {
-                            if (u <= 0.0) return 0.0;
-                            const double m = k.mu(u);
-                            if (m == 0.0) return 0.0;
-                            const double lam = k.lambda(u);
-                            return m * k.load(u) * slip_response(c / lam) * k.phi(u);
-                          },
+  return k.tangential_sum(prefactor_, [&](double lam) { return slip_response(c / lam); },
                           k.slip_boundaries(c));
 }
 
@@ -298,16 +305,9 @@ double RoughFlat::loading_stiffness_star(double delta_star, double d_star) const
   const Kernel k(*this, d_star);
   const double dc = 4.0 * params_.G_over_E;
   const double c = dc * delta_star;
-  return prefactor_ * k.integrate(
-                          [&](double u) {
-                            if (u <= 0.0) return 0.0;
-                            const double m = k.mu(u);
-                            if (m == 0.0) return 0.0;
-                            const double lam = k.lambda(u);
-                            return m * k.load(u) * slip_response_slope(c / lam) * dc / lam *
-                                   k.phi(u);
-                          },
-                          k.slip_boundaries(c));
+  return k.tangential_sum(
+      prefactor_, [&](double lam) { return slip_response_slope(c / lam) * dc / lam; },
+      k.slip_boundaries(c));
 }
 
 double RoughFlat::stiffness_star(double d_star) const { return loading_stiffness_star(0.0, d_star); }
@@ -329,17 +329,9 @@ double RoughFlat::unloading_force_star(double delta_star, double delta_max_star,
   breaks.insert(breaks.end(), more.begin(), more.end());
   // Eq. 4.11-4.12: each asperity unloads by Mindlin-Deresiewicz from its own state at
   // delta*_max: mu P [h(c_m/lambda) - 2 h((c_m - c)/(2 lambda))].
-  return prefactor_ * k.integrate(
-                          [&](double u) {
-                            if (u <= 0.0) return 0.0;
-                            const double m = k.mu(u);
-                            if (m == 0.0) return 0.0;
-                            const double lam = k.lambda(u);
-                            return m * k.load(u) *
-                                   (slip_response(cm / lam) - 2.0 * slip_response(cr / lam)) *
-                                   k.phi(u);
-                          },
-                          breaks);
+  return k.tangential_sum(
+      prefactor_,
+      [&](double lam) { return slip_response(cm / lam) - 2.0 * slip_response(cr / lam); }, breaks);
 }
 
 double RoughFlat::reloading_force_star(double delta_star, double delta_max_star,
@@ -355,17 +347,12 @@ double RoughFlat::energy_star(double delta_max_star, double d_star) const {
   const double cm = g * delta_max_star;
   // An asperity's loop area is mu P * delta_s * 4.8 E~(delta~_max) (B.19 scaled:
   // 9/10 / (3/16) = 4.8), with delta_s* = lambda/g its gross-slip displacement.
-  return prefactor_ *
-         k.integrate(
-             [&](double u) {
-               if (u <= 0.0) return 0.0;
-               const double m = k.mu(u);
-               if (m == 0.0) return 0.0;
-               const double lam = k.lambda(u);
-               return m * k.load(u) * (lam / g) * 4.8 *
-                      contact::mindlin::energy_tilde_for_displacement(cm / lam) * k.phi(u);
-             },
-             k.slip_boundaries(cm));
+  return k.tangential_sum(
+      prefactor_,
+      [&](double lam) {
+        return (lam / g) * 4.8 * contact::mindlin::energy_tilde_for_displacement(cm / lam);
+      },
+      k.slip_boundaries(cm));
 }
 
 std::shared_ptr<const RoughFlatBackbone> RoughFlat::backbone(double d_star, double rel_tol) const {
