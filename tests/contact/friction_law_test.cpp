@@ -8,6 +8,8 @@
 // Table 3.2 values (printed to three decimals) are checked to 0.1 % as a cross-check.
 #include <gtest/gtest.h>
 
+#include "../support.hpp"
+
 #include <cmath>
 #include <string>
 
@@ -18,22 +20,13 @@
 namespace asperity::contact {
 namespace {
 
+using asperity::testing::rel;
+using asperity::testing::invalid_input_message;
+
 constexpr double kNu = 0.3;
 constexpr double kHand = 1e-13;
 
-double rel(double a, double b) {
-  return std::abs(a - b) / std::abs(b);
-}
 
-template <class F>
-std::string invalid_input_message(F f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(FrictionLaw, CfcIsConstantB10) {
   const FrictionParameters params{.mu_cfc = 0.284};

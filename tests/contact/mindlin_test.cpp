@@ -8,6 +8,8 @@
 // values do not matter for the identities; they only set realistic scales.
 #include <gtest/gtest.h>
 
+#include "../support.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -22,6 +24,8 @@
 namespace asperity::contact {
 namespace {
 
+using asperity::testing::rel;
+
 constexpr double kMu = 0.284;
 constexpr double kP = 35.0;
 constexpr double kGStar = 24.3235294117647e9;
@@ -32,9 +36,6 @@ MindlinContact contact() {
   return MindlinContact(kMu, kP, kGStar, kA);
 }
 
-double rel(double a, double b) {
-  return std::abs(a - b) / std::abs(b);
-}
 
 // Displacement amplitudes in units of the slip displacement: partial slip from tiny to
 // the onset of gross slip, then gross slip.

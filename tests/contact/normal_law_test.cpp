@@ -8,6 +8,8 @@
 // agreement is to a few ulp: the tolerance is 1e-14 relative.
 #include <gtest/gtest.h>
 
+#include "../support.hpp"
+
 #include <cmath>
 #include <string>
 #include <vector>
@@ -19,25 +21,16 @@
 namespace asperity::contact {
 namespace {
 
+using asperity::testing::rel;
+using asperity::testing::invalid_input_message;
+
 constexpr double kNu = 0.3;
 constexpr double kHand = 1e-14;     // same formula, different rounding order
 constexpr double kInverse = 1e-12;  // required accuracy of the inverse laws
 
 constexpr NormalLaw kLaws[] = {NormalLaw::hertz, NormalLaw::ceb, NormalLaw::ke, NormalLaw::bke};
 
-double rel(double a, double b) {
-  return std::abs(a - b) / std::abs(b);
-}
 
-template <class F>
-std::string invalid_input_message(F f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(NormalLaw, BkeConstantsForNu03) {
   // Constants under B.9 at nu = 0.3, by hand.

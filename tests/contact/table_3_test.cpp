@@ -2,6 +2,8 @@
 // al., as modelled in chapter 3).
 #include <gtest/gtest.h>
 
+#include "../support.hpp"
+
 #include <cmath>
 
 #include "asperity/contact/asperity_model.hpp"
@@ -9,6 +11,8 @@
 
 namespace asperity::contact {
 namespace {
+
+using asperity::testing::rel;
 
 // Table 3.1: bearing-steel ball (R = 2.5 mm) on a hardened steel flat.
 ContactPair micro_pair() {
@@ -24,7 +28,6 @@ ContactPair nano_pair() {
   return ContactPair::combine(sphere, flat, 1.55e-6);
 }
 
-double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
 
 TEST(Table31, CombinedProperties) {
   const auto p = micro_pair();

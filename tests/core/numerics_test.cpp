@@ -4,6 +4,8 @@
 // reach it, so the checks use 1e-11 (a factor 10 for the error estimate's slack).
 #include <gtest/gtest.h>
 
+#include "../support.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -16,11 +18,10 @@
 namespace asperity::core {
 namespace {
 
+using asperity::testing::rel;
+
 using std::numbers::pi;
 
-double rel(double a, double b) {
-  return std::abs(a - b) / std::abs(b);
-}
 
 TEST(Integrate, GaussKronrodPolynomialAndTranscendental) {
   // int_0^2 x^3 dx = 4; int_0^pi sin = 2; int_0^1 e^x = e - 1.

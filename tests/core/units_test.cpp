@@ -8,6 +8,8 @@
 // (1e-15) is both tight and safe.
 #include <gtest/gtest.h>
 
+#include "../support.hpp"
+
 #include <string>
 
 #include "asperity/core/error.hpp"
@@ -15,6 +17,8 @@
 
 namespace asperity::core {
 namespace {
+
+using asperity::testing::invalid_input_message;
 
 constexpr double kTol = 1e-15;            // a few ulp: the parser multiplies exact factors
 constexpr double kInch = 0.0254;          // m, exact (NIST SP 811)
@@ -26,16 +30,6 @@ void expect_quantity(const std::string& text, double value, Dimension d) {
   EXPECT_EQ(q.dimension, d) << text << " -> " << dimension_name(q.dimension);
 }
 
-// The message of the InvalidInput thrown by f(), or "" if it did not throw one.
-template <class F>
-std::string invalid_input_message(F f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(Units, SiPrefixesOnPressureLengthForce) {
   expect_quantity("207 GPa", 207e9, dim::pressure);

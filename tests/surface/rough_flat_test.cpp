@@ -3,6 +3,8 @@
 // error bound, and properties over random parameters and histories.
 #include <gtest/gtest.h>
 
+#include "../support.hpp"
+
 #include <cmath>
 #include <random>
 #include <thread>
@@ -15,9 +17,10 @@
 namespace asperity::surface {
 namespace {
 
+using asperity::testing::rel;
+
 using contact::ModelName;
 
-double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
 
 // Fig. 4.4: beta = 0.04, psi = 0.5, nu = 0.3, identical materials (G*/E* =
 // (1 - nu)/(2 (2 - nu)) = 0.2059), mu_cfc = 0.3 (section 4.3), P* = 0.001.

@@ -3,16 +3,8 @@
 Table 7.2 examples, and bad input (exit 2, a message naming what to change, nothing on
 stdout) or numerical failure (exit 3).
 
-Usage: cli_dynamics_cases.py ASPERITY_EXE CASE. Standard library only. Exit 0 = pass.
-Register in tests/cli/CMakeLists.txt, e.g.:
-  foreach(case IN ITEMS summary_keys examples_table_7_2 bad_input.negative_mass
-          bad_input.negative_stiffness bad_input.zero_frequency bad_input.rtol_out_of_range
-          bad_input.unknown_key bad_input.missing_parameter bad_input.units_without_scales
-          numerical.step_collapse)
-    add_test(NAME cli.dynamics.${case} COMMAND Python3::Interpreter
-             ${PROJECT_SOURCE_DIR}/tests/dynamics/cli_dynamics_cases.py
-             $<TARGET_FILE:asperity_cli> ${case})
-  endforeach()
+Usage: dynamics_cases.py ASPERITY_EXE CASE. Standard library only. Exit 0 = pass.
+Registered in tests/cli/CMakeLists.txt, one CTest per case (cli.dynamics.<case>).
 """
 import glob
 import json
