@@ -16,8 +16,17 @@ physics. Conventions:
   :class:`Error`.
 
 Layers: ``contact`` (one asperity, thesis ch. 2-3 and appendices A-B), ``surface``
-(profiles and roughness, ch. 5-6; :class:`RoughFlat`, the rough flat of ch. 4) and
-``hysteresis`` (:class:`Hysteresis`, Masing's rules over any :class:`Backbone`) are bound here;
+(profiles and roughness, ch. 5-6; :class:`RoughFlat`, the rough flat of ch. 4),
+``hysteresis`` (:class:`Hysteresis`, Masing's rules over any :class:`Backbone`) and
+``dynamics`` (ch. 7: the friction models :class:`RegularizedCoulomb`, :class:`Dankowicz`,
+:class:`HysteresisFriction`, ``make_jenkins``, ``make_segalman_iwan`` and the
+physics-based ``make_physics_based``/``epb_backbone``; the base-excited oscillator of
+Eq. 7.1 under :class:`ImpulseExcitation`, :class:`RampExcitation`,
+:class:`HarmonicExcitation` or :class:`FreeVibration`; ``simulate``, returning a
+:class:`Trajectory` of numpy arrays; ``Periodogram``, ``power_spectrum``,
+``modal_estimate``, ``free_decay``, ``stick_slip_intervals``, ``steady_loop``) are bound
+here. Dynamics works in the non-dimensional variables of section 7.2
+(:class:`DimensionalScales` converts);
 Cattaneo-Mindlin tilde functions live in :mod:`asperity.mindlin`; matplotlib helpers in
 :mod:`asperity.plotting`; the thesis's experiments in :mod:`asperity.thesis`.
 """

@@ -11,4 +11,5 @@ NB_MODULE(_core, m) {
   asperity::python::bind_surface(m);
   asperity::python::bind_hysteresis(m);
   asperity::python::bind_rough_flat(m);
+  asperity::python::bind_dynamics(m);
 }

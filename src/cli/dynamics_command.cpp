@@ -26,10 +26,20 @@
 //
 // Numbers are non-dimensional (section 7.2); strings are quantities with units and need
 // mass, stiffness and amplitude (the scales) in [dynamics].
+//
+// Instead of [dynamics.friction] parameters, a joint described as for `asperity
+// predict` gives the physics-based law: the [joint] table (area, model, mu_cfc, zeta,
+// slip_scaling, two [[joint.half]] with material and roughness or profiles), [load] with
+// one preload (or bolts with one torque) and optionally [profiles]. They are read by
+// joint::parse_case (same keys, same errors with file and line); the rough flat of
+// the joint (RoughFlat::from_dimensional) at that preload gives the SI backbone, seen
+// through the scales stiffness and amplitude of [dynamics]. [dynamics.friction] may then
+// hold only model = "physics", backbone = "joint" and memory.
 #include <fmt/format.h>
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <numbers>
 #include <set>
@@ -41,6 +51,8 @@
 #include "asperity/dynamics/analysis.hpp"
 #include "asperity/dynamics/epb.hpp"
 #include "asperity/hysteresis/backbones.hpp"
+#include "asperity/joint/case.hpp"
+#include "asperity/joint/predict.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 
@@ -64,7 +76,10 @@ void check_keys(const toml::table& t, const std::string& where, const std::set<s
     if (!allowed.count(key)) {
       std::string list;
       for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw InvalidInput(fmt::format("{}: unknown key \"{}\" (allowed: {})", where, key, list));
+      const auto line = k.source().begin.line > 0 ? k.source().begin.line : v.source().begin.line;
+      const std::string at = line > 0 ? fmt::format(" at line {}", line) : std::string();
+      throw InvalidInput(fmt::format("{}: unknown key \"{}\"{} (allowed: {})",
+                                     where.empty() ? std::string("top level") : where, key, at, list));
     }
   }
 }

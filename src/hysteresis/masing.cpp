@@ -38,31 +38,31 @@ Hysteresis::Hysteresis(std::shared_ptr<const Backbone> backbone, MemoryRule rule
     : backbone_(std::move(backbone)), rule_(rule) {
   if (!backbone_) throw InvalidInput("Hysteresis needs a backbone");
   stack_.reserve(64);
-  dirs_.reserve(64);
 }
 
 void Hysteresis::reset() {
   stack_.clear();
-  dirs_.clear();
   x_ = 0.0;
   Q_ = 0.0;
   direction_ = 0;
 }
 
-int Hysteresis::branch_direction(std::size_t k) const { return k == 0 ? 0 : dirs_[k - 1]; }
+void Hysteresis::push_reversal(double x, double Q, int direction) {
+  const double closes_at = stack_.empty() ? -x : stack_.back().x;
+  stack_.push_back({x, Q, static_cast<double>(direction), closes_at});
+}
 
 std::size_t Hysteresis::active_branch(double x) const {
   std::size_t k = stack_.size();
   while (k >= 1) {
     const ReversalPoint& r = stack_[k - 1];
-    const int d = dirs_[k - 1];
+    const double d = r.direction;
     if ((x - r.x) * d < 0.0) {  // moving against branch k: that reversal never happened
       --k;
       continue;
     }
     if (rule_ == MemoryRule::masing) {
-      const double target = k >= 2 ? stack_[k - 2].x : -stack_[0].x;
-      if ((x - target) * d >= 0.0) {  // the inner loop closes: continue on the older branch
+      if ((x - r.closes_at) * d >= 0.0) {  // the inner loop closes: continue on the older branch
         k = k >= 2 ? k - 2 : 0;
         continue;
       }
@@ -76,7 +76,7 @@ std::size_t Hysteresis::active_branch_force(double Q) const {
   std::size_t k = stack_.size();
   while (k >= 1) {
     const ReversalPoint& r = stack_[k - 1];
-    const int d = dirs_[k - 1];
+    const double d = r.direction;
     if ((Q - r.Q) * d < 0.0) {
       --k;
       continue;
@@ -96,7 +96,7 @@ std::size_t Hysteresis::active_branch_force(double Q) const {
 double Hysteresis::branch_force(std::size_t k, double x) const {
   if (k == 0) return odd_force(*backbone_, x);
   const ReversalPoint& r = stack_[k - 1];
-  return r.Q + dirs_[k - 1] * 2.0 * backbone_->force(std::abs(x - r.x) * 0.5);
+  return r.Q + r.direction * 2.0 * backbone_->force(std::abs(x - r.x) * 0.5);
 }
 
 double Hysteresis::branch_displacement(std::size_t k, double Q) const {
@@ -118,7 +118,7 @@ double Hysteresis::branch_displacement(std::size_t k, double Q) const {
         "slides (gross slip has no finite displacement under force control)",
         core::format_value(Q), core::format_value(limit)));
   }
-  return r.x + dirs_[k - 1] * 2.0 * backbone_->displacement(half);
+  return r.x + r.direction * 2.0 * backbone_->displacement(half);
 }
 
 double Hysteresis::force(double x) const { return branch_force(active_branch(x), x); }
@@ -127,7 +127,7 @@ double Hysteresis::tangent_stiffness(double x) const {
   const std::size_t k = active_branch(x);
   const double h = 1e-7 * std::max(1e-300, std::abs(x) + (k ? std::abs(stack_[k - 1].x) : 0.0));
   // One-sided in the direction of motion keeps the difference on the active branch.
-  const int d = k ? dirs_[k - 1] : (x >= 0.0 ? 1 : -1);
+  const double d = k ? stack_[k - 1].direction : (x >= 0.0 ? 1.0 : -1.0);
   const double x0 = x - d * h;
   if (k == 0 || (x0 - stack_[k - 1].x) * d >= 0.0) {
     return (branch_force(k, x) - branch_force(k, x0)) / (x - x0);
@@ -138,7 +138,6 @@ double Hysteresis::tangent_stiffness(double x) const {
 
 void Hysteresis::move_to(std::size_t k, double x, double Q) {
   stack_.resize(k);
-  dirs_.resize(k);
   x_ = x;
   Q_ = Q;
 }
@@ -147,18 +146,17 @@ void Hysteresis::commit_reversal(double x) {
   const std::size_t k = active_branch(x);
   const double Q = branch_force(k, x);
   move_to(k, x, Q);
-  const int current = k ? dirs_[k - 1] : (direction_ != 0 ? direction_ : sign_of(x));
+  const int current = k ? static_cast<int>(stack_[k - 1].direction)
+                        : (direction_ != 0 ? direction_ : sign_of(x));
   if (current == 0) return;  // a reversal at the origin before any motion: nothing to remember
   if (rule_ == MemoryRule::reset_at_reversal) {
     // Eq. 7.10: u_max reset to the displacement at the reversal; the branch starts from
     // the backbone value there, Q_l(u_max), whatever the force was.
     stack_.clear();
-    dirs_.clear();
-    stack_.push_back({x, odd_force(*backbone_, x)});
+    push_reversal(x, odd_force(*backbone_, x), -current);
   } else {
-    stack_.push_back({x, Q});
+    push_reversal(x, Q, -current);
   }
-  dirs_.push_back(-current);
   direction_ = -current;
   Q_ = stack_.back().Q;
 }
@@ -167,7 +165,15 @@ double Hysteresis::update_general(double x) {
   core::require_finite("displacement", x);
   const int d = sign_of(x - x_);
   if (d == 0) return Q_;
-  if (direction_ != 0 && d != direction_) commit_reversal(x_);
+  if (direction_ != 0 && d != direction_) {
+    // A reversal at the current point: its force Q_ is known and the stack is already
+    // pruned to the active branch by the previous step.
+    if (rule_ == MemoryRule::reset_at_reversal) {
+      commit_reversal(x_);
+    } else {
+      push_reversal(x_, Q_, d);
+    }
+  }
   direction_ = d;
   const std::size_t k = active_branch(x);
   const double Q = branch_force(k, x);
@@ -181,14 +187,9 @@ double Hysteresis::update_force(double Q) {
   if (d == 0) return x_;
   if (direction_ != 0 && d != direction_) {
     // Reversal in force at the current point.
-    const std::size_t k0 = stack_.size();
-    const int current = k0 ? dirs_[k0 - 1] : direction_;
-    if (rule_ == MemoryRule::reset_at_reversal) {
-      stack_.clear();
-      dirs_.clear();
-    }
-    stack_.push_back({x_, Q_});
-    dirs_.push_back(-current);
+    const int current = direction_;
+    if (rule_ == MemoryRule::reset_at_reversal) stack_.clear();
+    push_reversal(x_, Q_, -current);
   }
   direction_ = d;
   const std::size_t k = active_branch_force(Q);

@@ -46,9 +46,14 @@ enum class MemoryRule {
   reset_at_reversal,  ///< thesis Eq. 7.10: branch from the last reversal only
 };
 
+/// A remembered reversal: the branch that starts here moves in `direction` (+1 or -1)
+/// and, under Masing's rules, closes when it reaches `closes_at` (the previous
+/// reversal's x, or the mirror -x of the first one).
 struct ReversalPoint {
   double x = 0.0;
   double Q = 0.0;
+  double direction = 0.0;
+  double closes_at = 0.0;
 };
 
 /// Energy dissipated per symmetric cycle of amplitude x_max on any Masing backbone:
@@ -71,16 +76,15 @@ class Hysteresis {
   double update(double x) {
     const double dx = x - x_;
     const int d = (dx > 0.0) - (dx < 0.0);
-    if (d == direction_ && d != 0 && std::isfinite(x)) {
-      if (const std::size_t n = stack_.size(); n > 0) {
-        const ReversalPoint& r = stack_[n - 1];
-        const double dir = dirs_[n - 1];
-        const double target = n >= 2 ? stack_[n - 2].x : -stack_[0].x;
-        if (rule_ == MemoryRule::reset_at_reversal || (x - target) * dir < 0.0) {
-          Q_ = r.Q + dir * 2.0 * backbone_->force(std::abs(x - r.x) * 0.5);
-          x_ = x;
-          return Q_;
-        }
+    // NaN and +-inf always leave through update_general (NaN gives d = 0; an infinite x
+    // passes every closing point), which rejects them.
+    if (d == direction_ && d != 0 && !stack_.empty()) {
+      const ReversalPoint& r = stack_.back();
+      if ((x - r.closes_at) * r.direction < 0.0 ||
+          (rule_ == MemoryRule::reset_at_reversal && std::isfinite(x))) {
+        Q_ = r.Q + r.direction * 2.0 * backbone_->force(std::abs(x - r.x) * 0.5);
+        x_ = x;
+        return Q_;
       }
     }
     return update_general(x);
@@ -123,13 +127,13 @@ class Hysteresis {
   [[nodiscard]] std::size_t active_branch_force(double Q) const;
   [[nodiscard]] double branch_force(std::size_t k, double x) const;
   [[nodiscard]] double branch_displacement(std::size_t k, double Q) const;
-  [[nodiscard]] int branch_direction(std::size_t k) const;
   void move_to(std::size_t k, double x, double Q);
 
   std::shared_ptr<const Backbone> backbone_;
   MemoryRule rule_;
+  void push_reversal(double x, double Q, int direction);
+
   std::vector<ReversalPoint> stack_;
-  std::vector<int> dirs_;  // direction of the branch that starts at each reversal
   double x_ = 0.0;
   double Q_ = 0.0;
   int direction_ = 0;  // +1, -1, or 0 before the first motion

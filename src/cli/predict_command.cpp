@@ -1,0 +1,219 @@
+// asperity predict CASE.toml [--out DIR]: friction, stiffness and energy per cycle of a
+// joint from its case file (thesis ch. 5-6), with no fitted friction coefficient.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+#include "asperity/core/csv.hpp"
+#include "asperity/core/error.hpp"
+#include "asperity/joint/case.hpp"
+#include "asperity/joint/output_dir.hpp"
+#include "asperity/joint/predict.hpp"
+#include "commands.hpp"
+#include "common.hpp"
+
+namespace asperity::cli {
+
+namespace {
+
+struct PredictOptions {
+  std::string case_file;
+  std::optional<std::string> out;
+  bool json = false;
+  bool no_plots = false;
+};
+
+Json amplitude_json(const joint::AmplitudePrediction& a) {
+  return Json{{"delta_max", a.delta_max}, {"Q_peak", a.Q_peak}, {"energy", a.energy},
+              {"Q_peak_over_Q_max", a.Q_ratio}, {"regime", a.regime}};
+}
+
+Json load_json(const joint::LoadPrediction& l) {
+  Json j{{"preload", l.preload}};
+  if (l.torque > 0.0) j["torque_per_bolt"] = l.torque;
+  j["mean_pressure"] = l.mean_pressure;
+  j["separation"] = l.separation;
+  j["d_star"] = l.d_star;
+  j["P_star"] = l.P_star;
+  j["mu"] = l.mu;
+  j["Q_max"] = l.Q_max;
+  j["stiffness"] = l.stiffness;
+  j["contact_area_ratio"] = l.contact_area_ratio;
+  Json amps = Json::array();
+  for (const auto& a : l.amplitudes) amps.push_back(amplitude_json(a));
+  j["amplitudes"] = amps;
+  return j;
+}
+
+}  // namespace
+
+Json prediction_json(const joint::JointCase& c, const joint::JointPrediction& p) {
+  Json j;
+  j["name"] = c.name;
+  j["case"] = c.source;
+  j["model"] = std::string(contact::to_string(c.model));
+  j["area"] = c.area;
+  j["units"] = "SI: N, m, J, N/m, Pa";
+  j["roughness"] = Json{{"sigma", p.sigma}, {"eta", p.eta}, {"R", p.R}, {"beta", p.beta}, {"psi", p.psi},
+                        {"m0", p.combined.m0}, {"m2", p.combined.m2}, {"m4", p.combined.m4}};
+  j["force_scale_KHA0"] = p.force_scale;
+  if (p.loads.size() == 1) {  // the single-preload keys at the top level
+    const Json first = load_json(p.loads.front());
+    for (auto it = first.begin(); it != first.end(); ++it) j[it.key()] = *it;
+  }
+  Json loads = Json::array();
+  for (const auto& l : p.loads) loads.push_back(load_json(l));
+  j["loads"] = loads;
+  return j;
+}
+
+std::string prediction_summary(const joint::JointCase& c, const joint::JointPrediction& p) {
+  std::string s;
+  s += fmt::format("joint: {} ({})\n", c.name.empty() ? "(unnamed)" : c.name, c.source);
+  s += fmt::format("model {}, A0 = {:.4g} mm^2; combined roughness sigma = {:.4g} um, eta = {:.4g} um^-2, "
+                   "R = {:.4g} um, beta = {:.4f}, psi = {:.4g}\n",
+                   contact::to_string(c.model), c.area * 1e6, p.sigma * 1e6, p.eta * 1e-12, p.R * 1e6,
+                   p.beta, p.psi);
+  const bool torques = c.bolts.has_value();
+  s += fmt::format("\n{:>11} {}{:>10} {:>10} {:>8} {:>10} {:>10} {:>9}\n", "preload[N]",
+                   torques ? fmt::format("{:>14} ", "torque/bolt[Nm]") : "", "p[MPa]", "d[um]", "mu",
+                   "Q_max[N]", "k[N/um]", "Ar/A0");
+  for (const auto& l : p.loads) {
+    s += fmt::format("{:>11.4g} {}{:>10.3g} {:>10.4g} {:>8.4f} {:>10.4g} {:>10.4g} {:>9.3g}\n", l.preload,
+                     torques ? fmt::format("{:>15.4g} ", l.torque) : "", l.mean_pressure * 1e-6,
+                     l.separation * 1e6, l.mu, l.Q_max, l.stiffness * 1e-6, l.contact_area_ratio);
+  }
+  for (const auto& l : p.loads) {
+    if (l.amplitudes.empty()) continue;
+    s += fmt::format("\nP = {:.4g} N: {:>14} {:>10} {:>14} {:>8}  {}\n", l.preload, "delta_max[um]",
+                     "Q_peak[N]", "energy[uJ]", "Q/Q_max", "regime");
+    for (const auto& a : l.amplitudes) {
+      s += fmt::format("{:>14}{:>14.4g} {:>10.4g} {:>14.5g} {:>8.4f}  {}\n", "", a.delta_max * 1e6, a.Q_peak,
+                       a.energy * 1e6, a.Q_ratio, a.regime);
+    }
+  }
+  return s;
+}
+
+void write_prediction_files(const joint::JointCase& c, const joint::JointPrediction& p,
+                            joint::StagedDirectory& dir, bool plots) {
+  write_file_atomically(dir.file("summary.json"), prediction_json(c, p).dump(2) + "\n");
+  // loops.csv: steady loops for every preload and amplitude (long format).
+  std::vector<std::vector<double>> lc(4), ec(5);
+  for (const auto& l : p.loads) {
+    for (const auto& a : l.amplitudes) {
+      const auto [x, Q] = joint::steady_loop(*l.backbone, a.delta_max, 100);
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        lc[0].push_back(l.preload);
+        lc[1].push_back(a.delta_max * 1e6);
+        lc[2].push_back(x[i] * 1e6);
+        lc[3].push_back(Q[i]);
+      }
+      ec[0].push_back(l.preload);
+      ec[1].push_back(a.delta_max * 1e6);
+      ec[2].push_back(a.Q_peak);
+      ec[3].push_back(a.energy);
+      ec[4].push_back(a.Q_ratio);
+    }
+  }
+  if (!lc[0].empty()) {
+    core::write_csv_table(dir.file("loops.csv"), {"preload[N]", "delta_max[um]", "delta[um]", "Q[N]"}, lc);
+    core::write_csv_table(dir.file("energy.csv"),
+                          {"preload[N]", "delta_max[um]", "Q_peak[N]", "energy[J]", "Q_peak_over_Q_max"}, ec);
+  }
+  if (!plots) return;
+  const bool sweep = p.loads.size() > 1;
+  if (!lc[0].empty()) {
+    PlotSpec loops{fmt::format("Fretting loops: {}", c.name), "delta [um]", "Q [N]", false, false, {}, ""};
+    for (const auto& l : p.loads) {
+      for (std::size_t k = 0; k < l.amplitudes.size(); ++k) {
+        if (sweep && k + 1 != l.amplitudes.size()) continue;  // sweeps: the largest amplitude per preload
+        const auto& a = l.amplitudes[k];
+        auto [x, Q] = joint::steady_loop(*l.backbone, a.delta_max, 100);
+        for (double& v : x) v *= 1e6;
+        loops.series.push_back({fmt::format("P = {:.0f} N, {:.3g} um", l.preload, a.delta_max * 1e6), x, Q});
+      }
+    }
+    plot_png(dir.file("loops.png"), loops);
+    PlotSpec e{"Energy per cycle against peak force (guides: slope 2 and 3)", "Q_peak [N]",
+               "energy per cycle [J]", true, true, {}, ""};
+    double qmin = 1e300, qmax = 0.0;
+    for (const auto& l : p.loads) {
+      Series sr{fmt::format("P = {:.0f} N", l.preload), {}, {}, "linespoints"};
+      for (const auto& a : l.amplitudes) {
+        sr.x.push_back(a.Q_peak);
+        sr.y.push_back(a.energy);
+        qmin = std::min(qmin, a.Q_peak);
+        qmax = std::max(qmax, a.Q_peak);
+      }
+      e.series.push_back(sr);
+    }
+    // Guides through the smallest-force point of the first preload.
+    const auto& a0 = p.loads.front().amplitudes.front();
+    for (int n : {2, 3}) {
+      Series g{fmt::format("slope {}", n), {}, {}, "lines dt 2"};
+      for (int i = 0; i <= 20; ++i) {
+        const double q = qmin * std::pow(qmax / qmin, i / 20.0);
+        g.x.push_back(q);
+        g.y.push_back(a0.energy * std::pow(q / a0.Q_peak, n));
+      }
+      e.series.push_back(g);
+    }
+    plot_png(dir.file("energy_vs_force.png"), e);
+  }
+  if (sweep) {
+    Series mu{"mu = Q_max/P", {}, {}, "linespoints"}, k{"stiffness", {}, {}, "linespoints"};
+    for (const auto& l : p.loads) {
+      mu.x.push_back(l.preload);
+      mu.y.push_back(l.mu);
+      k.x.push_back(l.preload);
+      k.y.push_back(l.stiffness * 1e-6);
+    }
+    plot_png(dir.file("mu_vs_preload.png"),
+             {"Friction coefficient against preload", "preload [N]", "mu", false, false, {mu}, "set yrange [0:*]"});
+    plot_png(dir.file("stiffness_vs_preload.png"),
+             {"Tangential stiffness against preload", "preload [N]", "stiffness [N/um]", false, false, {k},
+              "set yrange [0:*]"});
+  }
+}
+
+void add_predict_command(CLI::App& app, std::function<int()>& action) {
+  auto o = std::make_shared<PredictOptions>();
+  auto* cmd = app.add_subcommand(
+      "predict",
+      "Friction coefficient, tangential stiffness, fretting loops and energy per cycle of a joint "
+      "described by a TOML case file (thesis ch. 5-6; see docs/joints.md and examples/joints).");
+  cmd->add_option("case", o->case_file, "the case file (TOML)")->required();
+  cmd->add_option("--out", o->out, "write summary.json, loops.csv, energy.csv and plots into DIR");
+  cmd->add_flag("--json", o->json, "print summary.json instead of the table");
+  cmd->add_flag("--no-plots", o->no_plots, "do not draw PNG plots (no gnuplot needed)");
+  cmd->callback([o, &action] {
+    action = [o] {
+      return run_guarded([o](std::string& out) {
+        const auto c = joint::read_case_file(o->case_file);
+        const bool bar = c.preloads.size() > 1 && isatty(STDERR_FILENO);
+        const auto progress = [&](std::size_t i, std::size_t n) {
+          if (!bar) return;
+          const std::size_t width = 30, done = width * i / n;
+          std::cerr << fmt::format("\r[{}{}] {}/{} preloads", std::string(done, '#'),
+                                   std::string(width - done, ' '), i, n)
+                    << (i == n ? "\n" : "") << std::flush;
+        };
+        const auto p = joint::predict(c, progress);
+        if (o->out) {
+          joint::StagedDirectory dir(*o->out);
+          write_prediction_files(c, p, dir, !o->no_plots);
+          dir.commit();
+        }
+        out = o->json ? prediction_json(c, p).dump(2) + "\n" : prediction_summary(c, p);
+        if (o->out && !o->json) out += fmt::format("\nwrote {}/ (summary.json, loops.csv, energy.csv{})\n", *o->out,
+                                                   o->no_plots ? "" : ", plots");
+      });
+    };
+  });
+}
+
+}  // namespace asperity::cli

@@ -1,0 +1,448 @@
+// Joint case files (TOML) and the torque-preload relation of Eq. 5.2.
+#include "asperity/joint/case.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "asperity/core/error.hpp"
+#include "asperity/core/units.hpp"
+#include "asperity/surface/profile_io.hpp"
+
+namespace asperity::joint {
+
+namespace dim = core::dim;
+
+double bolt_preload(double torque, double nut_factor, double diameter) {
+  if (!(torque > 0.0) || !std::isfinite(torque)) {
+    throw InvalidInput(fmt::format("bolt torque = {} N*m must be > 0", torque));
+  }
+  if (!(nut_factor > 0.0) || !std::isfinite(nut_factor)) {
+    throw InvalidInput(fmt::format("nut factor = {} must be > 0 (0.2 for steel bolts)", nut_factor));
+  }
+  if (!(diameter > 0.0) || !std::isfinite(diameter)) {
+    throw InvalidInput(fmt::format("bolt diameter = {} m must be > 0", diameter));
+  }
+  return torque / (nut_factor * diameter);  // Eq. 5.2: T = k F D
+}
+
+double Bolts::preload(double torque) const {
+  return static_cast<double>(count) * bolt_preload(torque, nut_factor, diameter);
+}
+
+HalfRoughness half_roughness_from_files(const std::vector<std::string>& files,
+                                        const ProfileSettings& settings) {
+  if (files.empty()) throw InvalidInput("profiles: give one or two scan files");
+  if (files.size() > 2) {
+    throw InvalidInput(fmt::format(
+        "profiles: {} files given; give one (isotropic) or two (max- and min-slope directions)",
+        files.size()));
+  }
+  settings.filter.validate();
+  HalfRoughness out;
+  out.profiles = files;
+  std::array<surface::SpectralMoments, 2> m{};
+  std::size_t count = 0;
+  for (const auto& f : files) {
+    const auto map = surface::read_height_file(f);
+    if (!map.is_profile()) {
+      throw InvalidInput(fmt::format("{}: areal files are not supported in case files; give line "
+                                     "scans (or use `asperity roughness` and give parameters)",
+                                     f));
+    }
+    m[count++] = surface::process_profile(map.as_profile(), settings.level, settings.filter).moments;
+  }
+  if (count == 1) {
+    out.moments = m[0];
+    out.directions = {"isotropic"};
+  } else {
+    const surface::SpectralMoments m0 = m[0], m1 = m[1];
+    const bool first_max = m0.m2 >= m1.m2;
+    out.moments = surface::equivalent_isotropic(first_max ? m0 : m1, first_max ? m1 : m0,
+                                                settings.rule);
+    out.directions = {first_max ? "max_slope" : "min_slope", first_max ? "min_slope" : "max_slope"};
+  }
+  return out;
+}
+
+surface::SpectralMoments JointCase::combined_roughness() const {
+  return surface::combine(halves[0].roughness.moments, halves[1].roughness.moments);
+}
+
+surface::RoughFlat JointCase::rough_flat() const {
+  const auto c = combined_roughness();
+  return surface::RoughFlat::from_dimensional(halves[0].material, halves[1].material, c.sigma(),
+                                              c.eta(), c.R(), area, model, friction, slip_scaling);
+}
+
+void JointCase::validate() const {
+  if (!(area > 0.0) || !std::isfinite(area)) {
+    throw InvalidInput(fmt::format("{}: joint.area = {} m^2 must be > 0", source, area));
+  }
+  if (preloads.empty()) throw InvalidInput(fmt::format("{}: no load case", source));
+  for (double P : preloads) {
+    if (!(P > 0.0) || !std::isfinite(P)) {
+      throw InvalidInput(fmt::format("{}: preload = {} N must be > 0", source, P));
+    }
+  }
+  for (double a : amplitudes) {
+    if (!(a > 0.0) || !std::isfinite(a)) {
+      throw InvalidInput(fmt::format("{}: amplitude = {} m must be > 0", source, a));
+    }
+  }
+  for (std::size_t i = 0; i < 2; ++i) {
+    halves[i].material.validate(fmt::format("joint.half[{}].material", i + 1));
+    halves[i].roughness.moments.validate(fmt::format("joint.half[{}].roughness", i + 1));
+  }
+  if (halves[0].material.H <= 0.0 && halves[1].material.H <= 0.0) {
+    throw InvalidInput(fmt::format("{}: give the hardness H of at least one half", source));
+  }
+}
+
+namespace {
+
+// Error context: the file and the line of a node.
+class Reader {
+ public:
+  Reader(std::string source, std::string base_dir)
+      : source_(std::move(source)), base_(std::move(base_dir)) {}
+
+  [[noreturn]] void fail(const toml::node* n, const std::string& key, const std::string& what) const {
+    const auto line = n ? n->source().begin.line : 0U;
+    if (line > 0) throw InvalidInput(fmt::format("{}:{}: {}: {}", source_, line, key, what));
+    throw InvalidInput(fmt::format("{}: {}: {}", source_, key, what));
+  }
+
+  void check_keys(const toml::table& t, const std::string& where,
+                  const std::set<std::string>& allowed) const {
+    for (const auto& [k, v] : t) {
+      const std::string key(k.str());
+      if (!allowed.count(key)) {
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        const std::string full = where.empty() ? key : where + "." + key;
+        // The key's own position is the best line to report.
+        const auto line = k.source().begin.line > 0 ? k.source().begin.line : v.source().begin.line;
+        throw InvalidInput(fmt::format("{}:{}: {}: unknown key (allowed in [{}]: {})", source_,
+                                       line, full, where.empty() ? "top level" : where, list));
+      }
+    }
+  }
+
+  const toml::table& table(const toml::table& parent, const std::string& key,
+                           const std::string& where) const {
+    const auto* n = parent.get(key);
+    const std::string full = where.empty() ? key : where + "." + key;
+    if (!n) fail(&parent, full, "missing (required table)");
+    const auto* t = n->as_table();
+    if (!t) fail(n, full, "must be a table");
+    return *t;
+  }
+
+  // A quantity: a string with units, or a bare number for dimensionless ones.
+  double quantity(const toml::node& n, core::Dimension d, const std::string& key) const {
+    try {
+      if (n.is_floating_point() || n.is_integer()) {
+        const double x = *n.value<double>();
+        if (d == dim::dimensionless) return x;
+        return core::parse_quantity(fmt::format("{}", x), d, key);  // names the missing unit
+      }
+      if (const auto s = n.value<std::string>()) return core::parse_quantity(*s, d, key);
+    } catch (const InvalidInput& e) {
+      fail(&n, key, e.what());
+    }
+    fail(&n, key,
+         d == dim::dimensionless ? "must be a number"
+                                 : fmt::format("must be a quantity string with units of {}, e.g. "
+                                               "\"{}\"",
+                                               core::dimension_name(d), example(d)));
+  }
+
+  std::optional<double> optional_quantity(const toml::table& t, const std::string& key,
+                                          core::Dimension d, const std::string& where) const {
+    const auto* n = t.get(key);
+    if (!n) return std::nullopt;
+    return quantity(*n, d, where + "." + key);
+  }
+
+  double required(const toml::table& t, const std::string& key, core::Dimension d,
+                  const std::string& where) const {
+    const auto v = optional_quantity(t, key, d, where);
+    if (!v) fail(&t, where + "." + key, "missing");
+    return *v;
+  }
+
+  double positive(const toml::table& t, const std::string& key, core::Dimension d,
+                  const std::string& where) const {
+    const double v = required(t, key, d, where);
+    if (!(v > 0.0) || !std::isfinite(v)) fail(t.get(key), where + "." + key, fmt::format("= {} must be > 0", v));
+    return v;
+  }
+
+  std::vector<double> quantity_list(const toml::node& n, core::Dimension d, const std::string& key,
+                                    bool must_be_positive) const {
+    const auto* a = n.as_array();
+    if (!a) fail(&n, key, "must be an array, e.g. [\"1 um\", \"2 um\"]");
+    if (a->empty()) fail(&n, key, "must not be empty");
+    std::vector<double> out;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const std::string k = fmt::format("{}[{}]", key, i + 1);
+      const double v = quantity(*a->get(i), d, k);
+      if (must_be_positive && (!(v > 0.0) || !std::isfinite(v))) {
+        fail(a->get(i), k, fmt::format("= {} must be > 0", v));
+      }
+      out.push_back(v);
+    }
+    return out;
+  }
+
+  std::string string(const toml::table& t, const std::string& key, const std::string& where,
+                     const std::string& dflt) const {
+    const auto* n = t.get(key);
+    if (!n) return dflt;
+    if (const auto s = n->value<std::string>()) return *s;
+    fail(n, where + "." + key, "must be a string");
+  }
+
+  [[nodiscard]] std::string resolve(const std::string& p) const {
+    const std::filesystem::path path(p);
+    return path.is_absolute() ? p : (std::filesystem::path(base_) / path).lexically_normal().string();
+  }
+
+  [[nodiscard]] const std::string& source() const { return source_; }
+
+ private:
+  static const char* example(core::Dimension d) {
+    if (d == dim::length) return "2.9 mm";
+    if (d == dim::area) return "170 mm^2";
+    if (d == dim::pressure) return "200 GPa";
+    if (d == dim::force) return "526 N";
+    if (d == dim::energy) return "0.305 N*m";
+    if (d == dim::inverse_area) return "3.34e-4 um^-2";
+    return "1";
+  }
+  std::string source_;
+  std::string base_;
+};
+
+contact::Material parse_material(const Reader& r, const toml::node& n, const std::string& where) {
+  const auto* t = n.as_table();
+  if (!t) r.fail(&n, where, "must be a table { E = \"200 GPa\", nu = 0.24, G = \"80.7 GPa\", H = \"5.8 GPa\" }");
+  r.check_keys(*t, where, {"E", "nu", "G", "H"});
+  contact::Material m;
+  m.E = r.positive(*t, "E", dim::pressure, where);
+  m.nu = r.required(*t, "nu", dim::dimensionless, where);
+  if (!(m.nu >= 0.0 && m.nu < 0.5)) r.fail(t->get("nu"), where + ".nu", fmt::format("= {} must be in [0, 0.5)", m.nu));
+  m.G = r.optional_quantity(*t, "G", dim::pressure, where).value_or(0.0);
+  if (t->get("G") && !(m.G > 0.0)) r.fail(t->get("G"), where + ".G", "must be > 0");
+  m.H = r.optional_quantity(*t, "H", dim::pressure, where).value_or(0.0);
+  if (t->get("H") && !(m.H > 0.0)) r.fail(t->get("H"), where + ".H", "must be > 0");
+  return m;
+}
+
+HalfRoughness parse_roughness(const Reader& r, const toml::table& half, const std::string& where,
+                              const ProfileSettings& settings) {
+  const auto* rough = half.get("roughness");
+  const auto* prof = half.get("profiles");
+  if (rough && prof) r.fail(prof, where, "give either roughness or profiles, not both");
+  if (!rough && !prof) {
+    r.fail(&half, where,
+           "missing roughness: give roughness = { sigma, eta, R } or profiles = [scan files]");
+  }
+  if (rough) {
+    const std::string w = where + ".roughness";
+    const auto* t = rough->as_table();
+    if (!t) r.fail(rough, w, "must be a table { sigma = \"1.763 um\", eta = \"3.34e-4 um^-2\", R = \"40.76 um\" }");
+    r.check_keys(*t, w, {"sigma", "eta", "R"});
+    const double sigma = r.positive(*t, "sigma", dim::length, w);
+    const double eta = r.positive(*t, "eta", dim::inverse_area, w);
+    const double R = r.positive(*t, "R", dim::length, w);
+    return {surface::SpectralMoments::from_parameters(sigma, eta, R), {}, {}};
+  }
+  const std::string w = where + ".profiles";
+  const auto* a = prof->as_array();
+  if (!a || a->empty() || a->size() > 2) {
+    r.fail(prof, w, "must be an array of one or two scan files, e.g. [\"pzt_max.csv\", \"pzt_min.csv\"]");
+  }
+  std::vector<std::string> files;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const auto s = a->get(i)->value<std::string>();
+    if (!s) r.fail(a->get(i), fmt::format("{}[{}]", w, i + 1), "must be a file name");
+    files.push_back(r.resolve(*s));
+  }
+  try {
+    return half_roughness_from_files(files, settings);
+  } catch (const InvalidInput& e) {
+    r.fail(prof, w, e.what());
+  }
+}
+
+}  // namespace
+
+JointCase parse_case(std::string_view text, const std::string& source, const std::string& base_dir) {
+  const Reader r(source, base_dir);
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    throw InvalidInput(fmt::format("{}:{}: TOML syntax error: {}", source,
+                                   e.source().begin.line, e.description()));
+  }
+  r.check_keys(root, "", {"joint", "load", "excitation", "profiles"});
+
+  JointCase c;
+  c.source = source;
+  const auto& joint = r.table(root, "joint", "");
+  r.check_keys(joint, "joint", {"name", "area", "model", "mu_cfc", "zeta", "slip_scaling", "half"});
+  c.name = r.string(joint, "name", "joint", "");
+  c.area = r.positive(joint, "area", dim::area, "joint");
+  {
+    const std::string m = r.string(joint, "model", "joint", "bke");
+    try {
+      c.model = contact::parse_model_name(m);
+    } catch (const InvalidInput& e) {
+      r.fail(joint.get("model"), "joint.model", e.what());
+    }
+  }
+  if (const auto mu = r.optional_quantity(joint, "mu_cfc", dim::dimensionless, "joint")) {
+    if (!(*mu > 0.0)) r.fail(joint.get("mu_cfc"), "joint.mu_cfc", "must be > 0");
+    c.friction.mu_cfc = *mu;
+  } else if (c.model == contact::ModelName::cfc) {
+    r.fail(&joint, "joint.mu_cfc", "missing: the cfc model needs the constant friction coefficient");
+  }
+  if (const auto z = r.optional_quantity(joint, "zeta", dim::dimensionless, "joint")) c.friction.zeta = *z;
+  {
+    const std::string s = r.string(joint, "slip_scaling", "joint", "elastic");
+    if (s == "elastic") {
+      c.slip_scaling = surface::SlipScaling::elastic;
+    } else if (s == "own_law") {
+      c.slip_scaling = surface::SlipScaling::own_law;
+    } else {
+      r.fail(joint.get("slip_scaling"), "joint.slip_scaling", fmt::format("\"{}\": use elastic or own_law", s));
+    }
+  }
+
+  // Profile processing settings (used only by halves given as scans).
+  if (const auto* p = root.get("profiles")) {
+    const auto* t = p->as_table();
+    if (!t) r.fail(p, "profiles", "must be a table");
+    r.check_keys(*t, "profiles", {"lc", "ls", "rule", "level"});
+    try {
+      if (const auto* n = t->get("lc")) {
+        const auto s = n->value<std::string>();
+        c.profile_settings.filter.lc = (s && *s == "none") ? 0.0 : r.quantity(*n, dim::length, "profiles.lc");
+      }
+      if (const auto* n = t->get("ls")) {
+        const auto s = n->value<std::string>();
+        c.profile_settings.filter.ls = (s && *s == "none") ? 0.0 : r.quantity(*n, dim::length, "profiles.ls");
+      }
+      c.profile_settings.filter.validate();
+      if (t->get("rule")) {
+        c.profile_settings.rule = surface::parse_isotropic_rule(r.string(*t, "rule", "profiles", ""), "profiles.rule");
+      }
+      if (t->get("level")) {
+        c.profile_settings.level = surface::parse_levelling(r.string(*t, "level", "profiles", ""), "profiles.level");
+      }
+    } catch (const InvalidInput& e) {
+      if (std::string_view(e.what()).starts_with(source)) throw;
+      r.fail(p, "profiles", e.what());
+    }
+  }
+
+  const auto* halves = joint.get("half");
+  if (!halves) r.fail(&joint, "joint.half", "missing: give two [[joint.half]] tables (the two joint halves)");
+  const auto* arr = halves->as_array();
+  if (!arr || !arr->is_array_of_tables()) r.fail(halves, "joint.half", "must be [[joint.half]] tables");
+  if (arr->size() != 2) {
+    r.fail(halves, "joint.half", fmt::format("{} half given; a joint has two [[joint.half]] tables", arr->size()));
+  }
+  for (std::size_t i = 0; i < 2; ++i) {
+    const std::string w = fmt::format("joint.half[{}]", i + 1);
+    const auto& h = *arr->get(i)->as_table();
+    r.check_keys(h, w, {"name", "material", "roughness", "profiles"});
+    const auto* mat = h.get("material");
+    if (!mat) r.fail(&h, w + ".material", "missing");
+    c.halves[i].material = parse_material(r, *mat, w + ".material");
+    c.halves[i].roughness = parse_roughness(r, h, w, c.profile_settings);
+  }
+  if (c.halves[0].material.H <= 0.0 && c.halves[1].material.H <= 0.0) {
+    r.fail(halves, "joint.half[].material.H", "give the hardness H of at least one half");
+  }
+
+  // Load: exactly one of preload, preloads, bolts.
+  const auto& load = r.table(root, "load", "");
+  r.check_keys(load, "load", {"preload", "preloads", "bolts"});
+  const int given = (load.get("preload") ? 1 : 0) + (load.get("preloads") ? 1 : 0) + (load.get("bolts") ? 1 : 0);
+  if (given != 1) {
+    r.fail(&load, "load", "give exactly one of preload = \"526 N\", preloads = [...] or bolts = { ... }");
+  }
+  if (const auto* n = load.get("preload")) {
+    const double P = r.quantity(*n, dim::force, "load.preload");
+    if (!(P > 0.0)) r.fail(n, "load.preload", fmt::format("= {} N must be > 0", P));
+    c.preloads = {P};
+  } else if (const auto* n2 = load.get("preloads")) {
+    c.preloads = r.quantity_list(*n2, dim::force, "load.preloads", true);
+  } else {
+    const auto* bn = load.get("bolts");
+    const auto* b = bn->as_table();
+    if (!b) r.fail(bn, "load.bolts", "must be a table { count = 2, torque = \"0.1525 N*m\", nut_factor = 0.2, diameter = \"2.9 mm\" }");
+    r.check_keys(*b, "load.bolts", {"count", "torque", "torques", "total_torque", "total_torques", "nut_factor", "diameter"});
+    Bolts bolts;
+    if (const auto* cn = b->get("count")) {
+      const auto v = cn->value<int64_t>();
+      if (!cn->is_integer() || !v || *v < 1 || *v > 1000) r.fail(cn, "load.bolts.count", "must be a whole number >= 1");
+      bolts.count = static_cast<int>(*v);
+    }
+    bolts.nut_factor = r.optional_quantity(*b, "nut_factor", dim::dimensionless, "load.bolts").value_or(0.2);
+    if (!(bolts.nut_factor > 0.0)) r.fail(b->get("nut_factor"), "load.bolts.nut_factor", "must be > 0 (0.2 for steel bolts, Eq. 5.2)");
+    bolts.diameter = r.positive(*b, "diameter", dim::length, "load.bolts");
+    const int nt = (b->get("torque") ? 1 : 0) + (b->get("torques") ? 1 : 0) +
+                   (b->get("total_torque") ? 1 : 0) + (b->get("total_torques") ? 1 : 0);
+    if (nt != 1) {
+      r.fail(b, "load.bolts", "give exactly one of torque, torques (per bolt), total_torque or total_torques (all bolts)");
+    }
+    const bool total = b->get("total_torque") || b->get("total_torques");
+    for (const char* key : {"torque", "total_torque"}) {
+      if (const auto* tn = b->get(key)) {
+        const double T = r.quantity(*tn, dim::energy, std::string("load.bolts.") + key);
+        if (!(T > 0.0)) r.fail(tn, std::string("load.bolts.") + key, fmt::format("= {} N*m must be > 0", T));
+        bolts.torques = {T};
+      }
+    }
+    for (const char* key : {"torques", "total_torques"}) {
+      if (const auto* tn = b->get(key)) bolts.torques = r.quantity_list(*tn, dim::energy, std::string("load.bolts.") + key, true);
+    }
+    if (total) {
+      for (double& T : bolts.torques) T /= static_cast<double>(bolts.count);
+    }
+    for (double T : bolts.torques) c.preloads.push_back(bolts.preload(T));
+    c.bolts = bolts;
+  }
+
+  if (const auto* en = root.get("excitation")) {
+    const auto* e = en->as_table();
+    if (!e) r.fail(en, "excitation", "must be a table");
+    r.check_keys(*e, "excitation", {"amplitudes"});
+    if (const auto* a = e->get("amplitudes")) c.amplitudes = r.quantity_list(*a, dim::length, "excitation.amplitudes", true);
+  }
+  std::sort(c.amplitudes.begin(), c.amplitudes.end());
+  c.validate();
+  return c;
+}
+
+JointCase read_case_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidInput(fmt::format("{}: cannot open the case file", path));
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  const auto dir = std::filesystem::path(path).parent_path();
+  return parse_case(ss.str(), path, dir.empty() ? "." : dir.string());
+}
+
+}  // namespace asperity::joint
