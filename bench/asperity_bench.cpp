@@ -24,9 +24,11 @@ using namespace asperity;
 
 // Fig. 4.4 conditions with the BKE model: beta = 0.04, psi = 0.5, P* = 1e-3.
 const surface::RoughFlat& flat() {
-  static const surface::RoughFlat f(surface::RoughFlatParameters{
-      .model = contact::ModelName::bke, .beta = 0.04, .psi = 0.5, .nu = 0.3,
-      .G_over_E = 0.7 / 3.4});
+  static const surface::RoughFlat f(surface::RoughFlatParameters{.model = contact::ModelName::bke,
+                                                                 .beta = 0.04,
+                                                                 .psi = 0.5,
+                                                                 .nu = 0.3,
+                                                                 .G_over_E = 0.7 / 3.4});
   return f;
 }
 
@@ -139,12 +141,16 @@ int main(int argc, char** argv) {
   const double build = get("BM_RoughFlatTableBuild");
   std::printf("\nRatios (same run):\n");
   if (table > 0 && tanh > 0) {
-    std::printf("  RoughFlatForce / TanhCoulombForce       = %6.2f   (target <= 2)\n", table / tanh);
+    std::printf("  RoughFlatForce / TanhCoulombForce       = %6.2f   (target <= 2)\n",
+                table / tanh);
   }
   if (table > 0 && quad > 0) {
-    std::printf("  RoughFlatForceQuadrature / RoughFlatForce = %8.0f (target >= 300)\n", quad / table);
+    std::printf("  RoughFlatForceQuadrature / RoughFlatForce = %8.0f (target >= 300)\n",
+                quad / table);
   }
-  if (build > 0) std::printf("  table build                              = %6.2f ms (target < 5)\n", build * 1e3);
+  if (build > 0)
+    std::printf("  table build                              = %6.2f ms (target < 5)\n",
+                build * 1e3);
   for (const auto& [name, seconds] : t) {
     if (name.rfind("BM_Dynamics", 0) == 0) std::printf("  %s: %.3g s\n", name.c_str(), seconds);
   }

@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
     std::printf("P = %4.1f N: omega* = %.3f, 8G*a = %.2f N/um, mu =", P, hertz.omega_star(),
                 hertz.K_T() * 1e-6);
     for (auto m : kAllModels) {
-      const auto model = PartialSlipModel::from_interference_star(pair, m, hertz.omega_star(), params);
+      const auto model =
+          PartialSlipModel::from_interference_star(pair, m, hertz.omega_star(), params);
       std::printf(" %s %.3f", std::string(to_string(m)).c_str(), model.mu());
     }
     std::printf("\n");

@@ -8,7 +8,9 @@
 namespace asperity::testing {
 
 /// |a - b| / |b|: the relative difference against a reference b.
-inline double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+inline double rel(double a, double b) {
+  return std::abs(a - b) / std::abs(b);
+}
 
 /// The message of the InvalidInput thrown by f(), or "" if it did not throw one.
 template <class F>

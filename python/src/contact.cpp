@@ -24,7 +24,9 @@ namespace {
 using namespace nb::literals;
 using namespace contact;
 
-std::string str(std::string_view s) { return std::string(s); }
+std::string str(std::string_view s) {
+  return std::string(s);
+}
 
 void bind_materials(nb::module_& m) {
   nb::class_<Material>(m, "Material",
@@ -56,7 +58,9 @@ void bind_materials(nb::module_& m) {
 
   m.def(
       "hardness_factor",
-      [](const ArrayLike& nu) { return vectorize([](double v) { return hardness_factor(v); }, nu); },
+      [](const ArrayLike& nu) {
+        return vectorize([](double v) { return hardness_factor(v); }, nu);
+      },
       "nu"_a, "Hardness factor K = 0.454 + 0.41 nu (Chang et al., Eq. 3.5).");
 
   nb::class_<CriticalValues>(m, "CriticalValues",
@@ -201,7 +205,10 @@ void bind_laws(nb::module_& m) {
       "mu(w) P(w)/P_c: static friction force over P_c, 0 at w = 0 where mu diverges.");
 
   m.def(
-      "normal_law_of", [](const std::string& model) { return str(to_string(normal_law_of(parse_model_name(model)))); },
+      "normal_law_of",
+      [](const std::string& model) {
+        return str(to_string(normal_law_of(parse_model_name(model))));
+      },
       "model"_a, "Normal law of a model: cfc -> hertz, the others their own.");
   m.def(
       "friction_law_of",
@@ -299,8 +306,8 @@ void bind_mindlin(nb::module_& m) {
   mm.def(
       "unloading_force_tilde",
       [](const ArrayLike& d, const ArrayLike& dm) {
-        return vectorize(
-            [](double x, double xm) { return mindlin::unloading_force_tilde(x, xm); }, d, dm);
+        return vectorize([](double x, double xm) { return mindlin::unloading_force_tilde(x, xm); },
+                         d, dm);
       },
       "delta_tilde"_a, "delta_max_tilde"_a,
       "Unloading force from a reversal at delta~max (B.16 solved for Q~; Masing's rule, also "
@@ -308,8 +315,8 @@ void bind_mindlin(nb::module_& m) {
   mm.def(
       "reloading_force_tilde",
       [](const ArrayLike& d, const ArrayLike& dm) {
-        return vectorize(
-            [](double x, double xm) { return mindlin::reloading_force_tilde(x, xm); }, d, dm);
+        return vectorize([](double x, double xm) { return mindlin::reloading_force_tilde(x, xm); },
+                         d, dm);
       },
       "delta_tilde"_a, "delta_max_tilde"_a,
       "Reloading force from a reversal at -delta~max (B.17 solved for Q~).");
@@ -375,7 +382,8 @@ void bind_tangential(nb::module_& m) {
           [](const MC& c, const ArrayLike& delta) {
             return vectorize([&c](double d) { return c.loading_force(d); }, delta);
           },
-          "delta"_a, "Virgin loading force for a displacement of either sign (Eq. 3.7 inverted) [N].")
+          "delta"_a,
+          "Virgin loading force for a displacement of either sign (Eq. 3.7 inverted) [N].")
       .def(
           "loading_displacement",
           [](const MC& c, const ArrayLike& Q) {
@@ -385,8 +393,8 @@ void bind_tangential(nb::module_& m) {
       .def(
           "unloading_force",
           [](const MC& c, const ArrayLike& delta, const ArrayLike& delta_max) {
-            return vectorize([&c](double d, double dm) { return c.unloading_force(d, dm); },
-                             delta, delta_max);
+            return vectorize([&c](double d, double dm) { return c.unloading_force(d, dm); }, delta,
+                             delta_max);
           },
           "delta"_a, "delta_max"_a,
           "Unloading force at delta after a reversal at delta_max > 0 (Eq. 3.8 solved for Q; "
@@ -394,8 +402,8 @@ void bind_tangential(nb::module_& m) {
       .def(
           "reloading_force",
           [](const MC& c, const ArrayLike& delta, const ArrayLike& delta_max) {
-            return vectorize([&c](double d, double dm) { return c.reloading_force(d, dm); },
-                             delta, delta_max);
+            return vectorize([&c](double d, double dm) { return c.reloading_force(d, dm); }, delta,
+                             delta_max);
           },
           "delta"_a, "delta_max"_a,
           "Reloading force at delta after a reversal at -delta_max (Eq. 3.9) [N].")
@@ -405,14 +413,16 @@ void bind_tangential(nb::module_& m) {
             return vectorize([&c](double q, double qm) { return c.unloading_displacement(q, qm); },
                              Q, Q_max);
           },
-          "Q"_a, "Q_max"_a, "Unloading displacement after a reversal at Q_max <= mu P (Eq. 3.8, B.16) [m].")
+          "Q"_a, "Q_max"_a,
+          "Unloading displacement after a reversal at Q_max <= mu P (Eq. 3.8, B.16) [m].")
       .def(
           "reloading_displacement",
           [](const MC& c, const ArrayLike& Q, const ArrayLike& Q_max) {
             return vectorize([&c](double q, double qm) { return c.reloading_displacement(q, qm); },
                              Q, Q_max);
           },
-          "Q"_a, "Q_max"_a, "Reloading displacement after a reversal at -Q_max (Eq. 3.9, B.17) [m].")
+          "Q"_a, "Q_max"_a,
+          "Reloading displacement after a reversal at -Q_max (Eq. 3.9, B.17) [m].")
       .def(
           "regime_for_displacement",
           [](const MC& c, double delta_max) {
@@ -479,8 +489,7 @@ void bind_models(nb::module_& m) {
       .def(
           "energy_curve",
           [](const PSM& p, const ArrayLike& delta_max) {
-            return vectorize([&p](double d) { return p.contact().energy_per_cycle(d); },
-                             delta_max);
+            return vectorize([&p](double d) { return p.contact().energy_per_cycle(d); }, delta_max);
           },
           "delta_max"_a,
           "Energy per cycle [J] for each displacement amplitude (any shape; C++ energy_curve).")

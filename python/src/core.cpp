@@ -27,8 +27,8 @@ PyObject* new_exception(const char* name, const char* doc, PyObject* bases) {
 void bind_core(nb::module_& m) {
   // asperity.Error is the base of both; InvalidInput is also a ValueError and
   // NumericalError a RuntimeError, so generic `except ValueError` code works.
-  g_error = new_exception("asperity.Error", "Base of every error raised by asperity.",
-                          PyExc_Exception);
+  g_error =
+      new_exception("asperity.Error", "Base of every error raised by asperity.", PyExc_Exception);
   nb::object invalid_bases = nb::make_tuple(nb::handle(g_error), nb::handle(PyExc_ValueError));
   g_invalid_input = new_exception(
       "asperity.InvalidInput",
@@ -60,16 +60,16 @@ void bind_core(nb::module_& m) {
 
   using core::Dimension;
   using core::Quantity;
-  nb::class_<Dimension>(m, "Dimension",
-                        "Exponents of metre, kilogram and second of a quantity.")
+  nb::class_<Dimension>(m, "Dimension", "Exponents of metre, kilogram and second of a quantity.")
       .def(nb::init<>())
       .def_rw("m", &Dimension::m)
       .def_rw("kg", &Dimension::kg)
       .def_rw("s", &Dimension::s)
       .def("__eq__", [](const Dimension& a, const Dimension& b) { return a == b; })
-      .def("__repr__", [](const Dimension& d) {
-        return fmt::format("Dimension(m={}, kg={}, s={})", d.m, d.kg, d.s);
-      })
+      .def("__repr__",
+           [](const Dimension& d) {
+             return fmt::format("Dimension(m={}, kg={}, s={})", d.m, d.kg, d.s);
+           })
       .def("__str__", [](const Dimension& d) { return core::dimension_name(d); });
   nb::class_<Quantity>(m, "Quantity", "A value in SI base units and its dimension.")
       .def_ro("value", &Quantity::value)

@@ -28,8 +28,9 @@ std::vector<double> to_vector(const nb::ndarray<const double, nb::ndim<1>, nb::c
 MemoryRule parse_rule(const std::string& name) {
   if (name == "masing") return MemoryRule::masing;
   if (name == "reset_at_reversal") return MemoryRule::reset_at_reversal;
-  throw InvalidInput("memory rule \"" + name +
-                     "\" is unknown: allowed are masing (default) and reset_at_reversal (Eq. 7.10)");
+  throw InvalidInput(
+      "memory rule \"" + name +
+      "\" is unknown: allowed are masing (default) and reset_at_reversal (Eq. 7.10)");
 }
 
 }  // namespace
@@ -37,22 +38,33 @@ MemoryRule parse_rule(const std::string& name) {
 void bind_hysteresis(nb::module_& m) {
   nb::class_<Backbone>(m, "Backbone",
                        "A virgin loading curve Q_l(x), x >= 0: odd, non-decreasing, bounded.")
-      .def("force", [](const Backbone& b, const ArrayLike& x) {
-             return vectorize([&b](double v) { return b.force(v); }, x);
-           }, "x"_a, "Q_l(x) for x >= 0.")
-      .def("displacement", [](const Backbone& b, const ArrayLike& Q) {
-             return vectorize([&b](double v) { return b.displacement(v); }, Q);
-           }, "Q"_a, "Inverse of force for 0 <= Q < limit.")
-      .def("integral", [](const Backbone& b, const ArrayLike& x) {
-             return vectorize([&b](double v) { return b.integral(v); }, x);
-           }, "x"_a, "Int_0^x Q_l.")
+      .def(
+          "force",
+          [](const Backbone& b, const ArrayLike& x) {
+            return vectorize([&b](double v) { return b.force(v); }, x);
+          },
+          "x"_a, "Q_l(x) for x >= 0.")
+      .def(
+          "displacement",
+          [](const Backbone& b, const ArrayLike& Q) {
+            return vectorize([&b](double v) { return b.displacement(v); }, Q);
+          },
+          "Q"_a, "Inverse of force for 0 <= Q < limit.")
+      .def(
+          "integral",
+          [](const Backbone& b, const ArrayLike& x) {
+            return vectorize([&b](double v) { return b.integral(v); }, x);
+          },
+          "x"_a, "Int_0^x Q_l.")
       .def_prop_ro("limit", &Backbone::limit, "static friction force, sup Q_l")
       .def_prop_ro("initial_stiffness", &Backbone::initial_stiffness,
                    "dQ_l/dx at 0: the stiffness at every reversal")
-      .def("energy_per_cycle", [](const Backbone& b, const ArrayLike& x) {
-             return vectorize([&b](double v) { return energy_per_cycle(b, v); }, x);
-           }, "x_max"_a,
-           "Energy per symmetric cycle, 8 Int_0^x Q_l - 4 x Q_l(x) (Masing's rules).");
+      .def(
+          "energy_per_cycle",
+          [](const Backbone& b, const ArrayLike& x) {
+            return vectorize([&b](double v) { return energy_per_cycle(b, v); }, x);
+          },
+          "x_max"_a, "Energy per symmetric cycle, 8 Int_0^x Q_l - 4 x Q_l(x) (Masing's rules).");
 
   nb::class_<MindlinBackbone, Backbone>(m, "MindlinBackbone",
                                         "Cattaneo-Mindlin virgin curve of one sphere (B.15).")
@@ -71,11 +83,13 @@ void bind_hysteresis(nb::module_& m) {
       "Masing's rules with a reversal stack and loop closing over any backbone: follows any "
       "displacement (or force) history. memory='masing' (default) or 'reset_at_reversal' "
       "(the thesis's Eq. 7.10).")
-      .def("__init__",
-           [](Hysteresis* self, std::shared_ptr<const Backbone> backbone, const std::string& memory) {
-             new (self) Hysteresis(std::move(backbone), parse_rule(memory));
-           },
-           "backbone"_a, "memory"_a = "masing")
+      .def(
+          "__init__",
+          [](Hysteresis* self, std::shared_ptr<const Backbone> backbone,
+             const std::string& memory) {
+            new (self) Hysteresis(std::move(backbone), parse_rule(memory));
+          },
+          "backbone"_a, "memory"_a = "masing")
       .def("update", &Hysteresis::update, "x"_a,
            "Move to displacement x (reversals detected) and return the force.")
       .def("update_force", &Hysteresis::update_force, "Q"_a,
@@ -87,22 +101,26 @@ void bind_hysteresis(nb::module_& m) {
       .def("reset", &Hysteresis::reset)
       .def_prop_ro("x", &Hysteresis::x)
       .def_prop_ro("Q", &Hysteresis::Q)
-      .def_prop_ro("reversals", [](const Hysteresis& h) {
-             std::vector<std::pair<double, double>> out;
-             for (const auto& r : h.reversals()) out.emplace_back(r.x, r.Q);
-             return out;
-           }, "remembered reversal points (x, Q), oldest first")
-      .def("forces",
-           [](const Hysteresis& h, const nb::ndarray<const double, nb::ndim<1>, nb::c_contig>& x) -> nb::object {
-             return array_of(h.forces(to_vector(x)));
-           },
-           "x"_a, "Forces along a displacement history (1-D array), from the current state; "
-           "the object is not changed.")
-      .def("displacements",
-           [](const Hysteresis& h, const nb::ndarray<const double, nb::ndim<1>, nb::c_contig>& Q) -> nb::object {
-             return array_of(h.displacements(to_vector(Q)));
-           },
-           "Q"_a, "Displacements along a force history (1-D array), from the current state.");
+      .def_prop_ro(
+          "reversals",
+          [](const Hysteresis& h) {
+            std::vector<std::pair<double, double>> out;
+            for (const auto& r : h.reversals()) out.emplace_back(r.x, r.Q);
+            return out;
+          },
+          "remembered reversal points (x, Q), oldest first")
+      .def(
+          "forces",
+          [](const Hysteresis& h, const nb::ndarray<const double, nb::ndim<1>, nb::c_contig>& x)
+              -> nb::object { return array_of(h.forces(to_vector(x))); },
+          "x"_a,
+          "Forces along a displacement history (1-D array), from the current state; "
+          "the object is not changed.")
+      .def(
+          "displacements",
+          [](const Hysteresis& h, const nb::ndarray<const double, nb::ndim<1>, nb::c_contig>& Q)
+              -> nb::object { return array_of(h.displacements(to_vector(Q))); },
+          "Q"_a, "Displacements along a force history (1-D array), from the current state.");
 }
 
 }  // namespace asperity::python

@@ -32,8 +32,7 @@ namespace nanobind::detail {
 
 template <>
 struct type_caster<asperity::python::ArrayLike> {
-  NB_TYPE_CASTER(asperity::python::ArrayLike,
-                 const_name("float | numpy.typing.ArrayLike"))
+  NB_TYPE_CASTER(asperity::python::ArrayLike, const_name("float | numpy.typing.ArrayLike"))
   bool from_python(handle src, uint8_t, cleanup_list*) noexcept {
     if (src.is_none()) return false;
     value.obj = borrow(src);
@@ -98,8 +97,8 @@ FloatOrArray vectorize_impl(F& f, const std::array<nb::handle, sizeof...(I)>& in
   std::array<ConstView, N> views;
   for (std::size_t i = 0; i < N; ++i) {
     // asarray keeps 0-d arrays 0-d (ascontiguousarray would make them 1-d).
-    owners[i] = np.attr("asarray")(broadcast[i], nb::arg("dtype") = "float64",
-                                   nb::arg("order") = "C");
+    owners[i] =
+        np.attr("asarray")(broadcast[i], nb::arg("dtype") = "float64", nb::arg("order") = "C");
     views[i] = nb::cast<ConstView>(owners[i]);
   }
   const std::size_t ndim = views[0].ndim();

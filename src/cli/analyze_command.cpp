@@ -24,7 +24,7 @@ namespace {
 struct AnalyzeOptions {
   std::vector<std::string> files;
   std::optional<std::string> P, model, out;
-  double window = 0.2;
+  double window = 0.3;
   bool json = false;
   bool no_plots = false;
 };
@@ -68,8 +68,8 @@ Json run_json(const Run& r, double window) {
       {"cycles", "maximum -> minimum -> maximum of the displacement (moving average over 1/50 cycle); "
                  "ramps of Eq. 5.3 left out"},
       {"energy", "trapezoidal loop area of the cycle (smoothed signals), closed"},
-      {"stiffness", fmt::format("least-squares quadratic delta(Q) over the samples after each reversal "
-                                "until |Q - Q_r| = {} x the cycle's peak-to-peak force; slope dQ/ddelta at "
+      {"stiffness", fmt::format("least-squares delta(Q) over the samples after each reversal "
+                                "until |Q - Q_r| = {} x the cycle's peak-to-peak force (per cycle: quadratic; mean: cubic pooled over all reversals, one intercept each); slope dQ/ddelta at "
                                 "the reversal",
                                 window)},
       {"Q_max", "half the peak-to-peak force (smoothed)"},
@@ -134,7 +134,7 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--P", o->P, "normal load (preload) of the runs, e.g. 526N")->required();
   cmd->add_option("--model", o->model, "a case file: overlay its prediction and quantify the differences");
   cmd->add_option("--out", o->out, "write analysis.json, cycles.csv, averaged_loop.csv and plots into DIR");
-  cmd->add_option("--window", o->window, "stiffness fit window, fraction of the peak-to-peak force (0.2)");
+  cmd->add_option("--window", o->window, "stiffness fit window, fraction of the peak-to-peak force (0.3)");
   cmd->add_flag("--json", o->json, "print JSON instead of tables");
   cmd->add_flag("--no-plots", o->no_plots, "do not draw PNG plots");
   cmd->callback([o, &action] {

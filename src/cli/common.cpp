@@ -105,7 +105,8 @@ std::string gnuplot_quote(const std::string& s) {
 
 void plot_png(const std::string& path, const PlotSpec& spec) {
   const std::filesystem::path target(path);
-  if (target.filename().empty()) throw InvalidInput(fmt::format("output path \"{}\" names no file", path));
+  if (target.filename().empty())
+    throw InvalidInput(fmt::format("output path \"{}\" names no file", path));
   const auto tmp_png = temporary_sibling(target);
   {
     // An unwritable output path is bad input (exit 2), not a gnuplot failure: probe it
@@ -118,7 +119,8 @@ void plot_png(const std::string& path, const PlotSpec& spec) {
   }
   const auto dir = std::filesystem::temp_directory_path();
   std::random_device rd;
-  const auto script_path = dir / fmt::format("asperity-plot-{:08x}.gp", static_cast<unsigned>(rd()));
+  const auto script_path =
+      dir / fmt::format("asperity-plot-{:08x}.gp", static_cast<unsigned>(rd()));
   std::ostringstream gp;
   gp << "set terminal pngcairo size 900,650 enhanced font 'DejaVu Sans,11'\n";
   gp << "set output " << gnuplot_quote(tmp_png.string()) << "\n";
@@ -136,15 +138,15 @@ void plot_png(const std::string& path, const PlotSpec& spec) {
   }
   gp << "\n";
   for (const auto& s : spec.series) {
-    for (std::size_t j = 0; j < s.x.size(); ++j) gp << fmt::format("{:.10g} {:.10g}\n", s.x[j], s.y[j]);
+    for (std::size_t j = 0; j < s.x.size(); ++j)
+      gp << fmt::format("{:.10g} {:.10g}\n", s.x[j], s.y[j]);
     gp << "e\n";
   }
   {
     std::ofstream script(script_path);
     script << gp.str();
   }
-  const std::string cmd =
-      fmt::format("gnuplot {} 2>&1", gnuplot_quote(script_path.string()));
+  const std::string cmd = fmt::format("gnuplot {} 2>&1", gnuplot_quote(script_path.string()));
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string messages;
   int status = -1;
@@ -155,11 +157,12 @@ void plot_png(const std::string& path, const PlotSpec& spec) {
   }
   std::error_code ec;
   std::filesystem::remove(script_path, ec);
-  if (status != 0 || !std::filesystem::exists(tmp_png) || std::filesystem::file_size(tmp_png, ec) == 0) {
+  if (status != 0 || !std::filesystem::exists(tmp_png) ||
+      std::filesystem::file_size(tmp_png, ec) == 0) {
     std::filesystem::remove(tmp_png, ec);
     if (messages.find("pngcairo") != std::string::npos) {
-      throw Error(fmt::format("plotting \"{}\" failed: gnuplot has no pngcairo terminal ({})",
-                              path, messages));
+      throw Error(fmt::format("plotting \"{}\" failed: gnuplot has no pngcairo terminal ({})", path,
+                              messages));
     }
     throw Error(fmt::format("plotting \"{}\" failed: is gnuplot installed (scripts/setup.sh)? {}",
                             path, messages));

@@ -38,6 +38,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -154,7 +155,122 @@ struct Case {
   double stick_velocity = 0.05;
   int loop_cycles = 5;
   double decay_start = -1.0;
+  std::optional<Json> joint;  // the [joint]'s rough flat at its preload, for summary.json
 };
+
+hysteresis::MemoryRule memory_rule(const toml::table& t) {
+  const std::string m = text(t, "memory", "dynamics.friction", "masing");
+  if (m == "masing") return hysteresis::MemoryRule::masing;
+  if (m == "reset_at_reversal" || m == "eq7.10") return hysteresis::MemoryRule::reset_at_reversal;
+  throw InvalidInput(fmt::format(
+      "dynamics.friction.memory = \"{}\": use \"masing\" or \"reset_at_reversal\" (Eq. 7.10)", m));
+}
+
+// ---- [joint] ---------------------------------------------------------------------------
+
+// Adds the lines of the case file that hold any part of `n` (a node of the [dynamics]
+// tree): the headers of its tables, its keys and its values.
+void collect_lines(const toml::node& n, std::set<std::uint32_t>& lines) {
+  auto add = [&lines](const toml::source_region& r) {
+    if (r.begin.line == 0) return;
+    for (auto l = r.begin.line; l <= std::max(r.begin.line, r.end.line); ++l) lines.insert(l);
+  };
+  if (const auto* t = n.as_table()) {
+    // A [header] table: only its header line (its region may span other tables).
+    if (t->is_inline()) {
+      add(t->source());
+    } else if (t->source().begin.line > 0) {
+      lines.insert(t->source().begin.line);
+    }
+    for (const auto& [k, v] : *t) {
+      add(k.source());
+      collect_lines(v, lines);
+    }
+    return;
+  }
+  if (const auto* a = n.as_array()) {
+    const bool headers = a->is_array_of_tables() && !a->empty() && !a->get(0)->as_table()->is_inline();
+    if (!headers) add(a->source());  // [[header]] arrays: only their tables' headers
+    for (const auto& e : *a) collect_lines(e, lines);
+    return;
+  }
+  add(n.source());
+}
+
+// The case file with every line of its [dynamics] tree blanked: what remains is the
+// joint part ([joint], [load], [profiles], comments) at its original line numbers, so
+// that the joint reader's errors point into the user's file.
+std::string joint_text(const std::string& text, const toml::node& dynamics) {
+  std::set<std::uint32_t> lines;
+  collect_lines(dynamics, lines);
+  std::string out;
+  out.reserve(text.size());
+  std::uint32_t line = 1;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    std::size_t end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
+    if (!lines.count(line)) out.append(text, begin, end - begin);
+    if (end == text.size()) break;
+    out += '\n';
+    begin = end + 1;
+    ++line;
+  }
+  return out;
+}
+
+// The physics-based law of a joint described as for `asperity predict`: the joint's
+// rough flat (RoughFlat::from_dimensional from the halves' materials and combined
+// roughness, the area and the asperity model) at the [load]'s single preload, its SI
+// backbone seen in the variables of section 7.2 through k and A.
+std::unique_ptr<FrictionModel> joint_friction(const std::string& path, const std::string& file_text,
+                                              const toml::table& root, const toml::table* friction,
+                                              const Scales& s, std::optional<Json>& summary) {
+  hysteresis::MemoryRule rule = hysteresis::MemoryRule::masing;
+  if (friction) {
+    const std::string where = "dynamics.friction";
+    const std::string model = text(*friction, "model", where, "physics");
+    const std::string bb = text(*friction, "backbone", where, "joint");
+    if (model != "physics" || bb != "joint") {
+      throw InvalidInput(fmt::format(
+          "{}: model = \"{}\", backbone = \"{}\" conflicts with the [joint] table, which gives the "
+          "physics-based law (model = \"physics\", backbone = \"joint\"): remove one of them",
+          where, model, bb));
+    }
+    check_keys(*friction, where, {"model", "backbone", "memory"});
+    rule = memory_rule(*friction);
+  }
+  if (!s.k || !s.A) {
+    throw InvalidInput(
+        "dynamics: the [joint] friction law needs the scales stiffness and amplitude in [dynamics] "
+        "(forces are divided by k A, displacements by A)");
+  }
+  const auto dir = std::filesystem::path(path).parent_path();
+  const joint::JointCase jc =
+      joint::parse_case(joint_text(file_text, *root.get("dynamics")), path, dir.empty() ? "." : dir.string());
+  if (jc.preloads.size() != 1) {
+    throw InvalidInput(fmt::format(
+        "{}: load: `asperity dynamics` runs one preload; the [load] table gives {} (a sweep): keep one",
+        path, jc.preloads.size()));
+  }
+  const double P = jc.preloads.front();
+  const auto flat = jc.rough_flat();
+  const joint::LoadPrediction lp = joint::predict_load(flat, P, {});
+  const double kA = *s.k * *s.A;
+  Json j;
+  j["name"] = jc.name;
+  j["model"] = std::string(contact::to_string(jc.model));
+  j["area"] = jc.area;
+  j["preload"] = P;
+  j["separation"] = lp.separation;
+  j["Q_max"] = lp.Q_max;
+  j["mu"] = lp.mu;
+  j["stiffness"] = lp.stiffness;
+  j["F_max_tilde"] = lp.Q_max / kA;
+  j["stiffness_tilde"] = lp.stiffness / *s.k;
+  summary = std::move(j);
+  return make_physics_based(lp.backbone, *s.k, *s.A, rule);
+}
 
 // The physics-based (EPB) law of section 7.3 from Table 7.2-style inputs: combined
 // E*, G*, hardness H and Poisson's ratio nu of the softer material, combined roughness
@@ -218,12 +334,7 @@ std::unique_ptr<FrictionModel> parse_friction(const toml::table* t, const Scales
     if (!v) throw InvalidInput(fmt::format("{}: model \"{}\" needs {}", where, model, key));
     return *v;
   };
-  auto memory = [&] {
-    const std::string m = text(*t, "memory", where, "masing");
-    if (m == "masing") return hysteresis::MemoryRule::masing;
-    if (m == "reset_at_reversal" || m == "eq7.10") return hysteresis::MemoryRule::reset_at_reversal;
-    throw InvalidInput(fmt::format("{}.memory = \"{}\": use \"masing\" or \"reset_at_reversal\" (Eq. 7.10)", where, m));
-  };
+  auto memory = [&] { return memory_rule(*t); };
   if (model == "none") {
     check_keys(*t, where, {"model"});
     return std::make_unique<NoFriction>();
@@ -255,8 +366,12 @@ std::unique_ptr<FrictionModel> parse_friction(const toml::table* t, const Scales
   if (model == "physics") {
     const std::string bb = text(*t, "backbone", where, "mindlin");
     if (bb == "rough_flat") return rough_flat_friction(*t, s, memory());
+    if (bb == "joint") {
+      throw InvalidInput(fmt::format(
+          "{}.backbone = \"joint\" needs a [joint] table (and [load]) as for `asperity predict`", where));
+    }
     if (bb != "mindlin") {
-      throw InvalidInput(fmt::format("{}.backbone = \"{}\": use \"rough_flat\" or \"mindlin\"", where, bb));
+      throw InvalidInput(fmt::format("{}.backbone = \"{}\": use \"rough_flat\", \"mindlin\" or \"joint\"", where, bb));
     }
     // A Cattaneo-Mindlin-shaped saturating backbone (the CFC limit of the rough flat:
     // Q = F_max (1 - (1 - x/s)^{3/2}) up to the slip displacement s) through Masing's
@@ -277,13 +392,29 @@ std::unique_ptr<FrictionModel> parse_friction(const toml::table* t, const Scales
 }
 
 Case parse_case(const std::string& path) {
+  std::string file_text;
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InvalidInput(fmt::format("{}: cannot open the case file", path));
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    file_text = ss.str();
+  }
   toml::table root;
   try {
-    root = toml::parse_file(path);
+    root = toml::parse(file_text, path);
   } catch (const toml::parse_error& e) {
     throw InvalidInput(fmt::format("{}: {} (line {})", path, e.description(), e.source().begin.line));
   }
-  check_keys(root, path, {"dynamics"});
+  check_keys(root, path, {"dynamics", "joint", "load", "profiles"});
+  if (!root.get("joint")) {
+    for (const char* k : {"load", "profiles"}) {
+      if (root.get(k)) {
+        throw InvalidInput(fmt::format("{}: [{}] belongs to a [joint] table, which is missing (line {})",
+                                       path, k, root.get(k)->source().begin.line));
+      }
+    }
+  }
   const toml::table* d = subtable(root, "dynamics", "");
   if (!d) throw InvalidInput(fmt::format("{}: the case file needs a [dynamics] table", path));
   const std::string W = "dynamics";
@@ -365,7 +496,11 @@ Case parse_case(const std::string& path) {
     c.sim.v0 = number(*t, "v0", W + ".free", 0.0);
   }
 
-  c.friction = parse_friction(subtable(*d, "friction", W), sc);
+  if (root.get("joint")) {
+    c.friction = joint_friction(path, file_text, root, subtable(*d, "friction", W), sc, c.joint);
+  } else {
+    c.friction = parse_friction(subtable(*d, "friction", W), sc);
+  }
 
   c.sim.output_interval = 0.01;
   if (const auto* t = subtable(*d, "integrator", W)) {
@@ -465,6 +600,7 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
   if (!spectrum_note.empty()) j["modal_note"] = spectrum_note;
   if (c.scales.m && c.scales.k && modal_f) j["modal_frequency_hz"] = *modal_f / time_scale(c.scales);
 
+  if (c.joint) j["joint"] = *c.joint;
   j["energy_balance_error"] = tr.energy_balance_error();
   j["energy"] = {{"work_base", tr.work_base.back()},
                  {"dissipated_damper", tr.dissipated_damper.back()},
@@ -583,6 +719,14 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
   out += fmt::format("{}: {} friction, {} excitation, eps = {:.4g}, {} steps ({} rejected), {} force evaluations, {} reversals\n",
                      o.case_file, tr.friction_model, c.excitation_name, c.system.epsilon, tr.stats.steps,
                      tr.stats.rejected_steps, tr.force_evaluations, tr.stats.events);
+  if (c.joint) {
+    const Json& jj = *c.joint;
+    out += fmt::format("joint: preload {:.6g} N, mu = Q_max/P = {:.4g}, Q_max {:.6g} N, tangential stiffness "
+                       "{:.4g} N/m (F~max = {:.4g}, k_t/k = {:.4g})\n",
+                       jj["preload"].get<double>(), jj["mu"].get<double>(), jj["Q_max"].get<double>(),
+                       jj["stiffness"].get<double>(), jj["F_max_tilde"].get<double>(),
+                       jj["stiffness_tilde"].get<double>());
+  }
   if (modal_f) out += fmt::format("modal frequency {:.5g} (cycles per unit tau), half-power damping {:.4g}\n", *modal_f, *modal_z);
   out += fmt::format("energy balance error {:.3g} of the input work\n", tr.energy_balance_error());
   out += fmt::format("wrote {}/summary.json, timeseries.csv{}", o.out_dir, spectrum ? ", spectrum.csv" : "");

@@ -66,7 +66,8 @@ void run_flat(const FlatOptions& o, std::string& out) {
         o.slip_scaling));
   }
 
-  const bool dimensional = any_material_flag(o.materials) || o.sigma || o.eta || o.R || o.area || o.P;
+  const bool dimensional =
+      any_material_flag(o.materials) || o.sigma || o.eta || o.R || o.area || o.P;
   const bool normalized = o.beta || o.psi || o.nu || o.P_star || o.G_over_E || o.delta_star_max;
   if (dimensional && normalized) {
     throw InvalidInput(
@@ -74,8 +75,9 @@ void run_flat(const FlatOptions& o, std::string& out) {
         "dimensional ones (materials, --sigma --eta --R --area --P --delta-max): use one set");
   }
   if (!dimensional && !normalized) {
-    throw InvalidInput("give either the normalized inputs (--beta --psi --nu --P-star) or the "
-                       "dimensional ones (materials, --sigma --eta --R --area --P)");
+    throw InvalidInput(
+        "give either the normalized inputs (--beta --psi --nu --P-star) or the "
+        "dimensional ones (materials, --sigma --eta --R --area --P)");
   }
 
   std::optional<surface::RoughFlat> flat;
@@ -88,7 +90,8 @@ void run_flat(const FlatOptions& o, std::string& out) {
     p.nu = number(o.nu, "--nu");
     core::require_in_half_open("--nu", p.nu, 0.0, 0.5);
     // Identical materials: G*/E* = (1 - nu)/(2 (2 - nu)).
-    p.G_over_E = o.G_over_E ? number(o.G_over_E, "--G-over-E") : (1.0 - p.nu) / (2.0 * (2.0 - p.nu));
+    p.G_over_E =
+        o.G_over_E ? number(o.G_over_E, "--G-over-E") : (1.0 - p.nu) / (2.0 * (2.0 - p.nu));
     core::require_positive("--G-over-E", p.G_over_E);
     core::require_positive("--psi", p.psi);
     flat.emplace(p);
@@ -110,7 +113,8 @@ void run_flat(const FlatOptions& o, std::string& out) {
     core::require_positive("--R", R);
     core::require_positive("--area", A0);
     core::require_positive("--P", P);
-    flat.emplace(surface::RoughFlat::from_dimensional(b1, b2, sigma, eta, R, A0, model, friction, scaling));
+    flat.emplace(
+        surface::RoughFlat::from_dimensional(b1, b2, sigma, eta, R, A0, model, friction, scaling));
     P_star = P / flat->scales()->force;
     if (o.delta_max) {
       const double dm = required_quantity(o.delta_max, dim::length, "--delta-max");
@@ -176,29 +180,33 @@ void run_flat(const FlatOptions& o, std::string& out) {
     }
     out += j.dump(2) + "\n";
   } else {
-    out += fmt::format("rough flat, {} model: beta = {:.4g}, psi = {:.4g}, nu = {:.3g}, G*/E* = {:.4g}, "
-                       "sigma_a/sigma = {:.4g}, omega_c/sigma = {:.4g}\n",
-                       o.model, params.beta, params.psi, params.nu, params.G_over_E,
-                       flat->sigma_a_over_sigma(), flat->omega_c_star());
-    out += fmt::format("  P* = {:.5g}   separation d* = {:.5g}   Q*_max = {:.5g}   mu = {:.4g}   "
-                       "stiffness* = {:.5g}\n",
-                       P_star, d, Q_max, Q_max / P_star, k);
+    out += fmt::format(
+        "rough flat, {} model: beta = {:.4g}, psi = {:.4g}, nu = {:.3g}, G*/E* = {:.4g}, "
+        "sigma_a/sigma = {:.4g}, omega_c/sigma = {:.4g}\n",
+        o.model, params.beta, params.psi, params.nu, params.G_over_E, flat->sigma_a_over_sigma(),
+        flat->omega_c_star());
+    out += fmt::format(
+        "  P* = {:.5g}   separation d* = {:.5g}   Q*_max = {:.5g}   mu = {:.4g}   "
+        "stiffness* = {:.5g}\n",
+        P_star, d, Q_max, Q_max / P_star, k);
     if (scales) {
-      out += fmt::format("  P = {:.5g} N   separation = {:.4g} um   Q_max = {:.5g} N   "
-                         "stiffness = {:.5g} N/um   real contact area = {:.4g} mm^2   "
-                         "contacting asperities = {:.4g}\n",
-                         P_star * scales->force, d * scales->sigma * 1e6, Q_max * scales->force,
-                         k * scales->force / scales->sigma * 1e-6,
-                         flat->contact_area_ratio(d) * scales->A0 * 1e6,
-                         flat->contact_fraction(d) * scales->eta * scales->A0);
+      out += fmt::format(
+          "  P = {:.5g} N   separation = {:.4g} um   Q_max = {:.5g} N   "
+          "stiffness = {:.5g} N/um   real contact area = {:.4g} mm^2   "
+          "contacting asperities = {:.4g}\n",
+          P_star * scales->force, d * scales->sigma * 1e6, Q_max * scales->force,
+          k * scales->force / scales->sigma * 1e-6, flat->contact_area_ratio(d) * scales->A0 * 1e6,
+          flat->contact_fraction(d) * scales->eta * scales->A0);
     }
     if (amplitude_star) {
-      out += fmt::format("  amplitude delta* = {:.5g}: Q* = {:.5g}, energy per cycle* = {:.5g}, {}\n",
-                         *amplitude_star, *Q_amp, *energy, *regime);
+      out +=
+          fmt::format("  amplitude delta* = {:.5g}: Q* = {:.5g}, energy per cycle* = {:.5g}, {}\n",
+                      *amplitude_star, *Q_amp, *energy, *regime);
       if (scales) {
-        out += fmt::format("  amplitude delta = {:.5g} um: Q = {:.5g} N, energy per cycle = {:.5g} uJ\n",
-                           *amplitude_star * scales->sigma * 1e6, *Q_amp * scales->force,
-                           *energy * scales->force * scales->sigma * 1e6);
+        out += fmt::format(
+            "  amplitude delta = {:.5g} um: Q = {:.5g} N, energy per cycle = {:.5g} uJ\n",
+            *amplitude_star * scales->sigma * 1e6, *Q_amp * scales->force,
+            *energy * scales->force * scales->sigma * 1e6);
       }
     }
   }
@@ -206,10 +214,13 @@ void run_flat(const FlatOptions& o, std::string& out) {
   if ((o.loop_csv || o.plot_png) && !amplitude_star) {
     throw InvalidInput("--loop and --plot need an amplitude: give --delta-star-max or --delta-max");
   }
-  if (o.history_csv && !o.out_csv) throw InvalidInput("--history needs --out FILE.csv for the forces");
-  if (o.out_csv && !o.history_csv) throw InvalidInput("--out writes the force history of --history: give both");
+  if (o.history_csv && !o.out_csv)
+    throw InvalidInput("--history needs --out FILE.csv for the forces");
+  if (o.out_csv && !o.history_csv)
+    throw InvalidInput("--out writes the force history of --history: give both");
   if (!table && (o.loop_csv || o.plot_png || o.history_csv)) {
-    throw InvalidInput(fmt::format("the {} model carries no friction force here (Q*_max = 0)", o.model));
+    throw InvalidInput(
+        fmt::format("the {} model carries no friction force here (Q*_max = 0)", o.model));
   }
   const double xs = scales ? scales->sigma : 1.0;
   const double fs = scales ? scales->force : 1.0;
@@ -234,8 +245,9 @@ void run_flat(const FlatOptions& o, std::string& out) {
       std::vector<double> xo(x), qo(q);
       for (auto& v : xo) v *= xs;
       for (auto& v : qo) v *= fs;
-      core::write_csv_table(*o.loop_csv, scales ? std::vector<std::string>{"delta[m]", "Q[N]"}
-                                                : std::vector<std::string>{"delta_star", "Q_star"},
+      core::write_csv_table(*o.loop_csv,
+                            scales ? std::vector<std::string>{"delta[m]", "Q[N]"}
+                                   : std::vector<std::string>{"delta_star", "Q_star"},
                             {xo, qo});
     }
     if (o.plot_png) {
@@ -244,10 +256,11 @@ void run_flat(const FlatOptions& o, std::string& out) {
         s.x.push_back(scales ? x[i] * xs * 1e6 : x[i]);
         s.y.push_back(scales ? q[i] * fs : q[i]);
       }
-      plot_png(*o.plot_png, PlotSpec{.title = "Fretting loop of the rough flat (Masing on Eq. 4.10)",
-                                     .xlabel = scales ? "delta [um]" : "delta* = delta/sigma",
-                                     .ylabel = scales ? "Q [N]" : "Q* = Q/(K H A0)",
-                                     .series = {s}});
+      plot_png(*o.plot_png,
+               PlotSpec{.title = "Fretting loop of the rough flat (Masing on Eq. 4.10)",
+                        .xlabel = scales ? "delta [um]" : "delta* = delta/sigma",
+                        .ylabel = scales ? "Q [N]" : "Q* = Q/(K H A0)",
+                        .series = {s}});
     }
   }
   if (o.history_csv) {
@@ -258,16 +271,18 @@ void run_flat(const FlatOptions& o, std::string& out) {
       x = csv.si_values(*c, dim::dimensionless);
     } else if (const auto* c2 = csv.find("delta")) {
       if (!scales) {
-        throw InvalidInput(fmt::format("{}: a \"delta\" column needs the dimensional inputs; with "
-                                       "normalized inputs give a \"delta_star\" column",
-                                       *o.history_csv));
+        throw InvalidInput(
+            fmt::format("{}: a \"delta\" column needs the dimensional inputs; with "
+                        "normalized inputs give a \"delta_star\" column",
+                        *o.history_csv));
       }
       x = csv.si_values(*c2, dim::length);
       for (auto& v : x) v /= scales->sigma;
       si = true;
     } else {
-      throw InvalidInput(fmt::format(
-          "{}: no \"delta_star\" column and no \"delta[unit]\" column in the header", *o.history_csv));
+      throw InvalidInput(
+          fmt::format("{}: no \"delta_star\" column and no \"delta[unit]\" column in the header",
+                      *o.history_csv));
     }
     const hysteresis::Hysteresis h(table);
     auto Q = h.forces(x);
@@ -298,7 +313,8 @@ void add_flat_command(CLI::App& app, std::function<int()>& action) {
                   "G*/E* (default for identical materials: (1-nu)/(2(2-nu)))");
   cmd->add_option("--delta-star-max", o->delta_star_max, "displacement amplitude over sigma");
   o->materials.add_to(cmd, "body 1", "body 2");
-  for (const char* flag : {"--E1", "--nu1", "--E2", "--nu2"}) cmd->get_option(flag)->required(false);
+  for (const char* flag : {"--E1", "--nu1", "--E2", "--nu2"})
+    cmd->get_option(flag)->required(false);
   cmd->add_option("--sigma", o->sigma, "combined rms roughness, e.g. 2.677um");
   cmd->add_option("--eta", o->eta, "areal density of asperities, e.g. 2.91e-4um^-2");
   cmd->add_option("--R", o->R, "mean asperity radius, e.g. 30.14um");

@@ -43,13 +43,15 @@ struct ModelResult {
   std::optional<contact::SlipRegime> regime;
 };
 
-Json opt(const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); }
+Json opt(const std::optional<double>& v) {
+  return v ? Json(*v) : Json(nullptr);
+}
 
 void run_sphere(const SphereOptions& o, std::string& out) {
   const auto [b1, b2] = o.materials.parse();
   const double R1 = required_quantity(o.R1, dim::length, "--R1");
-  const double R2 = o.R2 ? required_quantity(o.R2, dim::length, "--R2")
-                         : std::numeric_limits<double>::infinity();
+  const double R2 =
+      o.R2 ? required_quantity(o.R2, dim::length, "--R2") : std::numeric_limits<double>::infinity();
   core::require_positive("--R1", R1);
   if (o.R2) core::require_positive("--R2", R2);
   const auto pair = contact::ContactPair::combine(b1, b2, R1, R2);
@@ -81,7 +83,8 @@ void run_sphere(const SphereOptions& o, std::string& out) {
   params.validate();
 
   if (o.P && o.omega_star) throw InvalidInput("give either --P or --omega-star, not both");
-  if (!o.P && !o.omega_star) throw InvalidInput("the normal load is required: give --P or --omega-star");
+  if (!o.P && !o.omega_star)
+    throw InvalidInput("the normal load is required: give --P or --omega-star");
   if (o.delta_max && o.Q_max) throw InvalidInput("give either --delta-max or --Q-max, not both");
   const double P = o.P ? required_quantity(o.P, dim::force, "--P") : 0.0;
   const double w = o.omega_star ? dimensionless(o.omega_star, "--omega-star") : 0.0;
@@ -94,10 +97,12 @@ void run_sphere(const SphereOptions& o, std::string& out) {
   const auto delta_amp = quantity(o.delta_max, dim::length, "--delta-max");
   const auto force_amp = quantity(o.Q_max, dim::force, "--Q-max");
   if (delta_amp && !(*delta_amp >= 0.0)) {
-    throw InvalidInput(fmt::format("--delta-max = {} m is not allowed: the amplitude must be >= 0", *delta_amp));
+    throw InvalidInput(
+        fmt::format("--delta-max = {} m is not allowed: the amplitude must be >= 0", *delta_amp));
   }
   if (force_amp && !(*force_amp >= 0.0)) {
-    throw InvalidInput(fmt::format("--Q-max = {} N is not allowed: the amplitude must be >= 0", *force_amp));
+    throw InvalidInput(
+        fmt::format("--Q-max = {} N is not allowed: the amplitude must be >= 0", *force_amp));
   }
   if (o.points < 2 || o.points > 100000) throw InvalidInput("--points must lie in [2, 100000]");
 
@@ -160,13 +165,15 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     j["models"] = jm;
     out += j.dump(2) + "\n";
   } else {
-    out += fmt::format("sphere on {}: R = {:.4g} mm, E* = {:.4g} GPa, G* = {:.4g} GPa, "
-                       "H = {:.4g} GPa, nu = {:.3g}, K = {:.4g}\n",
-                       std::isinf(R2) ? "flat" : "sphere", pair.R * 1e3, pair.E_star * 1e-9,
-                       pair.G_star * 1e-9, pair.H * 1e-9, pair.nu, pair.K());
-    out += fmt::format("critical values (Eq. 3.5): omega_c = {:.4g} um, a_c = {:.4g} mm, "
-                       "P_c = {:.4g} N\n\n",
-                       crit.omega_c * 1e6, crit.a_c * 1e3, crit.P_c);
+    out += fmt::format(
+        "sphere on {}: R = {:.4g} mm, E* = {:.4g} GPa, G* = {:.4g} GPa, "
+        "H = {:.4g} GPa, nu = {:.3g}, K = {:.4g}\n",
+        std::isinf(R2) ? "flat" : "sphere", pair.R * 1e3, pair.E_star * 1e-9, pair.G_star * 1e-9,
+        pair.H * 1e-9, pair.nu, pair.K());
+    out += fmt::format(
+        "critical values (Eq. 3.5): omega_c = {:.4g} um, a_c = {:.4g} mm, "
+        "P_c = {:.4g} N\n\n",
+        crit.omega_c * 1e6, crit.a_c * 1e3, crit.P_c);
     out += fmt::format("{:<6}{:>9}{:>12}{:>10}{:>10}{:>9}{:>12}{:>11}", "model", "omega*",
                        "omega[um]", "a[um]", "P[N]", "mu", "K_T[N/um]", "Q_max[N]");
     if (delta_amp || force_amp) {
@@ -182,9 +189,10 @@ void run_sphere(const SphereOptions& o, std::string& out) {
         auto cell = [](const std::optional<double>& v, double scale) {
           return v ? fmt::format("{:.4g}", *v * scale) : std::string("-");
         };
-        out += fmt::format("{:>14}{:>10}{:>13}  {}", cell(r.delta_max, 1e6), cell(r.Q_at_delta_max, 1.0),
-                           cell(r.energy, 1e9),
-                           r.delta_max ? to_string(*r.regime) : "gross_slip (slides under force control)");
+        out += fmt::format(
+            "{:>14}{:>10}{:>13}  {}", cell(r.delta_max, 1e6), cell(r.Q_at_delta_max, 1.0),
+            cell(r.energy, 1e9),
+            r.delta_max ? to_string(*r.regime) : "gross_slip (slides under force control)");
       }
       out += "\n";
     }

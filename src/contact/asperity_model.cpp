@@ -9,10 +9,14 @@ namespace asperity::contact {
 
 std::string_view to_string(ModelName m) {
   switch (m) {
-    case ModelName::cfc: return "cfc";
-    case ModelName::ceb: return "ceb";
-    case ModelName::ke: return "ke";
-    case ModelName::bke: return "bke";
+    case ModelName::cfc:
+      return "cfc";
+    case ModelName::ceb:
+      return "ceb";
+    case ModelName::ke:
+      return "ke";
+    case ModelName::bke:
+      return "bke";
   }
   return "?";
 }
@@ -26,20 +30,28 @@ ModelName parse_model_name(std::string_view name) {
 
 NormalLaw normal_law_of(ModelName m) {
   switch (m) {
-    case ModelName::cfc: return NormalLaw::hertz;
-    case ModelName::ceb: return NormalLaw::ceb;
-    case ModelName::ke: return NormalLaw::ke;
-    case ModelName::bke: return NormalLaw::bke;
+    case ModelName::cfc:
+      return NormalLaw::hertz;
+    case ModelName::ceb:
+      return NormalLaw::ceb;
+    case ModelName::ke:
+      return NormalLaw::ke;
+    case ModelName::bke:
+      return NormalLaw::bke;
   }
   return NormalLaw::hertz;
 }
 
 FrictionLaw friction_law_of(ModelName m) {
   switch (m) {
-    case ModelName::cfc: return FrictionLaw::cfc;
-    case ModelName::ceb: return FrictionLaw::ceb;
-    case ModelName::ke: return FrictionLaw::ke;
-    case ModelName::bke: return FrictionLaw::bke;
+    case ModelName::cfc:
+      return FrictionLaw::cfc;
+    case ModelName::ceb:
+      return FrictionLaw::ceb;
+    case ModelName::ke:
+      return FrictionLaw::ke;
+    case ModelName::bke:
+      return FrictionLaw::bke;
   }
   return FrictionLaw::cfc;
 }
@@ -72,15 +84,18 @@ double AsperityLaws::interference_star(double P_star) const {
 
 std::vector<double> AsperityLaws::break_points() const {
   switch (model_) {
-    case ModelName::cfc: return {};
+    case ModelName::cfc:
+      return {};
     case ModelName::ceb: {
       std::vector<double> b;
       if (const auto w = ceb_branch_crossing(nu_, params_.zeta)) b.push_back(*w);
       b.push_back(1.0);
       return b;
     }
-    case ModelName::ke: return {1.0, 6.0, 6.2, 110.0};
-    case ModelName::bke: return {BkeConstants::for_poisson(nu_).delta_c};
+    case ModelName::ke:
+      return {1.0, 6.0, 6.2, 110.0};
+    case ModelName::bke:
+      return {BkeConstants::for_poisson(nu_).delta_c};
   }
   return {};
 }

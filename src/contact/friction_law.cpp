@@ -15,10 +15,14 @@ namespace asperity::contact {
 
 std::string_view to_string(FrictionLaw law) {
   switch (law) {
-    case FrictionLaw::cfc: return "cfc";
-    case FrictionLaw::ceb: return "ceb";
-    case FrictionLaw::ke: return "ke";
-    case FrictionLaw::bke: return "bke";
+    case FrictionLaw::cfc:
+      return "cfc";
+    case FrictionLaw::ceb:
+      return "ceb";
+    case FrictionLaw::ke:
+      return "ke";
+    case FrictionLaw::bke:
+      return "bke";
   }
   return "?";
 }
@@ -52,7 +56,8 @@ struct CebBranches {
 CebBranches ceb_branches(double w, double nu, double zeta) {
   const double K = hardness_factor(nu);
   // B.11
-  const double c1 = -1.0 + 1.5 * zeta * std::atan(1.0 / zeta) - zeta * zeta / (2.0 * (1.0 + zeta * zeta));
+  const double c1 =
+      -1.0 + 1.5 * zeta * std::atan(1.0 / zeta) - zeta * zeta / (2.0 * (1.0 + zeta * zeta));
   const double c3 = 9.0 * M_PI * M_PI / 16.0 * (2.0 - nu / 2.0 + 7.0 / 8.0 * nu * nu);
   const double c4 = 9.0 * M_PI / 4.0 * (1.0 - 2.0 * nu) * (1.0 - nu / 2.0);
   const double c5 = 1.5 * (1.0 - 2.0 * nu) * (1.0 - 2.0 * nu) - 0.56 / (K * K * w);
@@ -80,7 +85,8 @@ double bke_coefficient(double w, double delta_c) {
 
 }  // namespace
 
-double friction_coefficient(FrictionLaw law, double w, double nu, const FrictionParameters& params) {
+double friction_coefficient(FrictionLaw law, double w, double nu,
+                            const FrictionParameters& params) {
   params.validate();
   core::require_in_half_open("nu", nu, 0.0, 0.5);
   if (law == FrictionLaw::cfc) {
@@ -102,10 +108,14 @@ namespace detail {
 double friction_coefficient(FrictionLaw law, double w, double nu, double delta_c,
                             const FrictionParameters& params) {
   switch (law) {
-    case FrictionLaw::ceb: return ceb_coefficient(w, nu, params.zeta);
-    case FrictionLaw::ke: return ke_coefficient(w);
-    case FrictionLaw::bke: return bke_coefficient(w, delta_c);
-    case FrictionLaw::cfc: break;
+    case FrictionLaw::ceb:
+      return ceb_coefficient(w, nu, params.zeta);
+    case FrictionLaw::ke:
+      return ke_coefficient(w);
+    case FrictionLaw::bke:
+      return bke_coefficient(w, delta_c);
+    case FrictionLaw::cfc:
+      break;
   }
   return params.mu_cfc;
 }

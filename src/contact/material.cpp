@@ -23,9 +23,13 @@ void Material::validate(std::string_view name) const {
   require_non_negative(n + ".H (0 = not given)", H);
 }
 
-double Material::shear_modulus() const { return G > 0.0 ? G : E / (2.0 * (1.0 + nu)); }
+double Material::shear_modulus() const {
+  return G > 0.0 ? G : E / (2.0 * (1.0 + nu));
+}
 
-double hardness_factor(double nu) { return 0.454 + 0.41 * nu; }
+double hardness_factor(double nu) {
+  return 0.454 + 0.41 * nu;
+}
 
 ContactPair ContactPair::combine(const Material& body1, const Material& body2, double R1,
                                  double R2) {
@@ -42,11 +46,10 @@ ContactPair ContactPair::combine(const Material& body1, const Material& body2, d
   }
   ContactPair p;
   p.E_star = 1.0 / ((1.0 - body1.nu * body1.nu) / body1.E + (1.0 - body2.nu * body2.nu) / body2.E);
-  p.G_star = 1.0 / ((2.0 - body1.nu) / body1.shear_modulus() +
-                    (2.0 - body2.nu) / body2.shear_modulus());
+  p.G_star =
+      1.0 / ((2.0 - body1.nu) / body1.shear_modulus() + (2.0 - body2.nu) / body2.shear_modulus());
   p.R = std::isinf(R2) ? R1 : 1.0 / (1.0 / R1 + 1.0 / R2);
-  const bool first_softer =
-      body1.H > 0.0 && (body2.H <= 0.0 || body1.H <= body2.H);
+  const bool first_softer = body1.H > 0.0 && (body2.H <= 0.0 || body1.H <= body2.H);
   const Material& softer = first_softer ? body1 : body2;
   p.H = softer.H;
   p.nu = softer.nu;

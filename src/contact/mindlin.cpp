@@ -15,9 +15,9 @@ namespace {
 
 void require_unit_force(double Q_tilde, const char* what) {
   if (!std::isfinite(Q_tilde) || Q_tilde < 0.0 || Q_tilde > 1.0) {
-    throw InvalidInput(fmt::format(
-        "{} = {} is not allowed: it must lie in [0, 1] (beyond 1 the contact slides)", what,
-        core::format_value(Q_tilde)));
+    throw InvalidInput(
+        fmt::format("{} = {} is not allowed: it must lie in [0, 1] (beyond 1 the contact slides)",
+                    what, core::format_value(Q_tilde)));
   }
 }
 
@@ -36,7 +36,8 @@ double energy_series(double x) {
   for (int k = 3; k < 80; ++k) {
     xk *= x;
     const double sign_k = (k % 2 == 0) ? 1.0 : -1.0;
-    const double a_k = -binomial(5.0 / 3.0, k) * sign_k + (5.0 / 6.0) * binomial(2.0 / 3.0, k - 1) * sign_k;
+    const double a_k =
+        -binomial(5.0 / 3.0, k) * sign_k + (5.0 / 6.0) * binomial(2.0 / 3.0, k - 1) * sign_k;
     const double term = a_k * xk;
     sum += term;
     if (std::abs(term) < 1e-18 * std::abs(sum)) break;
@@ -46,7 +47,9 @@ double energy_series(double x) {
 
 }  // namespace
 
-double stick_displacement_tilde(double Q_tilde) { return 2.0 / 3.0 * Q_tilde; }  // B.14
+double stick_displacement_tilde(double Q_tilde) {
+  return 2.0 / 3.0 * Q_tilde;
+}  // B.14
 
 double loading_displacement_tilde(double Q_tilde) {
   require_unit_force(Q_tilde, "Q~ = Q/(mu P)");
@@ -78,9 +81,9 @@ double reloading_displacement_tilde(double Q_tilde, double Q_max_tilde) {
 
 double unloading_force_tilde(double delta_tilde, double delta_max_tilde) {
   if (!(delta_max_tilde >= 0.0) || !(std::abs(delta_tilde) <= delta_max_tilde)) {
-    throw InvalidInput(fmt::format("delta~ = {} must lie in [-delta~max, delta~max], delta~max = {}",
-                                   core::format_value(delta_tilde),
-                                   core::format_value(delta_max_tilde)));
+    throw InvalidInput(
+        fmt::format("delta~ = {} must lie in [-delta~max, delta~max], delta~max = {}",
+                    core::format_value(delta_tilde), core::format_value(delta_max_tilde)));
   }
   // Masing: equals B.16 solved for Q~, and holds in gross slip too.
   return loading_force_tilde(delta_max_tilde) -
@@ -149,12 +152,13 @@ double MindlinContact::loading_force(double delta) const {
 double MindlinContact::loading_displacement(double Q) const {
   core::require_finite("Q", Q);
   if (std::abs(Q) > Q_max()) {
-    throw InvalidInput(fmt::format(
-        "Q = {} N exceeds the static friction force mu P = {} N: the contact slides",
-        core::format_value(Q), core::format_value(Q_max())));
+    throw InvalidInput(
+        fmt::format("Q = {} N exceeds the static friction force mu P = {} N: the contact slides",
+                    core::format_value(Q), core::format_value(Q_max())));
   }
   if (Q_max() == 0.0) return 0.0;
-  return std::copysign(slip_displacement() * mindlin::loading_displacement_tilde(std::abs(Q) / Q_max()), Q);
+  return std::copysign(
+      slip_displacement() * mindlin::loading_displacement_tilde(std::abs(Q) / Q_max()), Q);
 }
 
 double MindlinContact::unloading_force(double delta, double delta_max) const {
@@ -163,8 +167,9 @@ double MindlinContact::unloading_force(double delta, double delta_max) const {
   const double s = slip_displacement();
   // Masing's rule, exact for Cattaneo-Mindlin (B.16 solved for Q).
   if (!(std::abs(delta) <= delta_max)) {
-    throw InvalidInput(fmt::format("delta = {} m must lie in [-delta_max, delta_max], delta_max = {} m",
-                                   core::format_value(delta), core::format_value(delta_max)));
+    throw InvalidInput(
+        fmt::format("delta = {} m must lie in [-delta_max, delta_max], delta_max = {} m",
+                    core::format_value(delta), core::format_value(delta_max)));
   }
   return Q_max() * (mindlin::loading_force_tilde(delta_max / s) -
                     2.0 * mindlin::loading_force_tilde((delta_max - delta) / (2.0 * s)));
@@ -178,7 +183,8 @@ double MindlinContact::unloading_displacement(double Q, double Q_max_reversal) c
   if (Q_max() == 0.0) {
     throw InvalidInput("the contact carries no friction force (mu P = 0): no unloading branch");
   }
-  return slip_displacement() * mindlin::unloading_displacement_tilde(Q / Q_max(), Q_max_reversal / Q_max());
+  return slip_displacement() *
+         mindlin::unloading_displacement_tilde(Q / Q_max(), Q_max_reversal / Q_max());
 }
 
 double MindlinContact::reloading_displacement(double Q, double Q_max_reversal) const {

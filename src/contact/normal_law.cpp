@@ -14,10 +14,14 @@ namespace asperity::contact {
 
 std::string_view to_string(NormalLaw law) {
   switch (law) {
-    case NormalLaw::hertz: return "hertz";
-    case NormalLaw::ceb: return "ceb";
-    case NormalLaw::ke: return "ke";
-    case NormalLaw::bke: return "bke";
+    case NormalLaw::hertz:
+      return "hertz";
+    case NormalLaw::ceb:
+      return "ceb";
+    case NormalLaw::ke:
+      return "ke";
+    case NormalLaw::bke:
+      return "bke";
   }
   return "?";
 }
@@ -48,7 +52,9 @@ BkeConstants BkeConstants::for_poisson(double nu) {
 
 namespace {
 
-void check_interference(double w) { core::require_non_negative("interference w = omega/omega_c", w); }
+void check_interference(double w) {
+  core::require_non_negative("interference w = omega/omega_c", w);
+}
 
 double bke_load(const BkeConstants& c, double w) {
   // B.4

@@ -49,7 +49,8 @@ std::vector<double> CsvTable::si_values(const CsvColumn& column, Dimension d) co
           path, column.name, column.name, dimension_name(d)));
     }
   } else {
-    factor = parse_quantity("1 " + column.unit, d, fmt::format("{}: unit of column \"{}\"", path, column.name));
+    factor = parse_quantity("1 " + column.unit, d,
+                            fmt::format("{}: unit of column \"{}\"", path, column.name));
   }
   std::vector<double> out(column.values);
   for (double& v : out) v *= factor;
@@ -71,8 +72,10 @@ CsvTable read_csv_table(const std::string& path) {
     const std::string t = trim(line);
     if (t.empty() || t[0] == '#') continue;
     if (!have_header) {
-      sep = t.find(',') != std::string::npos ? ',' : t.find(';') != std::string::npos ? ';'
-                                                   : t.find('\t') != std::string::npos ? '\t' : ',';
+      sep = t.find(',') != std::string::npos    ? ','
+            : t.find(';') != std::string::npos  ? ';'
+            : t.find('\t') != std::string::npos ? '\t'
+                                                : ',';
       for (const auto& cell : split(t, sep)) {
         CsvColumn c;
         const auto open = cell.find_first_of("[(");
@@ -80,15 +83,17 @@ CsvTable read_csv_table(const std::string& path) {
           const char close = cell[open] == '[' ? ']' : ')';
           const auto end = cell.find(close, open);
           if (end == std::string::npos) {
-            throw InvalidInput(fmt::format("{}:{}: header cell \"{}\" opens a unit but does not close it",
-                                           path, line_no, cell));
+            throw InvalidInput(
+                fmt::format("{}:{}: header cell \"{}\" opens a unit but does not close it", path,
+                            line_no, cell));
           }
           c.name = trim(cell.substr(0, open));
           c.unit = trim(cell.substr(open + 1, end - open - 1));
         } else {
           c.name = cell;
         }
-        if (c.name.empty()) throw InvalidInput(fmt::format("{}:{}: empty column name in the header", path, line_no));
+        if (c.name.empty())
+          throw InvalidInput(fmt::format("{}:{}: empty column name in the header", path, line_no));
         table.columns.push_back(std::move(c));
       }
       have_header = true;
@@ -96,8 +101,8 @@ CsvTable read_csv_table(const std::string& path) {
     }
     const auto cells = split(t, sep);
     if (cells.size() != table.columns.size()) {
-      throw InvalidInput(fmt::format("{}:{}: {} cells, but the header has {} columns", path, line_no,
-                                     cells.size(), table.columns.size()));
+      throw InvalidInput(fmt::format("{}:{}: {} cells, but the header has {} columns", path,
+                                     line_no, cells.size(), table.columns.size()));
     }
     for (std::size_t i = 0; i < cells.size(); ++i) {
       double v = 0.0;
@@ -154,7 +159,8 @@ void write_csv_table(const std::string& path, const std::vector<std::string>& he
   out << "\n";
   const std::size_t rows = columns.empty() ? 0 : columns.front().size();
   for (std::size_t r = 0; r < rows; ++r) {
-    for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << fmt::format("{:.12g}", columns[c][r]);
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      out << (c ? "," : "") << fmt::format("{:.12g}", columns[c][r]);
     out << "\n";
   }
   write_file_atomically(path, out.str());

@@ -9,7 +9,9 @@
 
 namespace asperity::core {
 
-std::string format_value(double value) { return fmt::format("{:.6g}", value); }
+std::string format_value(double value) {
+  return fmt::format("{:.6g}", value);
+}
 
 void require_finite(std::string_view field, double value) {
   if (!std::isfinite(value)) {
@@ -19,17 +21,15 @@ void require_finite(std::string_view field, double value) {
 
 void require_positive(std::string_view field, double value) {
   if (!std::isfinite(value) || value <= 0.0) {
-    throw InvalidInput(
-        fmt::format("{} = {} is not allowed: it must be a finite number > 0", field,
-                    format_value(value)));
+    throw InvalidInput(fmt::format("{} = {} is not allowed: it must be a finite number > 0", field,
+                                   format_value(value)));
   }
 }
 
 void require_non_negative(std::string_view field, double value) {
   if (!std::isfinite(value) || value < 0.0) {
-    throw InvalidInput(
-        fmt::format("{} = {} is not allowed: it must be a finite number >= 0", field,
-                    format_value(value)));
+    throw InvalidInput(fmt::format("{} = {} is not allowed: it must be a finite number >= 0", field,
+                                   format_value(value)));
   }
 }
 

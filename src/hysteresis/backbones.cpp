@@ -13,9 +13,9 @@ namespace asperity::hysteresis {
 namespace {
 
 [[noreturn]] void beyond_limit(double Q, double limit) {
-  throw InvalidInput(fmt::format(
-      "tangential force {} reaches the static friction limit {}: the contact slides",
-      core::format_value(Q), core::format_value(limit)));
+  throw InvalidInput(
+      fmt::format("tangential force {} reaches the static friction limit {}: the contact slides",
+                  core::format_value(Q), core::format_value(limit)));
 }
 
 }  // namespace
@@ -26,15 +26,21 @@ MindlinBackbone::MindlinBackbone(const contact::MindlinContact& contact) : conta
   }
 }
 
-double MindlinBackbone::force(double x) const { return contact_.loading_force(x); }
+double MindlinBackbone::force(double x) const {
+  return contact_.loading_force(x);
+}
 
 double MindlinBackbone::displacement(double Q) const {
   if (Q >= contact_.Q_max()) beyond_limit(Q, contact_.Q_max());
   return contact_.loading_displacement(Q);
 }
 
-double MindlinBackbone::limit() const { return contact_.Q_max(); }
-double MindlinBackbone::initial_stiffness() const { return contact_.stiffness(); }
+double MindlinBackbone::limit() const {
+  return contact_.Q_max();
+}
+double MindlinBackbone::initial_stiffness() const {
+  return contact_.stiffness();
+}
 
 double MindlinBackbone::integral(double x) const {
   core::require_non_negative("x", x);
@@ -52,7 +58,9 @@ JenkinsBackbone::JenkinsBackbone(double stiffness, double slip_force)
   core::require_positive("Jenkins slip force", slip_force);
 }
 
-double JenkinsBackbone::force(double x) const { return std::min(k_ * x, F_); }
+double JenkinsBackbone::force(double x) const {
+  return std::min(k_ * x, F_);
+}
 
 double JenkinsBackbone::displacement(double Q) const {
   if (Q >= F_) beyond_limit(Q, F_);
@@ -73,11 +81,15 @@ ScaledBackbone::ScaledBackbone(std::shared_ptr<const Backbone> inner, double x_s
   core::require_positive("Q_scale", Q_scale);
 }
 
-double ScaledBackbone::force(double x) const { return Q_scale_ * inner_->force(x / x_scale_); }
+double ScaledBackbone::force(double x) const {
+  return Q_scale_ * inner_->force(x / x_scale_);
+}
 double ScaledBackbone::displacement(double Q) const {
   return x_scale_ * inner_->displacement(Q / Q_scale_);
 }
-double ScaledBackbone::limit() const { return Q_scale_ * inner_->limit(); }
+double ScaledBackbone::limit() const {
+  return Q_scale_ * inner_->limit();
+}
 double ScaledBackbone::initial_stiffness() const {
   return Q_scale_ / x_scale_ * inner_->initial_stiffness();
 }

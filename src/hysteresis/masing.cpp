@@ -12,9 +12,13 @@ namespace asperity::hysteresis {
 
 namespace {
 
-double odd_force(const Backbone& b, double x) { return std::copysign(b.force(std::abs(x)), x); }
+double odd_force(const Backbone& b, double x) {
+  return std::copysign(b.force(std::abs(x)), x);
+}
 
-int sign_of(double v) { return (v > 0.0) - (v < 0.0); }
+int sign_of(double v) {
+  return (v > 0.0) - (v < 0.0);
+}
 
 }  // namespace
 
@@ -121,7 +125,9 @@ double Hysteresis::branch_displacement(std::size_t k, double Q) const {
   return r.x + r.direction * 2.0 * backbone_->displacement(half);
 }
 
-double Hysteresis::force(double x) const { return branch_force(active_branch(x), x); }
+double Hysteresis::force(double x) const {
+  return branch_force(active_branch(x), x);
+}
 
 double Hysteresis::tangent_stiffness(double x) const {
   const std::size_t k = active_branch(x);
@@ -146,8 +152,8 @@ void Hysteresis::commit_reversal(double x) {
   const std::size_t k = active_branch(x);
   const double Q = branch_force(k, x);
   move_to(k, x, Q);
-  const int current = k ? static_cast<int>(stack_[k - 1].direction)
-                        : (direction_ != 0 ? direction_ : sign_of(x));
+  const int current =
+      k ? static_cast<int>(stack_[k - 1].direction) : (direction_ != 0 ? direction_ : sign_of(x));
   if (current == 0) return;  // a reversal at the origin before any motion: nothing to remember
   if (rule_ == MemoryRule::reset_at_reversal) {
     // Eq. 7.10: u_max reset to the displacement at the reversal; the branch starts from

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <limits>
 #include <random>
 
 #include "asperity/core/csv.hpp"
@@ -113,6 +114,79 @@ double reversal_stiffness(const std::vector<double>& delta, const std::vector<do
   return 1.0 / b;
 }
 
+struct Reversal {
+  std::size_t r, end;
+  int dir;  // -1: Q decreases after the reversal (unloading), +1: reloading
+  double span;
+};
+
+// Stiffness at the reversals pooled over all of them: y = s delta, q = s (Q - Q_r)
+// (s = +-1 the direction), y = a_r + b q + c q^2 + d q^3 with one intercept a_r per
+// reversal and common b, c, d (least squares after removing each reversal's means);
+// stiffness = 1/b. Pooling is what makes the slope usable when the displacement noise
+// is comparable with the displacement over the fit window.
+double pooled_stiffness(const std::vector<double>& delta, const std::vector<double>& Q,
+                        const std::vector<double>& Qs, const std::vector<Reversal>& revs,
+                        double fraction) {
+  constexpr int P = 3;
+  double A[P][P] = {}, B[P] = {};
+  for (const auto& rv : revs) {
+    const double s = rv.dir;
+    const double Qr = Qs[rv.r];
+    std::size_t j = rv.r;
+    while (j <= rv.end && std::abs(Qs[j] - Qr) <= rv.span) ++j;
+    const std::size_t n = j - rv.r;
+    if (n < 6) continue;
+    double mx[P] = {}, my = 0.0;
+    for (std::size_t i = rv.r; i < j; ++i) {
+      const double q = s * (Q[i] - Qr);
+      double p = q;
+      for (double& v : mx) {
+        v += p / static_cast<double>(n);
+        p *= q;
+      }
+      my += s * delta[i] / static_cast<double>(n);
+    }
+    for (std::size_t i = rv.r; i < j; ++i) {
+      const double q = s * (Q[i] - Qr);
+      double x[P];
+      double p = q;
+      for (int k = 0; k < P; ++k) {
+        x[k] = p - mx[k];
+        p *= q;
+      }
+      const double y = s * delta[i] - my;
+      for (int k = 0; k < P; ++k) {
+        B[k] += x[k] * y;
+        for (int l = 0; l < P; ++l) A[k][l] += x[k] * x[l];
+      }
+    }
+  }
+  (void)fraction;
+  // Gaussian elimination with partial pivoting (3 x 3).
+  for (int k = 0; k < P; ++k) {
+    int piv = k;
+    for (int i = k + 1; i < P; ++i) {
+      if (std::abs(A[i][k]) > std::abs(A[piv][k])) piv = i;
+    }
+    if (!(std::abs(A[piv][k]) > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+    for (int l = 0; l < P; ++l) std::swap(A[k][l], A[piv][l]);
+    std::swap(B[k], B[piv]);
+    for (int i = k + 1; i < P; ++i) {
+      const double f = A[i][k] / A[k][k];
+      for (int l = k; l < P; ++l) A[i][l] -= f * A[k][l];
+      B[i] -= f * B[k];
+    }
+  }
+  double x[P];
+  for (int k = P - 1; k >= 0; --k) {
+    double v = B[k];
+    for (int l = k + 1; l < P; ++l) v -= A[k][l] * x[l];
+    x[k] = v / A[k][k];
+  }
+  return 1.0 / x[0];
+}
+
 // delta where the branch [a, b] (monotone in time) first crosses Q = level.
 double crossing(const std::vector<double>& delta, const std::vector<double>& Q, std::size_t a,
                 std::size_t b, double level) {
@@ -202,25 +276,31 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
   }
   const std::size_t n = data.t.size();
   const bool imposed = !data.Delta.empty();
-  const auto& raw = imposed ? data.Delta : data.delta;
-  const auto [lo, hi] = std::minmax_element(raw.begin(), raw.end());
-  const double range = *hi - *lo;
-  if (!(range > 0.0)) throw InvalidInput(fmt::format("{}: the displacement does not move", data.source));
-  // First pass on the raw signal: the number of turning points gives the period.
-  const auto tp0 = turning_points(raw, 0.4 * range);
-  const double spc = tp0.size() >= 2 ? 2.0 * static_cast<double>(n) / static_cast<double>(tp0.size() + 1)
+  // The period from the turning points of the force (its noise is small against its
+  // swing) or of the imposed displacement; then the displacement is smoothed over 1/50
+  // of a period and its own turning points split the cycles.
+  const auto& coarse = imposed ? data.Delta : data.Q;
+  const auto [clo, chi] = std::minmax_element(coarse.begin(), coarse.end());
+  if (!(*chi - *clo > 0.0)) throw InvalidInput(fmt::format("{}: the signals do not move", data.source));
+  const auto tp0 = turning_points(coarse, 0.4 * (*chi - *clo));
+  const double spc = tp0.size() >= 3 ? 2.0 * static_cast<double>(tp0.back().first - tp0.front().first) /
+                                           static_cast<double>(tp0.size() - 1)
                                      : static_cast<double>(n);
   std::size_t w = static_cast<std::size_t>(spc / 50.0);
   w = std::max<std::size_t>(1, w | 1U);
-  const auto s = moving_average(raw, imposed ? 1 : w);
   const auto ds = moving_average(data.delta, w);
   const auto Qs = moving_average(data.Q, w);
+  const auto& s = imposed ? data.Delta : ds;
+  const auto [lo, hi] = std::minmax_element(s.begin(), s.end());
+  const double range = *hi - *lo;
+  if (!(range > 0.0)) throw InvalidInput(fmt::format("{}: the displacement does not move", data.source));
   const auto tp = turning_points(s, 0.4 * range);
 
   FrettingAnalysis out;
   out.P = P;
   const std::size_t m = std::max<std::size_t>(opt.loop_points, 10);
   std::vector<double> acc_d(2 * m, 0.0), acc_Q(2 * m, 0.0);
+  std::vector<Reversal> reversals;
   for (std::size_t k = 0; k + 2 < tp.size(); ++k) {
     if (tp[k].second != 1) continue;
     const std::size_t a = tp[k].first, mid = tp[k + 1].first, b = tp[k + 2].first;
@@ -241,6 +321,8 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
     const double span = opt.stiffness_window * 2.0 * c.Q_max;
     c.stiffness_unloading = reversal_stiffness(data.delta, data.Q, Qs, a, mid, span);
     c.stiffness_reloading = reversal_stiffness(data.delta, data.Q, Qs, mid, b, span);
+    reversals.push_back({a, mid, -1, span});
+    reversals.push_back({mid, b, 1, span});
     c.stiffness = 0.5 * (c.stiffness_unloading + c.stiffness_reloading);
     const double x_down = crossing(ds, Qs, a, mid, c.Q_center);
     const double x_up = crossing(ds, Qs, mid, b, c.Q_center);
@@ -275,6 +357,8 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
     mean.partial_slip += c.partial_slip / nc;
   }
   out.mu = mean.Q_max / P;  // Eq. 6.1
+  mean.stiffness = pooled_stiffness(data.delta, data.Q, Qs, reversals, opt.stiffness_window);
+  mean.stiffness_unloading = mean.stiffness_reloading = mean.stiffness;
   out.loop_delta.resize(2 * m);
   out.loop_Q.resize(2 * m);
   for (std::size_t j = 0; j < 2 * m; ++j) {

@@ -114,8 +114,9 @@ std::vector<double> FastLoadingSum::critical_displacements() const {
       if (!is_max && !is_min) continue;
       const double sign = is_max ? -1.0 : 1.0;
       std::uintmax_t iters = 100;
-      const auto r = boost::math::tools::brent_find_minima(
-          [&](double u) { return sign * point(u).lambda; }, grid_u_[i - 1], grid_u_[i + 1], 52, iters);
+      const auto r =
+          boost::math::tools::brent_find_minima([&](double u) { return sign * point(u).lambda; },
+                                                grid_u_[i - 1], grid_u_[i + 1], 52, iters);
       levels.push_back(sign * r.second);
     }
   }
@@ -185,8 +186,8 @@ LoadingMoments FastLoadingSum::at(double delta_star) const {
     const double rt = std::sqrt(1.0 - t);  // (1 - t)^{1/2}
     const double gl = g_ / p.lambda;
     // h(t) = 1 - (1 - t)^{3/2}; its series for small t avoids the cancellation.
-    const double h = t < 1e-3 ? t * (1.5 - t * (0.375 + t * (0.0625 + t * 0.0234375)))
-                              : 1.0 - (1.0 - t) * rt;
+    const double h =
+        t < 1e-3 ? t * (1.5 - t * (0.375 + t * (0.0625 + t * 0.0234375))) : 1.0 - (1.0 - t) * rt;
     m.Q += weight * p.W * h;
     m.dQ += weight * p.W * 1.5 * rt * gl;
     m.d2Q += weight * p.W * (-0.75) / rt * gl * gl;

@@ -44,7 +44,7 @@ class FastLoadingSum {
   double norm_ = 0.0;
   double Q_max_ = 0.0;
   std::vector<double> law_breaks_;
-  std::vector<double> grid_u_;       // for locating slip boundaries
+  std::vector<double> grid_u_;  // for locating slip boundaries
   std::vector<double> grid_lambda_;
 };
 

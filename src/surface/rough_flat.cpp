@@ -26,8 +26,12 @@ constexpr double kMinSeparationSigmaA = -5.0;
 // delta~ = t (B.15 inverted).
 // expm1/log1p keep full relative accuracy for small t, where the asperity is far from
 // gross slip and 1 - (1 - t)^{3/2} ~ 3t/2 would cancel.
-double slip_response(double t) { return t >= 1.0 ? 1.0 : -std::expm1(1.5 * std::log1p(-t)); }
-double slip_response_slope(double t) { return t >= 1.0 ? 0.0 : 1.5 * std::sqrt(1.0 - t); }
+double slip_response(double t) {
+  return t >= 1.0 ? 1.0 : -std::expm1(1.5 * std::log1p(-t));
+}
+double slip_response_slope(double t) {
+  return t >= 1.0 ? 0.0 : 1.5 * std::sqrt(1.0 - t);
+}
 
 // Break point of an integration over u = z* - d*: `sqrt_type` marks slip boundaries,
 // where the integrand behaves like (u - u_b)^{1/2} or ^{3/2}.
@@ -167,7 +171,9 @@ class Kernel {
   std::vector<double> law_breaks_;
 };
 
-void require_separation(double d_star) { core::require_finite("separation d*", d_star); }
+void require_separation(double d_star) {
+  core::require_finite("separation d*", d_star);
+}
 
 }  // namespace
 
@@ -192,9 +198,9 @@ RoughFlat::RoughFlat(const RoughFlatParameters& params)
   prefactor_ = 2.0 * std::numbers::pi / 3.0 * params.beta * omega_c_star_;
 }
 
-RoughFlat RoughFlat::from_dimensional(const contact::Material& body1, const contact::Material& body2,
-                                      double sigma, double eta, double R, double A0,
-                                      contact::ModelName model,
+RoughFlat RoughFlat::from_dimensional(const contact::Material& body1,
+                                      const contact::Material& body2, double sigma, double eta,
+                                      double R, double A0, contact::ModelName model,
                                       const contact::FrictionParameters& friction,
                                       SlipScaling scaling) {
   core::require_positive("sigma (rms roughness)", sigma);
@@ -214,12 +220,8 @@ RoughFlat RoughFlat::from_dimensional(const contact::Material& body1, const cont
   // Plasticity index on sigma_a (SEED_NOTES.md): psi = (2E*/(pi K H)) sqrt(sigma_a/R).
   p.psi = 2.0 * pair.E_star / (std::numbers::pi * pair.K() * pair.H) * std::sqrt(s_a * sigma / R);
   RoughFlat flat(p);
-  flat.scales_ = RoughFlatScales{.sigma = sigma,
-                                 .force = pair.K() * pair.H * A0,
-                                 .A0 = A0,
-                                 .eta = eta,
-                                 .R = R,
-                                 .pair = pair};
+  flat.scales_ = RoughFlatScales{
+      .sigma = sigma, .force = pair.K() * pair.H * A0, .A0 = A0, .eta = eta, .R = R, .pair = pair};
   return flat;
 }
 
@@ -251,13 +253,15 @@ double RoughFlat::contact_fraction(double d_star) const {
   return 0.5 * std::erfc(d_star / (s_a_ * std::numbers::sqrt2));
 }
 
-double RoughFlat::max_load_star() const { return normal_load_star(kMinSeparationSigmaA * s_a_); }
+double RoughFlat::max_load_star() const {
+  return normal_load_star(kMinSeparationSigmaA * s_a_);
+}
 
 double RoughFlat::separation_star(double P_star) const {
   if (!std::isfinite(P_star) || P_star < 1e-12) {
-    throw InvalidInput(fmt::format(
-        "normalized preload P* = P/(K H A0) = {} is not allowed: it must be >= 1e-12",
-        core::format_value(P_star)));
+    throw InvalidInput(
+        fmt::format("normalized preload P* = P/(K H A0) = {} is not allowed: it must be >= 1e-12",
+                    core::format_value(P_star)));
   }
   const double d_min = kMinSeparationSigmaA * s_a_;
   const double P_max = normal_load_star(d_min);
@@ -295,8 +299,8 @@ double RoughFlat::loading_force_star(double delta_star, double d_star) const {
   const Kernel k(*this, d_star);
   const double c = 4.0 * params_.G_over_E * delta_star;
   // Eq. 4.9-4.10 with the erratum: full slip (Q = mu P) where delta~ = c/lambda >= 1.
-  return k.tangential_sum(prefactor_, [&](double lam) { return slip_response(c / lam); },
-                          k.slip_boundaries(c));
+  return k.tangential_sum(
+      prefactor_, [&](double lam) { return slip_response(c / lam); }, k.slip_boundaries(c));
 }
 
 double RoughFlat::loading_stiffness_star(double delta_star, double d_star) const {
@@ -310,7 +314,9 @@ double RoughFlat::loading_stiffness_star(double delta_star, double d_star) const
       k.slip_boundaries(c));
 }
 
-double RoughFlat::stiffness_star(double d_star) const { return loading_stiffness_star(0.0, d_star); }
+double RoughFlat::stiffness_star(double d_star) const {
+  return loading_stiffness_star(0.0, d_star);
+}
 
 double RoughFlat::unloading_force_star(double delta_star, double delta_max_star,
                                        double d_star) const {
@@ -318,7 +324,8 @@ double RoughFlat::unloading_force_star(double delta_star, double delta_max_star,
   require_separation(d_star);
   if (!(std::abs(delta_star) <= delta_max_star)) {
     throw InvalidInput(fmt::format("delta* = {} must lie in [-delta*_max, delta*_max] = [-{}, {}]",
-                                   core::format_value(delta_star), core::format_value(delta_max_star),
+                                   core::format_value(delta_star),
+                                   core::format_value(delta_max_star),
                                    core::format_value(delta_max_star)));
   }
   const Kernel k(*this, d_star);

@@ -50,8 +50,9 @@ RoughFlatBackbone::RoughFlatBackbone(const RoughFlat& flat, double d_star, doubl
     : d_star_(d_star) {
   core::require_finite("separation d*", d_star);
   if (!(rel_tol >= 1e-12 && rel_tol <= 1e-3)) {
-    throw InvalidInput(fmt::format("table tolerance {} is not allowed: it must lie in [1e-12, 1e-3]",
-                                   core::format_value(rel_tol)));
+    throw InvalidInput(
+        fmt::format("table tolerance {} is not allowed: it must lie in [1e-12, 1e-3]",
+                    core::format_value(rel_tol)));
   }
   const detail::FastLoadingSum sum(flat, d_star);
   Q_max_ = sum.static_friction();
@@ -107,8 +108,8 @@ RoughFlatBackbone::RoughFlatBackbone(const RoughFlat& flat, double d_star, doubl
     const double b = knots[k + 1];
     const bool knot_a = k > 0;
     const bool knot_b = k + 2 < knots.size();
-    std::size_t n = std::max<std::size_t>(4, kInitialIntervals * static_cast<std::size_t>(
-                                                 std::ceil((b - a) / s_end * 4.0)) / 4);
+    std::size_t n = std::max<std::size_t>(
+        4, kInitialIntervals * static_cast<std::size_t>(std::ceil((b - a) / s_end * 4.0)) / 4);
     auto node_s = [&](std::size_t i, std::size_t count) {
       const double s = a + (b - a) * static_cast<double>(i) / static_cast<double>(count);
       if (i == 0 && knot_a) return s * (1.0 + kInside);
@@ -166,9 +167,8 @@ double RoughFlatBackbone::partial_integral(const Segment& seg, std::size_t i, do
   // Q dx = s^2 G(s) 2 s ds: degree 8 in s on an interval; 5-point Gauss-Legendre is exact.
   static constexpr double kNodes[5] = {0.0469100770306680, 0.2307653449471585, 0.5,
                                        0.7692346550528415, 0.9530899229693320};
-  static constexpr double kWeights[5] = {0.1184634425280945, 0.2393143352496832,
-                                         0.2844444444444444, 0.2393143352496832,
-                                         0.1184634425280945};
+  static constexpr double kWeights[5] = {0.1184634425280945, 0.2393143352496832, 0.2844444444444444,
+                                         0.2393143352496832, 0.1184634425280945};
   const double* c = &coef_[6 * (seg.offset + i)];
   double acc = 0.0;
   for (int q = 0; q < 5; ++q) {
@@ -210,7 +210,12 @@ double RoughFlatBackbone::displacement(double Q_star) const {
   for (const auto& seg : segments_) {
     for (std::size_t i = 0; i < seg.n; ++i) {
       const double s = seg.s0 + seg.h * static_cast<double>(i);
-      if (s * s * coef_[6 * (seg.offset + i)] <= Q_star) lo = s; else { hi = std::min(hi, s); break; }
+      if (s * s * coef_[6 * (seg.offset + i)] <= Q_star)
+        lo = s;
+      else {
+        hi = std::min(hi, s);
+        break;
+      }
     }
     if (hi < std::sqrt(x_end_) * (1.0 - 1e-15)) break;
   }

@@ -20,13 +20,11 @@
 namespace asperity::contact {
 namespace {
 
-using asperity::testing::rel;
 using asperity::testing::invalid_input_message;
+using asperity::testing::rel;
 
 constexpr double kNu = 0.3;
 constexpr double kHand = 1e-13;
-
-
 
 TEST(FrictionLaw, CfcIsConstantB10) {
   const FrictionParameters params{.mu_cfc = 0.284};

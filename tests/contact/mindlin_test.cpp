@@ -36,7 +36,6 @@ MindlinContact contact() {
   return MindlinContact(kMu, kP, kGStar, kA);
 }
 
-
 // Displacement amplitudes in units of the slip displacement: partial slip from tiny to
 // the onset of gross slip, then gross slip.
 const std::vector<double> kAmplitudes{1e-3, 0.01, 0.05,  0.1, 0.2,   0.25, 0.3, 0.5, 0.75,

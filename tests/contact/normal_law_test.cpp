@@ -21,16 +21,14 @@
 namespace asperity::contact {
 namespace {
 
-using asperity::testing::rel;
 using asperity::testing::invalid_input_message;
+using asperity::testing::rel;
 
 constexpr double kNu = 0.3;
 constexpr double kHand = 1e-14;     // same formula, different rounding order
 constexpr double kInverse = 1e-12;  // required accuracy of the inverse laws
 
 constexpr NormalLaw kLaws[] = {NormalLaw::hertz, NormalLaw::ceb, NormalLaw::ke, NormalLaw::bke};
-
-
 
 TEST(NormalLaw, BkeConstantsForNu03) {
   // Constants under B.9 at nu = 0.3, by hand.

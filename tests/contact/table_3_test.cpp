@@ -28,7 +28,6 @@ ContactPair nano_pair() {
   return ContactPair::combine(sphere, flat, 1.55e-6);
 }
 
-
 TEST(Table31, CombinedProperties) {
   const auto p = micro_pair();
   // Table 3.1 "Combined" row, printed to 3-4 digits.
@@ -91,10 +90,11 @@ TEST_P(Table32, OwnNormalLawStaysClose) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(MicroScale, Table32,
-                         ::testing::Values(Table32Row{35.0, 0.374, {0.284, 0.528, 0.858, 1.444}, 16.17e6},
-                                           Table32Row{23.0, 0.283, {0.284, 0.626, 0.992, 1.639}, 14.06e6}),
-                         [](const auto& param_info) { return param_info.index == 0 ? "Exp1_35N" : "Exp2_23N"; });
+INSTANTIATE_TEST_SUITE_P(
+    MicroScale, Table32,
+    ::testing::Values(Table32Row{35.0, 0.374, {0.284, 0.528, 0.858, 1.444}, 16.17e6},
+                      Table32Row{23.0, 0.283, {0.284, 0.626, 0.992, 1.639}, 14.06e6}),
+    [](const auto& param_info) { return param_info.index == 0 ? "Exp1_35N" : "Exp2_23N"; });
 
 TEST(Table33, CriticalValues) {
   // Section 3.5 text: omega_c = 12.67 nm, a_c = 0.14 um, P_c = 105.9 uN.
@@ -120,7 +120,8 @@ TEST(Table34, NanoScaleFrictionCoefficients) {
     const auto hertz = PartialSlipModel::from_load(pair, ModelName::cfc, row.P, params);
     EXPECT_LT(rel(hertz.omega_star(), row.omega_star), 5e-2) << hertz.omega_star();
     for (std::size_t i = 0; i < kAllModels.size(); ++i) {
-      const auto m = PartialSlipModel::from_interference_star(pair, kAllModels[i], row.omega_star, params);
+      const auto m =
+          PartialSlipModel::from_interference_star(pair, kAllModels[i], row.omega_star, params);
       EXPECT_LT(rel(m.mu(), row.mu[i]), 5e-2) << to_string(kAllModels[i]) << " mu = " << m.mu();
     }
   }

@@ -22,7 +22,6 @@ using asperity::testing::rel;
 
 using std::numbers::pi;
 
-
 TEST(Integrate, GaussKronrodPolynomialAndTranscendental) {
   // int_0^2 x^3 dx = 4; int_0^pi sin = 2; int_0^1 e^x = e - 1.
   EXPECT_LT(rel(integrate([](double x) { return x * x * x; }, 0.0, 2.0).value, 4.0), 1e-14);

@@ -30,7 +30,6 @@ void expect_quantity(const std::string& text, double value, Dimension d) {
   EXPECT_EQ(q.dimension, d) << text << " -> " << dimension_name(q.dimension);
 }
 
-
 TEST(Units, SiPrefixesOnPressureLengthForce) {
   expect_quantity("207 GPa", 207e9, dim::pressure);
   expect_quantity("207GPa", 207e9, dim::pressure);

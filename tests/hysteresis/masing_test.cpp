@@ -15,7 +15,9 @@ namespace asperity::hysteresis {
 namespace {
 
 // Micro-scale experiment 1 of Table 3.2 with CEB's mu: any Mindlin contact will do.
-contact::MindlinContact mindlin() { return contact::MindlinContact(0.528, 35.0, 24.32e9, 83.25e-6); }
+contact::MindlinContact mindlin() {
+  return contact::MindlinContact(0.528, 35.0, 24.32e9, 83.25e-6);
+}
 
 std::shared_ptr<const Backbone> mindlin_backbone() {
   return std::make_shared<MindlinBackbone>(mindlin());
@@ -34,7 +36,8 @@ TEST(Masing, SymmetricCycleEqualsMindlinDeresiewicz) {
   const auto c = mindlin();
   const double dm = 0.6 * c.slip_displacement();
   Hysteresis h(mindlin_backbone());
-  for (double x : segment(0.0, dm, 50)) EXPECT_NEAR(h.update(x), c.loading_force(x), 1e-12 * c.Q_max());
+  for (double x : segment(0.0, dm, 50))
+    EXPECT_NEAR(h.update(x), c.loading_force(x), 1e-12 * c.Q_max());
   for (double x : segment(dm, -dm, 100)) {
     EXPECT_NEAR(h.update(x), c.unloading_force(x, dm), 1e-12 * c.Q_max());
   }
@@ -163,8 +166,8 @@ TEST_P(MasingProperties, HoldOnRandomHistories) {
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   std::shared_ptr<const Backbone> bb;
   if (GetParam() % 2 == 0) {
-    bb = std::make_shared<MindlinBackbone>(
-        contact::MindlinContact(0.1 + uni(rng), 1.0 + 100.0 * uni(rng), 1e10, 1e-5 * (1 + uni(rng))));
+    bb = std::make_shared<MindlinBackbone>(contact::MindlinContact(
+        0.1 + uni(rng), 1.0 + 100.0 * uni(rng), 1e10, 1e-5 * (1 + uni(rng))));
   } else {
     bb = std::make_shared<JenkinsBackbone>(1e6 * (1 + uni(rng)), 1.0 + uni(rng));
   }
@@ -192,7 +195,7 @@ TEST_P(MasingProperties, HoldOnRandomHistories) {
   for (std::size_t i = 0; i < xs.size(); ++i) {
     ASSERT_LE(std::abs(Q[i]), bb->limit() * (1 + 1e-12));
     ASSERT_EQ(Qn[i], -Q[i]);  // odd response
-    if (i > 0) {  // Lipschitz with the initial stiffness: no jumps
+    if (i > 0) {              // Lipschitz with the initial stiffness: no jumps
       ASSERT_LE(std::abs(Q[i] - Q[i - 1]), k0 * std::abs(xs[i] - xs[i - 1]) * (1 + 1e-9) + 1e-12);
     }
   }
@@ -201,7 +204,8 @@ TEST_P(MasingProperties, HoldOnRandomHistories) {
   const std::size_t n = xs.size();
   auto cycle_work = [&](std::size_t begin, std::size_t end) {
     double w = 0.0;
-    for (std::size_t i = begin + 1; i <= end; ++i) w += 0.5 * (Q[i] + Q[i - 1]) * (xs[i] - xs[i - 1]);
+    for (std::size_t i = begin + 1; i <= end; ++i)
+      w += 0.5 * (Q[i] + Q[i - 1]) * (xs[i] - xs[i - 1]);
     return w;
   };
   const double last = cycle_work(n - 4001, n - 1);

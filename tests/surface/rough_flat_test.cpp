@@ -21,7 +21,6 @@ using asperity::testing::rel;
 
 using contact::ModelName;
 
-
 // Fig. 4.4: beta = 0.04, psi = 0.5, nu = 0.3, identical materials (G*/E* =
 // (1 - nu)/(2 (2 - nu)) = 0.2059), mu_cfc = 0.3 (section 4.3), P* = 0.001.
 RoughFlat fig44(ModelName m) {
@@ -67,8 +66,8 @@ TEST(RoughFlatChapter5, BkeFrictionCoefficientsWithinFivePercent) {
   // 234/331/526/721 N: 0.354/0.334/0.335/0.347. Ours: 0.349/0.347/0.343/0.340 (the thesis's
   // values are not monotone in P; ours fall slowly with P).
   const contact::Material steel{.E = 200e9, .nu = 0.24, .G = 80.7e9, .H = 5.8e9};
-  const auto flat = RoughFlat::from_dimensional(steel, steel, 2.677e-6, 2.91e-4 * 1e12,
-                                                30.14e-6, 170e-6, ModelName::bke);
+  const auto flat = RoughFlat::from_dimensional(steel, steel, 2.677e-6, 2.91e-4 * 1e12, 30.14e-6,
+                                                170e-6, ModelName::bke);
   // Section 5.3: psi = 4.725 for the combined as-machined surfaces (ours on sigma_a).
   EXPECT_LT(rel(flat.parameters().psi, 4.725), 5e-3);
   const double P[] = {234.0, 331.0, 526.0, 721.0};
@@ -233,18 +232,17 @@ TEST(RoughFlat, ContactAreaAndCount) {
   const double s = flat.sigma_a_over_sigma();
   const double wc = flat.omega_c_star();
   auto phi = [&](double z) { return std::exp(-0.5 * z * z / (s * s)) / (std::sqrt(2 * M_PI) * s); };
-  const double area = M_PI * 0.04 * wc *
-                      core::integrate([&](double z) { return (z - d) / wc * phi(z); }, d, d + 20 * s,
-                                      1e-13)
-                          .value;
+  const double area =
+      M_PI * 0.04 * wc *
+      core::integrate([&](double z) { return (z - d) / wc * phi(z); }, d, d + 20 * s, 1e-13).value;
   EXPECT_LT(rel(flat.contact_area_ratio(d), area), 1e-10);
   EXPECT_LT(flat.contact_area_ratio(d), 1.0);
 }
 
 TEST(RoughFlat, BadInputIsRejectedWithTheFieldName) {
   auto make = [](double beta, double psi) {
-    return RoughFlat(RoughFlatParameters{.model = ModelName::bke, .beta = beta, .psi = psi,
-                                         .nu = 0.3, .G_over_E = 0.2});
+    return RoughFlat(RoughFlatParameters{
+        .model = ModelName::bke, .beta = beta, .psi = psi, .nu = 0.3, .G_over_E = 0.2});
   };
   try {
     (void)make(0.019, 0.5);
@@ -268,8 +266,8 @@ namespace {
 TEST(RoughFlatThreads, ConstEvaluationIsThreadSafe) {
   // One RoughFlat and one table shared by four threads: every thread's batch history
   // through its own Hysteresis copy, and the const quadratures, give the serial results.
-  const RoughFlat flat(RoughFlatParameters{.model = contact::ModelName::ke, .beta = 0.04,
-                                           .psi = 0.8, .nu = 0.3, .G_over_E = 0.7 / 3.4});
+  const RoughFlat flat(RoughFlatParameters{
+      .model = contact::ModelName::ke, .beta = 0.04, .psi = 0.8, .nu = 0.3, .G_over_E = 0.7 / 3.4});
   const double d = flat.separation_star(2e-3);
   const auto table = flat.backbone(d);
   std::vector<double> xs;

@@ -14,8 +14,8 @@
 namespace asperity::contact {
 
 enum class ModelName { cfc, ceb, ke, bke };
-inline constexpr std::array<ModelName, 4> kAllModels{ModelName::cfc, ModelName::ceb,
-                                                     ModelName::ke, ModelName::bke};
+inline constexpr std::array<ModelName, 4> kAllModels{ModelName::cfc, ModelName::ceb, ModelName::ke,
+                                                     ModelName::bke};
 
 [[nodiscard]] std::string_view to_string(ModelName m);
 /// "cfc", "ceb", "ke" or "bke"; throws InvalidInput listing the allowed names.
@@ -32,9 +32,9 @@ class AsperityLaws {
   [[nodiscard]] ModelName model() const { return model_; }
   [[nodiscard]] double nu() const { return nu_; }
   [[nodiscard]] const FrictionParameters& friction_parameters() const { return params_; }
-  [[nodiscard]] double load_star(double w) const;        ///< P/P_c (B.1-B.4)
-  [[nodiscard]] double radius_star(double w) const;      ///< a/a_c (B.5-B.8)
-  [[nodiscard]] double mu(double w) const;               ///< B.10-B.13
+  [[nodiscard]] double load_star(double w) const;               ///< P/P_c (B.1-B.4)
+  [[nodiscard]] double radius_star(double w) const;             ///< a/a_c (B.5-B.8)
+  [[nodiscard]] double mu(double w) const;                      ///< B.10-B.13
   [[nodiscard]] double interference_star(double P_star) const;  ///< inverse of load_star
   /// Interferences w where the laws switch branch (kinks or jumps of P, a or mu):
   /// CEB 1; KE 1, 6, 6.2, 110; BKE delta_c; none for CFC/Hertz. Quadratures split here.
@@ -69,8 +69,8 @@ class PartialSlipModel {
   [[nodiscard]] double a() const { return a_; }                                   ///< [m]
   [[nodiscard]] double P() const { return P_; }                                   ///< [N]
   [[nodiscard]] double mu() const { return contact_.mu(); }
-  [[nodiscard]] double Q_max() const { return contact_.Q_max(); }          ///< mu P [N]
-  [[nodiscard]] double K_T() const { return contact_.stiffness(); }         ///< 8 G* a [N/m]
+  [[nodiscard]] double Q_max() const { return contact_.Q_max(); }    ///< mu P [N]
+  [[nodiscard]] double K_T() const { return contact_.stiffness(); }  ///< 8 G* a [N/m]
   [[nodiscard]] const MindlinContact& contact() const { return contact_; }
 
   /// Thesis normalization of section 3.3: delta* = 16 G* a_c delta/(3 P_c),

@@ -35,8 +35,8 @@ Integral integrate(F f, double a, double b, double rel_tol = 1e-12, unsigned max
   const double value = boost::math::quadrature::gauss_kronrod<double, 15>::integrate(
       f, a, b, max_depth, rel_tol, &error);
   if (!std::isfinite(value)) {
-    throw NumericalError(fmt::format("{}: Gauss-Kronrod on [{}, {}] gave a non-finite value", what,
-                                     a, b));
+    throw NumericalError(
+        fmt::format("{}: Gauss-Kronrod on [{}, {}] gave a non-finite value", what, a, b));
   }
   return {value, error};
 }
@@ -55,8 +55,8 @@ Integral integrate_tanh_sinh(F f, double a, double b, double rel_tol = 1e-12,
   // lazily refined abscissa tables per thread.
   thread_local boost::math::quadrature::tanh_sinh<double> integrator(15);
   if (!std::isfinite(a) || !std::isfinite(b)) {
-    throw NumericalError(fmt::format("{}: tanh-sinh needs a finite interval, got [{}, {}]", what,
-                                     a, b));
+    throw NumericalError(
+        fmt::format("{}: tanh-sinh needs a finite interval, got [{}, {}]", what, a, b));
   }
   // Boost 1.74's one-argument tanh_sinh has a missing `else` for a left end with
   // |a| >= 0.5: the accurate abscissa a - diff*zc is overwritten by avg + diff*z, which
@@ -74,8 +74,8 @@ Integral integrate_tanh_sinh(F f, double a, double b, double rel_tol = 1e-12,
   double l1 = 0.0;
   const double value = integrator.integrate(inside, a - origin, b - origin, rel_tol, &error, &l1);
   if (!std::isfinite(value)) {
-    throw NumericalError(fmt::format("{}: tanh-sinh on [{}, {}] gave a non-finite value", what, a,
-                                     b));
+    throw NumericalError(
+        fmt::format("{}: tanh-sinh on [{}, {}] gave a non-finite value", what, a, b));
   }
   return {value, error * std::max(1.0, l1)};
 }

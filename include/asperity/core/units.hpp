@@ -25,7 +25,7 @@ inline constexpr Dimension frequency{0, 0, -1};
 inline constexpr Dimension mass{0, 1, 0};
 inline constexpr Dimension force{1, 1, -2};
 inline constexpr Dimension pressure{-1, 1, -2};
-inline constexpr Dimension energy{2, 1, -2};  ///< also torque (N*m)
+inline constexpr Dimension energy{2, 1, -2};     ///< also torque (N*m)
 inline constexpr Dimension stiffness{0, 1, -2};  ///< N/m
 inline constexpr Dimension velocity{1, 0, -1};
 }  // namespace dim

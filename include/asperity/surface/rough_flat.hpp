@@ -124,10 +124,10 @@ class RoughFlat {
 /// once: Q_l = delta* G(sqrt(delta*)) with G a quintic Hermite interpolant, uniform in
 /// s = sqrt(delta*) on segments between knots placed where Q_l is less smooth (a slip
 /// boundary crossing a jump or extremum of the asperities' slip length); node values and
-/// first and second derivatives come from one fixed-rule quadrature pass per node. The grid is refined until the interpolant matches the
-/// quadrature at every interval midpoint to `rel_tol` (the verified error bound);
-/// beyond the table's end Q_l equals Q_max to < 1e-12 relative. Evaluation costs a
-/// square root and a quintic: as cheap as a regularized Coulomb law.
+/// first and second derivatives come from one fixed-rule quadrature pass per node. The grid is
+/// refined until the interpolant matches the quadrature at every interval midpoint to `rel_tol`
+/// (the verified error bound); beyond the table's end Q_l equals Q_max to < 1e-12 relative.
+/// Evaluation costs a square root and a quintic: as cheap as a regularized Coulomb law.
 class RoughFlatBackbone final : public hysteresis::Backbone {
  public:
   RoughFlatBackbone(const RoughFlat& flat, double d_star, double rel_tol = 1e-9);
