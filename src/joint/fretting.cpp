@@ -294,7 +294,16 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
   const auto [lo, hi] = std::minmax_element(s.begin(), s.end());
   const double range = *hi - *lo;
   if (!(range > 0.0)) throw InvalidInput(fmt::format("{}: the displacement does not move", data.source));
-  const auto tp = turning_points(s, 0.4 * range);
+  // Threshold: 0.4 of the median swing of s between the coarse turning points (the
+  // cycles may be much smaller than the whole record's range, e.g. after a ramp).
+  double h = 0.4 * range;
+  if (tp0.size() >= 3) {
+    std::vector<double> swings;
+    for (std::size_t k = 1; k < tp0.size(); ++k) swings.push_back(std::abs(s[tp0[k].first] - s[tp0[k - 1].first]));
+    std::nth_element(swings.begin(), swings.begin() + static_cast<std::ptrdiff_t>(swings.size() / 2), swings.end());
+    h = std::min(h, 0.4 * swings[swings.size() / 2]);
+  }
+  const auto tp = turning_points(s, h);
 
   FrettingAnalysis out;
   out.P = P;
