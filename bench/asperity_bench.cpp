@@ -72,8 +72,9 @@ class QuadratureBackbone final : public hysteresis::Backbone {
   double k0_;
 };
 
-void BM_RoughFlatForce(benchmark::State& state) {
-  hysteresis::Hysteresis h(flat().backbone(separation()));
+// One history sample per iteration through the Masing engine.
+void run_history(benchmark::State& state, std::shared_ptr<const hysteresis::Backbone> backbone) {
+  hysteresis::Hysteresis h(std::move(backbone));
   const auto& xs = history();
   std::size_t i = 0;
   double sink = 0.0;
@@ -83,18 +84,14 @@ void BM_RoughFlatForce(benchmark::State& state) {
   }
   benchmark::DoNotOptimize(sink);
 }
+
+void BM_RoughFlatForce(benchmark::State& state) {
+  run_history(state, flat().backbone(separation()));
+}
 BENCHMARK(BM_RoughFlatForce);
 
 void BM_RoughFlatForceQuadrature(benchmark::State& state) {
-  hysteresis::Hysteresis h(std::make_shared<QuadratureBackbone>(flat(), separation()));
-  const auto& xs = history();
-  std::size_t i = 0;
-  double sink = 0.0;
-  for (auto _ : state) {
-    sink += h.update(xs[i]);
-    i = (i + 1) & (xs.size() - 1);
-  }
-  benchmark::DoNotOptimize(sink);
+  run_history(state, std::make_shared<QuadratureBackbone>(flat(), separation()));
 }
 BENCHMARK(BM_RoughFlatForceQuadrature)->MinTime(0.5);
 
