@@ -248,14 +248,22 @@ std::unique_ptr<FrictionModel> joint_friction(const std::string& path, const std
   const auto dir = std::filesystem::path(path).parent_path();
   const joint::JointCase jc =
       joint::parse_case(joint_text(file_text, *root.get("dynamics")), path, dir.empty() ? "." : dir.string());
+  // [load] is there: joint::parse_case requires it.
+  const auto load_line = root.get("load")->source().begin.line;
   if (jc.preloads.size() != 1) {
     throw InvalidInput(fmt::format(
-        "{}: load: `asperity dynamics` runs one preload; the [load] table gives {} (a sweep): keep one",
-        path, jc.preloads.size()));
+        "{}:{}: load: `asperity dynamics` runs one preload; the [load] table gives {} (a sweep): keep one",
+        path, load_line, jc.preloads.size()));
   }
   const double P = jc.preloads.front();
   const auto flat = jc.rough_flat();
-  const joint::LoadPrediction lp = joint::predict_load(flat, P, {});
+  const joint::LoadPrediction lp = [&] {
+    try {
+      return joint::predict_load(flat, P, {});
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("{}:{}: load: {}", path, load_line, e.what()));
+    }
+  }();
   const double kA = *s.k * *s.A;
   Json j;
   j["name"] = jc.name;
