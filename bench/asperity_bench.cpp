@@ -148,6 +148,21 @@ int main(int argc, char** argv) {
   if (build > 0)
     std::printf("  table build                              = %6.2f ms (target < 5)\n",
                 build * 1e3);
+  // Issue 6: the physics-based law inside time integration at most 3x tanh-Coulomb
+  // (bench/dynamics_bench.cpp: 1000 periods of the harmonic base motion, same options).
+  const double dyn_tanh = get("BM_DynamicsHarmonic1000TanhCoulomb");
+  const double dyn_phys = get("BM_DynamicsHarmonic1000Physics");
+  if (dyn_tanh > 0 && dyn_phys > 0) {
+    std::printf(
+        "  Dynamics physics-based / tanh-Coulomb (1000 harmonic cycles) = %6.2f   (target <= 3)\n",
+        dyn_phys / dyn_tanh);
+  }
+  const double dyn_tanh23 = get("BM_DynamicsHarmonic1000TanhCoulomb_BS23");
+  const double dyn_phys23 = get("BM_DynamicsHarmonic1000Physics_BS23");
+  if (dyn_tanh23 > 0 && dyn_phys23 > 0) {
+    std::printf("  Dynamics physics-based / tanh-Coulomb (1000 harmonic cycles, BS23) = %6.2f\n",
+                dyn_phys23 / dyn_tanh23);
+  }
   for (const auto& [name, seconds] : t) {
     if (name.rfind("BM_Dynamics", 0) == 0) std::printf("  %s: %.3g s\n", name.c_str(), seconds);
   }

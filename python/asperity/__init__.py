@@ -37,6 +37,7 @@ import sys as _sys
 from . import _core
 from ._core import *  # noqa: F401,F403
 from ._core import mindlin
+from . import joints  # noqa: F401  (matplotlib helpers for predict / analyze_fretting)
 
 # `import asperity.mindlin` works like a submodule of the package.
 _sys.modules[__name__ + ".mindlin"] = mindlin

@@ -20,6 +20,8 @@ void bind_surface(nb::module_& m);
 void bind_hysteresis(nb::module_& m);
 /// surface/rough_flat: the Greenwood-Williamson rough flat and its tabulated backbone.
 void bind_rough_flat(nb::module_& m);
+/// joint/: case files, predictions, fretting analysis, synthetic experiments, validation.
+void bind_joint(nb::module_& m);
 /// dynamics/: friction models, the single-DOF system of Eq. 7.1, simulate, analysis.
 void bind_dynamics(nb::module_& m);
 

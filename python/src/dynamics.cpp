@@ -41,8 +41,9 @@ using Array1 = nb::ndarray<const double, nb::ndim<1>, nb::c_contig>;
 hysteresis::MemoryRule parse_memory(const std::string& name) {
   if (name == "masing") return hysteresis::MemoryRule::masing;
   if (name == "reset_at_reversal") return hysteresis::MemoryRule::reset_at_reversal;
-  throw InvalidInput("memory rule \"" + name +
-                     "\" is unknown: allowed are masing (default) and reset_at_reversal (Eq. 7.10)");
+  throw InvalidInput(
+      "memory rule \"" + name +
+      "\" is unknown: allowed are masing (default) and reset_at_reversal (Eq. 7.10)");
 }
 
 // A 1-D numpy bool array holding a copy of `v`.
@@ -89,7 +90,8 @@ void bind_dynamics(nb::module_& m) {
             const std::size_t n = f.internal_states();
             if (n == 0) {
               if (!z.is_none()) {
-                throw InvalidInput("friction model \"" + f.name() + "\" has no internal state: omit z");
+                throw InvalidInput("friction model \"" + f.name() +
+                                   "\" has no internal state: omit z");
               }
               return vectorize([&f](double a, double b) { return f.force(a, b, {}); }, u, v);
             }
@@ -125,13 +127,14 @@ void bind_dynamics(nb::module_& m) {
            "An event: the motion reverses at u (v = 0); commits the memory.")
       .def("reset", &FrictionModel::reset, "Back to the virgin state.")
       .def("copy", &FrictionModel::clone, "A copy with the same parameters and committed state.")
-      .def("__repr__", [](const FrictionModel& f) { return "<asperity.FrictionModel " + f.name() + ">"; });
+      .def("__repr__",
+           [](const FrictionModel& f) { return "<asperity.FrictionModel " + f.name() + ">"; });
 
-  nb::class_<NoFriction, FrictionModel>(m, "NoFriction", "No friction: F_s = 0.")
-      .def(nb::init<>());
+  nb::class_<NoFriction, FrictionModel>(m, "NoFriction", "No friction: F_s = 0.").def(nb::init<>());
 
   nb::class_<RegularizedCoulomb, FrictionModel>(
-      m, "RegularizedCoulomb", "Regularized Coulomb friction F_s = F_max tanh(k_tan v) (Eq. 7.2-7.3).")
+      m, "RegularizedCoulomb",
+      "Regularized Coulomb friction F_s = F_max tanh(k_tan v) (Eq. 7.2-7.3).")
       .def(
           "__init__",
           [](RegularizedCoulomb* self, double F_max, double k_tan) {
@@ -212,8 +215,15 @@ void bind_dynamics(nb::module_& m) {
           [](EpbContact* self, double E_star, double G_star, double H, double nu, double sigma,
              double R, double eta, double A0, double P, const std::string& model, double mu_cfc,
              double zeta) {
-            new (self) EpbContact{.E_star = E_star, .G_star = G_star, .H = H, .nu = nu,
-                                  .sigma = sigma, .R = R, .eta = eta, .A0 = A0, .P = P,
+            new (self) EpbContact{.E_star = E_star,
+                                  .G_star = G_star,
+                                  .H = H,
+                                  .nu = nu,
+                                  .sigma = sigma,
+                                  .R = R,
+                                  .eta = eta,
+                                  .A0 = A0,
+                                  .P = P,
                                   .model = contact::parse_model_name(model),
                                   .friction = {.mu_cfc = mu_cfc, .zeta = zeta}};
           },
@@ -234,7 +244,8 @@ void bind_dynamics(nb::module_& m) {
           [](EpbContact& c, const std::string& s) { c.model = contact::parse_model_name(s); })
       .def("validate", &EpbContact::validate);
   m.def("table_7_2_rough", &table_7_2_rough, "Table 7.2's rough contact (A0 and P left to set).");
-  m.def("table_7_2_smooth", &table_7_2_smooth, "Table 7.2's smooth contact (A0 and P left to set).");
+  m.def("table_7_2_smooth", &table_7_2_smooth,
+        "Table 7.2's smooth contact (A0 and P left to set).");
   m.def("epb_backbone", &epb_backbone, "contact"_a,
         "The rough flat's virgin loading curve Q(delta) in SI units [N over m] (section 7.3).");
 
@@ -269,7 +280,9 @@ void bind_dynamics(nb::module_& m) {
           },
           "alpha"_a = 1.0)
       .def_ro("alpha", &RampExcitation::alpha)
-      .def("__repr__", [](const RampExcitation& e) { return fmt::format("RampExcitation(alpha={})", e.alpha); });
+      .def("__repr__", [](const RampExcitation& e) {
+        return fmt::format("RampExcitation(alpha={})", e.alpha);
+      });
   nb::class_<HarmonicExcitation>(
       m, "HarmonicExcitation",
       "Harmonic y = amplitude sin(2 pi frequency tau), frequency = sqrt(m/k) f (Table 7.1).")
@@ -284,7 +297,8 @@ void bind_dynamics(nb::module_& m) {
       .def_ro("frequency", &HarmonicExcitation::frequency)
       .def_ro("amplitude", &HarmonicExcitation::amplitude)
       .def("__repr__", [](const HarmonicExcitation& e) {
-        return fmt::format("HarmonicExcitation(frequency={}, amplitude={})", e.frequency, e.amplitude);
+        return fmt::format("HarmonicExcitation(frequency={}, amplitude={})", e.frequency,
+                           e.amplitude);
       });
 
   m.def(
@@ -323,7 +337,8 @@ void bind_dynamics(nb::module_& m) {
           [](const DimensionalScales& s, double F_max, double k_tan) {
             return RegularizedCoulomb(s.coulomb(F_max, k_tan));
           },
-          "F_max"_a, "k_tan"_a, "Regularized Coulomb model from F_max [N] and k_tan [s/m] (Eq. 7.3).")
+          "F_max"_a, "k_tan"_a,
+          "Regularized Coulomb model from F_max [N] and k_tan [s/m] (Eq. 7.3).")
       .def(
           "dankowicz",
           [](const DimensionalScales& s, double F_max, double delta) {
@@ -336,10 +351,10 @@ void bind_dynamics(nb::module_& m) {
       m, "Trajectory",
       "A recorded time history of Eq. 7.1 in non-dimensional variables. Arrays are read-only "
       "views owned by this object (np.array(...) copies). Energies are per unit k A^2.");
-#define ASPERITY_TRAJECTORY_ARRAY(field, doc)                                                   \
-  traj.def_prop_ro(                                                                              \
-      #field, [](const Trajectory& t) { return view_of(t.field); }, nb::rv_policy::reference_internal, \
-      doc)
+#define ASPERITY_TRAJECTORY_ARRAY(field, doc)                       \
+  traj.def_prop_ro(                                                 \
+      #field, [](const Trajectory& t) { return view_of(t.field); }, \
+      nb::rv_policy::reference_internal, doc)
   ASPERITY_TRAJECTORY_ARRAY(tau, "time tau = sqrt(k/m) t");
   ASPERITY_TRAJECTORY_ARRAY(u, "displacement u = x/A");
   ASPERITY_TRAJECTORY_ARRAY(v, "velocity du/dtau");
@@ -353,12 +368,15 @@ void bind_dynamics(nb::module_& m) {
   ASPERITY_TRAJECTORY_ARRAY(event_tau, "times of the located velocity reversals");
   ASPERITY_TRAJECTORY_ARRAY(event_u, "displacements at the located velocity reversals");
 #undef ASPERITY_TRAJECTORY_ARRAY
-  traj.def_prop_ro("is_event", [](const Trajectory& t) { return bool_array_of(t.is_event); },
-                   "per sample: the sample is a located reversal (a bool array copy)")
-      .def_prop_ro("steps", [](const Trajectory& t) { return t.stats.steps; }, "accepted steps")
+  traj.def_prop_ro(
+          "is_event", [](const Trajectory& t) { return bool_array_of(t.is_event); },
+          "per sample: the sample is a located reversal (a bool array copy)")
+      .def_prop_ro(
+          "steps", [](const Trajectory& t) { return t.stats.steps; }, "accepted steps")
       .def_prop_ro("rejected_steps", [](const Trajectory& t) { return t.stats.rejected_steps; })
       .def_prop_ro("rhs_evaluations", [](const Trajectory& t) { return t.stats.rhs_evaluations; })
-      .def_prop_ro("events", [](const Trajectory& t) { return t.stats.events; }, "located reversals")
+      .def_prop_ro(
+          "events", [](const Trajectory& t) { return t.stats.events; }, "located reversals")
       .def_ro("force_evaluations", &Trajectory::force_evaluations)
       .def_ro("friction_model", &Trajectory::friction_model)
       .def("energy_balance_error", &Trajectory::energy_balance_error,
@@ -413,9 +431,12 @@ void bind_dynamics(nb::module_& m) {
             new (self) Periodogram(std::span<const double>(x.data(), x.shape(0)), dt);
           },
           "x"_a, "dt"_a)
-      .def("__call__", [](const Periodogram& p, const ArrayLike& f) {
-             return vectorize([&p](double v) { return p(v); }, f);
-           }, "f"_a)
+      .def(
+          "__call__",
+          [](const Periodogram& p, const ArrayLike& f) {
+            return vectorize([&p](double v) { return p(v); }, f);
+          },
+          "f"_a)
       .def_prop_ro("dt", &Periodogram::dt)
       .def("__len__", &Periodogram::size);
   m.def(
@@ -504,7 +525,8 @@ void bind_dynamics(nb::module_& m) {
       "Stick (|v| < velocity_threshold) and slip intervals: a dict of arrays begin, end, stick.");
 
   nb::class_<LoopSummary>(m, "LoopSummary", "The friction loop of a steady harmonic response.")
-      .def_ro("energy_per_cycle", &LoopSummary::energy_per_cycle, "closed integral of F_s du, per cycle")
+      .def_ro("energy_per_cycle", &LoopSummary::energy_per_cycle,
+              "closed integral of F_s du, per cycle")
       .def_ro("displacement_amplitude", &LoopSummary::displacement_amplitude)
       .def_ro("force_amplitude", &LoopSummary::force_amplitude)
       .def_ro("mean_displacement", &LoopSummary::mean_displacement);

@@ -11,5 +11,6 @@ NB_MODULE(_core, m) {
   asperity::python::bind_surface(m);
   asperity::python::bind_hysteresis(m);
   asperity::python::bind_rough_flat(m);
+  asperity::python::bind_joint(m);
   asperity::python::bind_dynamics(m);
 }

@@ -37,6 +37,7 @@
 // hold only model = "physics", backbone = "joint" and memory.
 #include <fmt/format.h>
 
+#include <toml++/toml.h>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -45,7 +46,6 @@
 #include <numbers>
 #include <set>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/units.hpp"
@@ -71,7 +71,8 @@ struct DynamicsOptions {
   bool no_plots = false;
 };
 
-void check_keys(const toml::table& t, const std::string& where, const std::set<std::string>& allowed) {
+void check_keys(const toml::table& t, const std::string& where,
+                const std::set<std::string>& allowed) {
   for (const auto& [k, v] : t) {
     const std::string key(k.str());
     if (!allowed.count(key)) {
@@ -80,12 +81,14 @@ void check_keys(const toml::table& t, const std::string& where, const std::set<s
       const auto line = k.source().begin.line > 0 ? k.source().begin.line : v.source().begin.line;
       const std::string at = line > 0 ? fmt::format(" at line {}", line) : std::string();
       throw InvalidInput(fmt::format("{}: unknown key \"{}\"{} (allowed: {})",
-                                     where.empty() ? std::string("top level") : where, key, at, list));
+                                     where.empty() ? std::string("top level") : where, key, at,
+                                     list));
     }
   }
 }
 
-const toml::table* subtable(const toml::table& t, const std::string& key, const std::string& where) {
+const toml::table* subtable(const toml::table& t, const std::string& key,
+                            const std::string& where) {
   const auto* n = t.get(key);
   if (!n) return nullptr;
   const auto* tt = n->as_table();
@@ -140,7 +143,9 @@ std::string text(const toml::table& t, const std::string& key, const std::string
   throw InvalidInput(fmt::format("{}.{} must be a string", where, key));
 }
 
-double time_scale(const Scales& s) { return std::sqrt(*s.m / *s.k); }
+double time_scale(const Scales& s) {
+  return std::sqrt(*s.m / *s.k);
+}
 
 struct Case {
   SystemParameters system;
@@ -189,7 +194,8 @@ void collect_lines(const toml::node& n, std::set<std::uint32_t>& lines) {
     return;
   }
   if (const auto* a = n.as_array()) {
-    const bool headers = a->is_array_of_tables() && !a->empty() && !a->get(0)->as_table()->is_inline();
+    const bool headers =
+        a->is_array_of_tables() && !a->empty() && !a->get(0)->as_table()->is_inline();
     if (!headers) add(a->source());  // [[header]] arrays: only their tables' headers
     for (const auto& e : *a) collect_lines(e, lines);
     return;
@@ -246,14 +252,15 @@ std::unique_ptr<FrictionModel> joint_friction(const std::string& path, const std
         "(forces are divided by k A, displacements by A)");
   }
   const auto dir = std::filesystem::path(path).parent_path();
-  const joint::JointCase jc =
-      joint::parse_case(joint_text(file_text, *root.get("dynamics")), path, dir.empty() ? "." : dir.string());
+  const joint::JointCase jc = joint::parse_case(joint_text(file_text, *root.get("dynamics")), path,
+                                                dir.empty() ? "." : dir.string());
   // [load] is there: joint::parse_case requires it.
   const auto load_line = root.get("load")->source().begin.line;
   if (jc.preloads.size() != 1) {
-    throw InvalidInput(fmt::format(
-        "{}:{}: load: `asperity dynamics` runs one preload; the [load] table gives {} (a sweep): keep one",
-        path, load_line, jc.preloads.size()));
+    throw InvalidInput(
+        fmt::format("{}:{}: load: `asperity dynamics` runs one preload; the [load] table gives {} "
+                    "(a sweep): keep one",
+                    path, load_line, jc.preloads.size()));
   }
   const double P = jc.preloads.front();
   const auto flat = jc.rough_flat();
@@ -288,8 +295,9 @@ std::unique_ptr<FrictionModel> joint_friction(const std::string& path, const std
 std::unique_ptr<FrictionModel> rough_flat_friction(const toml::table& t, const Scales& s,
                                                    hysteresis::MemoryRule rule) {
   const std::string where = "dynamics.friction";
-  check_keys(t, where, {"model", "backbone", "memory", "asperity_model", "mu_cfc", "E_star", "G_star",
-                        "H", "nu", "sigma", "R", "eta", "A0", "P", "P_tilde"});
+  check_keys(t, where,
+             {"model", "backbone", "memory", "asperity_model", "mu_cfc", "E_star", "G_star", "H",
+              "nu", "sigma", "R", "eta", "A0", "P", "P_tilde"});
   if (!s.k || !s.A) {
     throw InvalidInput(
         "dynamics.friction: the rough_flat backbone needs the scales stiffness and amplitude in "
@@ -299,7 +307,8 @@ std::unique_ptr<FrictionModel> rough_flat_friction(const toml::table& t, const S
     const auto* n = t.get(key);
     if (!n) throw InvalidInput(fmt::format("{}: the rough_flat backbone needs {}", where, key));
     if (auto str = n->value<std::string>()) return core::parse_quantity(*str, d, where + "." + key);
-    throw InvalidInput(fmt::format("{}.{} must be a quantity with units, e.g. \"2.7 um\"", where, key));
+    throw InvalidInput(
+        fmt::format("{}.{} must be a quantity with units, e.g. \"2.7 um\"", where, key));
   };
   const double E_star = q("E_star", dim::pressure);
   const double G_star = q("G_star", dim::pressure);
@@ -316,9 +325,17 @@ std::unique_ptr<FrictionModel> rough_flat_friction(const toml::table& t, const S
   } else {
     P = number(t, "P_tilde", where, 5.0) * *s.k * *s.A;
   }
-  if (!(P > 0.0)) throw InvalidInput(fmt::format("{}: the normal load P = {} N must be > 0", where, P));
-  EpbContact c{.E_star = E_star, .G_star = G_star, .H = H, .nu = nu, .sigma = sigma, .R = R,
-               .eta = eta, .A0 = A0, .P = P,
+  if (!(P > 0.0))
+    throw InvalidInput(fmt::format("{}: the normal load P = {} N must be > 0", where, P));
+  EpbContact c{.E_star = E_star,
+               .G_star = G_star,
+               .H = H,
+               .nu = nu,
+               .sigma = sigma,
+               .R = R,
+               .eta = eta,
+               .A0 = A0,
+               .P = P,
                .model = contact::parse_model_name(text(t, "asperity_model", where, "bke"))};
   if (t.get("mu_cfc")) c.friction.mu_cfc = number(t, "mu_cfc", where, 0.3);
   const auto si = epb_backbone(c);
@@ -330,13 +347,16 @@ std::unique_ptr<FrictionModel> parse_friction(const toml::table* t, const Scales
   if (!t) return std::make_unique<NoFriction>();
   const std::string model = text(*t, "model", where, "none");
   auto force = [&](const std::string& key) {
-    return value(*t, key, where, dim::force, s, [](double f, const Scales& sc) { return f / (*sc.k * *sc.A); });
+    return value(*t, key, where, dim::force, s,
+                 [](double f, const Scales& sc) { return f / (*sc.k * *sc.A); });
   };
   auto length = [&](const std::string& key) {
-    return value(*t, key, where, dim::length, s, [](double x, const Scales& sc) { return x / *sc.A; });
+    return value(*t, key, where, dim::length, s,
+                 [](double x, const Scales& sc) { return x / *sc.A; });
   };
   auto stiff = [&](const std::string& key) {
-    return value(*t, key, where, dim::stiffness, s, [](double x, const Scales& sc) { return x / *sc.k; });
+    return value(*t, key, where, dim::stiffness, s,
+                 [](double x, const Scales& sc) { return x / *sc.k; });
   };
   auto need = [&](const std::optional<double>& v, const std::string& key) {
     if (!v) throw InvalidInput(fmt::format("{}: model \"{}\" needs {}", where, model, key));
@@ -349,16 +369,16 @@ std::unique_ptr<FrictionModel> parse_friction(const toml::table* t, const Scales
   }
   if (model == "coulomb") {
     check_keys(*t, where, {"model", "F_max", "k_tan"});
-    const auto k_tan = value(*t, "k_tan", where, Dimension{-1, 0, 1}, s, [](double x, const Scales& sc) {
-      return x * *sc.A * std::sqrt(*sc.k / *sc.m);
-    });
-    return std::make_unique<RegularizedCoulomb>(
-        RegularizedCoulombParameters{.F_max = need(force("F_max"), "F_max"), .k_tan = need(k_tan, "k_tan")});
+    const auto k_tan =
+        value(*t, "k_tan", where, Dimension{-1, 0, 1}, s,
+              [](double x, const Scales& sc) { return x * *sc.A * std::sqrt(*sc.k / *sc.m); });
+    return std::make_unique<RegularizedCoulomb>(RegularizedCoulombParameters{
+        .F_max = need(force("F_max"), "F_max"), .k_tan = need(k_tan, "k_tan")});
   }
   if (model == "dankowicz") {
     check_keys(*t, where, {"model", "F_max", "delta"});
-    return std::make_unique<Dankowicz>(
-        DankowiczParameters{.F_max = need(force("F_max"), "F_max"), .delta = need(length("delta"), "delta")});
+    return std::make_unique<Dankowicz>(DankowiczParameters{
+        .F_max = need(force("F_max"), "F_max"), .delta = need(length("delta"), "delta")});
   }
   if (model == "jenkins") {
     check_keys(*t, where, {"model", "F_max", "stiffness"});
@@ -376,10 +396,12 @@ std::unique_ptr<FrictionModel> parse_friction(const toml::table* t, const Scales
     if (bb == "rough_flat") return rough_flat_friction(*t, s, memory());
     if (bb == "joint") {
       throw InvalidInput(fmt::format(
-          "{}.backbone = \"joint\" needs a [joint] table (and [load]) as for `asperity predict`", where));
+          "{}.backbone = \"joint\" needs a [joint] table (and [load]) as for `asperity predict`",
+          where));
     }
     if (bb != "mindlin") {
-      throw InvalidInput(fmt::format("{}.backbone = \"{}\": use \"rough_flat\", \"mindlin\" or \"joint\"", where, bb));
+      throw InvalidInput(fmt::format(
+          "{}.backbone = \"{}\": use \"rough_flat\", \"mindlin\" or \"joint\"", where, bb));
     }
     // A Cattaneo-Mindlin-shaped saturating backbone (the CFC limit of the rough flat:
     // Q = F_max (1 - (1 - x/s)^{3/2}) up to the slip displacement s) through Masing's
@@ -396,7 +418,8 @@ std::unique_ptr<FrictionModel> parse_friction(const toml::table* t, const Scales
     return std::make_unique<HysteresisFriction>(backbone, memory(), "physics");
   }
   throw InvalidInput(fmt::format(
-      "{}.model = \"{}\" is not known: use none, coulomb, dankowicz, jenkins, iwan or physics", where, model));
+      "{}.model = \"{}\" is not known: use none, coulomb, dankowicz, jenkins, iwan or physics",
+      where, model));
 }
 
 Case parse_case(const std::string& path) {
@@ -412,38 +435,47 @@ Case parse_case(const std::string& path) {
   try {
     root = toml::parse(file_text, path);
   } catch (const toml::parse_error& e) {
-    throw InvalidInput(fmt::format("{}: {} (line {})", path, e.description(), e.source().begin.line));
+    throw InvalidInput(
+        fmt::format("{}: {} (line {})", path, e.description(), e.source().begin.line));
   }
   check_keys(root, path, {"dynamics", "joint", "load", "profiles"});
   if (!root.get("joint")) {
     for (const char* k : {"load", "profiles"}) {
       if (root.get(k)) {
-        throw InvalidInput(fmt::format("{}: [{}] belongs to a [joint] table, which is missing (line {})",
-                                       path, k, root.get(k)->source().begin.line));
+        throw InvalidInput(
+            fmt::format("{}: [{}] belongs to a [joint] table, which is missing (line {})", path, k,
+                        root.get(k)->source().begin.line));
       }
     }
   }
   const toml::table* d = subtable(root, "dynamics", "");
   if (!d) throw InvalidInput(fmt::format("{}: the case file needs a [dynamics] table", path));
   const std::string W = "dynamics";
-  check_keys(*d, W, {"excitation", "epsilon", "mass", "stiffness", "damping", "amplitude", "duration",
-                     "impulse", "ramp", "harmonic", "free", "friction", "integrator", "analysis"});
+  check_keys(*d, W,
+             {"excitation", "epsilon", "mass", "stiffness", "damping", "amplitude", "duration",
+              "impulse", "ramp", "harmonic", "free", "friction", "integrator", "analysis"});
   Case c;
   auto q = [&](const std::string& key, Dimension dm) -> std::optional<double> {
     const auto* n = d->get(key);
     if (!n) return std::nullopt;
     auto s = n->value<std::string>();
-    if (!s) throw InvalidInput(fmt::format("dynamics.{} must be a quantity with units, e.g. \"10 kg\"", key));
+    if (!s)
+      throw InvalidInput(
+          fmt::format("dynamics.{} must be a quantity with units, e.g. \"10 kg\"", key));
     return core::parse_quantity(*s, dm, "dynamics." + key);
   };
   c.scales.m = q("mass", dim::mass);
   c.scales.k = q("stiffness", dim::stiffness);
   c.scales.A = q("amplitude", dim::length);
   const auto damping = q("damping", Dimension{0, 1, -1});
-  if (c.scales.m && !(*c.scales.m > 0.0)) throw InvalidInput(fmt::format("dynamics.mass = {} kg must be > 0", *c.scales.m));
-  if (c.scales.k && !(*c.scales.k > 0.0)) throw InvalidInput(fmt::format("dynamics.stiffness = {} N/m must be > 0", *c.scales.k));
-  if (c.scales.A && !(*c.scales.A > 0.0)) throw InvalidInput(fmt::format("dynamics.amplitude = {} m must be > 0", *c.scales.A));
-  if (d->get("epsilon") && damping) throw InvalidInput("dynamics: give epsilon or damping, not both");
+  if (c.scales.m && !(*c.scales.m > 0.0))
+    throw InvalidInput(fmt::format("dynamics.mass = {} kg must be > 0", *c.scales.m));
+  if (c.scales.k && !(*c.scales.k > 0.0))
+    throw InvalidInput(fmt::format("dynamics.stiffness = {} N/m must be > 0", *c.scales.k));
+  if (c.scales.A && !(*c.scales.A > 0.0))
+    throw InvalidInput(fmt::format("dynamics.amplitude = {} m must be > 0", *c.scales.A));
+  if (d->get("epsilon") && damping)
+    throw InvalidInput("dynamics: give epsilon or damping, not both");
   if (damping) {
     if (!c.scales.m || !c.scales.k) throw InvalidInput("dynamics.damping needs mass and stiffness");
     DimensionalScales ds{.m = *c.scales.m, .k = *c.scales.k, .A = c.scales.A.value_or(1.0)};
@@ -463,8 +495,10 @@ Case parse_case(const std::string& path) {
     ImpulseExcitation e;
     if (const auto* t = subtable(*d, "impulse", W)) {
       check_keys(*t, W + ".impulse", {"Omega", "amplitude"});
-      e.Omega = value(*t, "Omega", W + ".impulse", dim::frequency, sc,
-                      [](double w, const Scales& s) { return w * time_scale(s); }).value_or(e.Omega);
+      e.Omega =
+          value(*t, "Omega", W + ".impulse", dim::frequency, sc, [](double w, const Scales& s) {
+            return w * time_scale(s);
+          }).value_or(e.Omega);
       e.amplitude = number(*t, "amplitude", W + ".impulse", 1.0);
     }
     c.excitation = e;
@@ -472,8 +506,9 @@ Case parse_case(const std::string& path) {
     RampExcitation e;
     if (const auto* t = subtable(*d, "ramp", W)) {
       check_keys(*t, W + ".ramp", {"alpha"});
-      e.alpha = value(*t, "alpha", W + ".ramp", dim::velocity, sc,
-                      [](double b, const Scales& s) { return b * time_scale(s) / *s.A; }).value_or(1.0);
+      e.alpha = value(*t, "alpha", W + ".ramp", dim::velocity, sc, [](double b, const Scales& s) {
+                  return b * time_scale(s) / *s.A;
+                }).value_or(1.0);
     }
     c.excitation = e;
   } else if (c.excitation_name == "harmonic") {
@@ -481,7 +516,8 @@ Case parse_case(const std::string& path) {
     if (const auto* t = subtable(*d, "harmonic", W)) {
       check_keys(*t, W + ".harmonic", {"frequency", "amplitude"});
       e.frequency = value(*t, "frequency", W + ".harmonic", dim::frequency, sc,
-                          [](double f, const Scales& s) { return f * time_scale(s); }).value_or(1.0);
+                          [](double f, const Scales& s) { return f * time_scale(s); })
+                        .value_or(1.0);
       e.amplitude = number(*t, "amplitude", W + ".harmonic", 1.0);
     }
     c.excitation = e;
@@ -489,16 +525,19 @@ Case parse_case(const std::string& path) {
     c.excitation = FreeVibration{};
   } else {
     throw InvalidInput(fmt::format(
-        "dynamics.excitation = \"{}\" is not known: use impulse, ramp, harmonic or free", c.excitation_name));
+        "dynamics.excitation = \"{}\" is not known: use impulse, ramp, harmonic or free",
+        c.excitation_name));
   }
   validate(c.excitation);
   for (const char* other : {"impulse", "ramp", "harmonic"}) {
     if (d->get(other) && c.excitation_name != other) {
-      throw InvalidInput(fmt::format("dynamics.{} is given but the excitation is \"{}\"", other, c.excitation_name));
+      throw InvalidInput(fmt::format("dynamics.{} is given but the excitation is \"{}\"", other,
+                                     c.excitation_name));
     }
   }
   if (const auto* t = subtable(*d, "free", W)) {
-    if (c.excitation_name != "free") throw InvalidInput("dynamics.free is given but the excitation is not \"free\"");
+    if (c.excitation_name != "free")
+      throw InvalidInput("dynamics.free is given but the excitation is not \"free\"");
     check_keys(*t, W + ".free", {"u0", "v0"});
     c.sim.u0 = number(*t, "u0", W + ".free", 0.0);
     c.sim.v0 = number(*t, "v0", W + ".free", 0.0);
@@ -513,8 +552,9 @@ Case parse_case(const std::string& path) {
   c.sim.output_interval = 0.01;
   if (const auto* t = subtable(*d, "integrator", W)) {
     const std::string w = W + ".integrator";
-    check_keys(*t, w, {"method", "rtol", "atol", "max_step", "initial_step", "min_step", "max_steps",
-                       "output_interval"});
+    check_keys(*t, w,
+               {"method", "rtol", "atol", "max_step", "initial_step", "min_step", "max_steps",
+                "output_interval"});
     c.sim.integrator.method = parse_method(text(*t, "method", w, "dp54"));
     c.sim.integrator.rtol = number(*t, "rtol", w, 1e-6);
     if (const auto* a = t->get("atol")) {
@@ -533,11 +573,13 @@ Case parse_case(const std::string& path) {
     c.sim.integrator.initial_step = number(*t, "initial_step", w, 0.0);
     c.sim.integrator.min_step = number(*t, "min_step", w, 0.0);
     const double max_steps = number(*t, "max_steps", w, 5e7);
-    if (!(max_steps >= 1 && max_steps <= 1e9)) throw InvalidInput(w + ".max_steps must lie in [1, 1e9]");
+    if (!(max_steps >= 1 && max_steps <= 1e9))
+      throw InvalidInput(w + ".max_steps must lie in [1, 1e9]");
     c.sim.integrator.max_steps = static_cast<std::size_t>(max_steps);
     c.sim.output_interval = number(*t, "output_interval", w, 0.01);
   }
-  if (!(c.sim.output_interval > 0.0)) throw InvalidInput("dynamics.integrator.output_interval must be > 0");
+  if (!(c.sim.output_interval > 0.0))
+    throw InvalidInput("dynamics.integrator.output_interval must be > 0");
   c.sim.validate();
   c.sim.integrator.validate(2 + c.friction->internal_states() + 3);
 
@@ -559,13 +601,17 @@ Case parse_case(const std::string& path) {
   return c;
 }
 
-Json or_null(const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); }
+Json or_null(const std::optional<double>& v) {
+  return v ? Json(*v) : Json(nullptr);
+}
 
 void run_dynamics(const DynamicsOptions& o, std::string& out) {
   const Case c = parse_case(o.case_file);
   std::error_code ec;
   std::filesystem::create_directories(o.out_dir, ec);
-  if (ec) throw InvalidInput(fmt::format("cannot create the output directory \"{}\": {}", o.out_dir, ec.message()));
+  if (ec)
+    throw InvalidInput(
+        fmt::format("cannot create the output directory \"{}\": {}", o.out_dir, ec.message()));
 
   SimulationOptions sim = c.sim;
   const bool decays = c.excitation_name == "impulse" || c.excitation_name == "free";
@@ -598,7 +644,8 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
       const auto m = modal_estimate(p, f_min, f_max, c.bins);
       modal_f = m.frequency;
       modal_z = m.damping_ratio;
-      j["modal_half_power"] = {{"f_low", m.f_low}, {"f_high", m.f_high}, {"peak_power", m.peak_power}};
+      j["modal_half_power"] = {
+          {"f_low", m.f_low}, {"f_high", m.f_high}, {"peak_power", m.peak_power}};
     } catch (const NumericalError& e) {
       spectrum_note = e.what();  // an overdamped response has no modal peak: report null
     }
@@ -606,7 +653,8 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
   j["modal_frequency"] = or_null(modal_f);
   j["modal_damping"] = or_null(modal_z);
   if (!spectrum_note.empty()) j["modal_note"] = spectrum_note;
-  if (c.scales.m && c.scales.k && modal_f) j["modal_frequency_hz"] = *modal_f / time_scale(c.scales);
+  if (c.scales.m && c.scales.k && modal_f)
+    j["modal_frequency_hz"] = *modal_f / time_scale(c.scales);
 
   if (c.joint) j["joint"] = *c.joint;
   j["energy_balance_error"] = tr.energy_balance_error();
@@ -625,7 +673,9 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
     const auto decay = free_decay(tr, c.decay_start >= 0.0 ? c.decay_start : tau0);
     Json jd = Json::array();
     for (const auto& p : decay) {
-      jd.push_back({{"tau", p.tau}, {"amplitude", p.amplitude}, {"frequency", p.frequency},
+      jd.push_back({{"tau", p.tau},
+                    {"amplitude", p.amplitude},
+                    {"frequency", p.frequency},
                     {"damping_ratio", p.damping_ratio}});
     }
     j["free_decay"] = {{"method", "logarithmic decrement over full cycles of successive swings"},
@@ -635,7 +685,8 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
     const double thr = c.stick_velocity * std::abs(r->alpha);
     const auto iv = stick_slip_intervals(tr, thr);
     Json ji = Json::array();
-    for (const auto& i : iv) ji.push_back({{"begin", i.begin}, {"end", i.end}, {"state", i.stick ? "stick" : "slip"}});
+    for (const auto& i : iv)
+      ji.push_back({{"begin", i.begin}, {"end", i.end}, {"state", i.stick ? "stick" : "slip"}});
     j["stick_slip"] = {{"velocity_threshold", thr}, {"intervals", ji}};
     j["first_slip"] = iv.size() > 1 && iv[0].stick ? Json(iv[0].end) : Json(nullptr);
   }
@@ -656,10 +707,10 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
     std::string csv = "tau,u,v,y,friction,work_base,dissipated_damper,work_friction,energy,event\n";
     csv.reserve(tr.size() * 120);
     for (std::size_t i = 0; i < tr.size(); ++i) {
-      csv += fmt::format("{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{}\n",
-                         tr.tau[i], tr.u[i], tr.v[i], tr.y[i], tr.friction[i], tr.work_base[i],
-                         tr.dissipated_damper[i], tr.work_friction[i], tr.energy[i],
-                         tr.is_event[i] ? 1 : 0);
+      csv += fmt::format(
+          "{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{}\n", tr.tau[i],
+          tr.u[i], tr.v[i], tr.y[i], tr.friction[i], tr.work_base[i], tr.dissipated_damper[i],
+          tr.work_friction[i], tr.energy[i], tr.is_event[i] ? 1 : 0);
     }
     write_file_atomically((dir / "timeseries.csv").string(), csv);
   }
@@ -674,11 +725,12 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
 
   std::vector<std::string> plots;
   if (!o.no_plots) {
-    const std::string label = fmt::format("{} friction, {} excitation", tr.friction_model, c.excitation_name);
+    const std::string label =
+        fmt::format("{} friction, {} excitation", tr.friction_model, c.excitation_name);
     // Thin the series for plotting (gnuplot reads text).
     const std::size_t stride = std::max<std::size_t>(1, tr.size() / 20000);
-    auto series = [&](const std::string& title, const std::vector<double>& x, const std::vector<double>& y,
-                      double t_from) {
+    auto series = [&](const std::string& title, const std::vector<double>& x,
+                      const std::vector<double>& y, double t_from) {
       Series s{.title = title};
       for (std::size_t i = 0; i < tr.size(); i += stride) {
         if (tr.tau[i] < t_from) continue;
@@ -687,7 +739,8 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
       }
       return s;
     };
-    PlotSpec resp{.title = "Response (Fig. 7.5 style): " + label, .xlabel = "tau", .ylabel = "u = x/A"};
+    PlotSpec resp{
+        .title = "Response (Fig. 7.5 style): " + label, .xlabel = "tau", .ylabel = "u = x/A"};
     resp.series.push_back(series("mass u", tr.tau, tr.u, 0.0));
     if (c.excitation_name != "free") resp.series.push_back(series("base y", tr.tau, tr.y, 0.0));
     plot_png((dir / "response.png").string(), resp);
@@ -697,20 +750,26 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
     if (const auto* h = std::get_if<HarmonicExcitation>(&c.excitation)) {
       from = std::max(0.0, c.sim.duration - c.loop_cycles / h->frequency);
     }
-    PlotSpec phase{.title = "Phase portrait (Fig. 7.6a-b / 7.7a-b style): " + label, .xlabel = "u", .ylabel = "u'"};
+    PlotSpec phase{.title = "Phase portrait (Fig. 7.6a-b / 7.7a-b style): " + label,
+                   .xlabel = "u",
+                   .ylabel = "u'"};
     phase.series.push_back(series("mass", tr.u, tr.v, from));
     plot_png((dir / "phase.png").string(), phase);
     plots.push_back("phase.png");
     if (tr.friction_model != "none") {
-      PlotSpec loop{.title = "Friction force vs displacement (Fig. 7.6c-d / 7.7c-d style): " + label,
-                    .xlabel = "u", .ylabel = "F_s = f_s/(k A)"};
+      PlotSpec loop{
+          .title = "Friction force vs displacement (Fig. 7.6c-d / 7.7c-d style): " + label,
+          .xlabel = "u",
+          .ylabel = "F_s = f_s/(k A)"};
       loop.series.push_back(series("friction", tr.u, tr.friction, from));
       plot_png((dir / "friction_loop.png").string(), loop);
       plots.push_back("friction_loop.png");
     }
     if (spectrum) {
       PlotSpec sp{.title = "Power spectrum of u (Fig. 7.3-7.4 style): " + label,
-                  .xlabel = "frequency [cycles per unit tau]", .ylabel = "power", .logy = true};
+                  .xlabel = "frequency [cycles per unit tau]",
+                  .ylabel = "power",
+                  .logy = true};
       Series s{.title = tr.friction_model};
       for (std::size_t i = 0; i < spectrum->frequency.size(); ++i) {
         if (spectrum->power[i] > 0.0) {
@@ -724,20 +783,26 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
     }
   }
 
-  out += fmt::format("{}: {} friction, {} excitation, eps = {:.4g}, {} steps ({} rejected), {} force evaluations, {} reversals\n",
-                     o.case_file, tr.friction_model, c.excitation_name, c.system.epsilon, tr.stats.steps,
-                     tr.stats.rejected_steps, tr.force_evaluations, tr.stats.events);
+  out += fmt::format(
+      "{}: {} friction, {} excitation, eps = {:.4g}, {} steps ({} rejected), {} force evaluations, "
+      "{} reversals\n",
+      o.case_file, tr.friction_model, c.excitation_name, c.system.epsilon, tr.stats.steps,
+      tr.stats.rejected_steps, tr.force_evaluations, tr.stats.events);
   if (c.joint) {
     const Json& jj = *c.joint;
-    out += fmt::format("joint: preload {:.6g} N, mu = Q_max/P = {:.4g}, Q_max {:.6g} N, tangential stiffness "
-                       "{:.4g} N/m (F~max = {:.4g}, k_t/k = {:.4g})\n",
-                       jj["preload"].get<double>(), jj["mu"].get<double>(), jj["Q_max"].get<double>(),
-                       jj["stiffness"].get<double>(), jj["F_max_tilde"].get<double>(),
-                       jj["stiffness_tilde"].get<double>());
+    out += fmt::format(
+        "joint: preload {:.6g} N, mu = Q_max/P = {:.4g}, Q_max {:.6g} N, tangential stiffness "
+        "{:.4g} N/m (F~max = {:.4g}, k_t/k = {:.4g})\n",
+        jj["preload"].get<double>(), jj["mu"].get<double>(), jj["Q_max"].get<double>(),
+        jj["stiffness"].get<double>(), jj["F_max_tilde"].get<double>(),
+        jj["stiffness_tilde"].get<double>());
   }
-  if (modal_f) out += fmt::format("modal frequency {:.5g} (cycles per unit tau), half-power damping {:.4g}\n", *modal_f, *modal_z);
+  if (modal_f)
+    out += fmt::format("modal frequency {:.5g} (cycles per unit tau), half-power damping {:.4g}\n",
+                       *modal_f, *modal_z);
   out += fmt::format("energy balance error {:.3g} of the input work\n", tr.energy_balance_error());
-  out += fmt::format("wrote {}/summary.json, timeseries.csv{}", o.out_dir, spectrum ? ", spectrum.csv" : "");
+  out += fmt::format("wrote {}/summary.json, timeseries.csv{}", o.out_dir,
+                     spectrum ? ", spectrum.csv" : "");
   for (const auto& p : plots) out += ", " + p;
   out += "\n";
 }
@@ -749,9 +814,13 @@ void add_dynamics_command(CLI::App& app, std::function<int()>& action) {
   auto* cmd = app.add_subcommand(
       "dynamics",
       "Single-DOF base-excited system with friction (thesis ch. 7): impulse, ramp or harmonic "
-      "base motion, with regularized Coulomb, Dankowicz, Jenkins, Iwan or physics-based friction. "
+      "base motion, with regularized Coulomb, Dankowicz, Jenkins, Iwan or physics-based friction "
+      "(from rough-flat parameters, or from a [joint] and [load] as for `asperity predict`). "
       "Writes summary.json, timeseries.csv, spectrum.csv and PNG plots.");
-  cmd->add_option("case", o->case_file, "TOML case file with a [dynamics] table")->required();
+  cmd->add_option(
+         "case", o->case_file,
+         "TOML case file with a [dynamics] table (and optionally [joint], [load], [profiles])")
+      ->required();
   cmd->add_option("--out", o->out_dir, "output directory (created if missing)")->default_str(".");
   cmd->add_flag("--no-plots", o->no_plots, "skip the PNG plots (no gnuplot needed)");
   cmd->callback([o, &action] {

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   asperity::cli::add_predict_command(app, action);
   asperity::cli::add_analyze_command(app, action);
   asperity::cli::add_synthesize_command(app, action);
+  asperity::cli::add_validate_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -27,8 +27,11 @@ struct PredictOptions {
 };
 
 Json amplitude_json(const joint::AmplitudePrediction& a) {
-  return Json{{"delta_max", a.delta_max}, {"Q_peak", a.Q_peak}, {"energy", a.energy},
-              {"Q_peak_over_Q_max", a.Q_ratio}, {"regime", a.regime}};
+  return Json{{"delta_max", a.delta_max},
+              {"Q_peak", a.Q_peak},
+              {"energy", a.energy},
+              {"Q_peak_over_Q_max", a.Q_ratio},
+              {"regime", a.regime}};
 }
 
 Json load_json(const joint::LoadPrediction& l) {
@@ -57,8 +60,9 @@ Json prediction_json(const joint::JointCase& c, const joint::JointPrediction& p)
   j["model"] = std::string(contact::to_string(c.model));
   j["area"] = c.area;
   j["units"] = "SI: N, m, J, N/m, Pa";
-  j["roughness"] = Json{{"sigma", p.sigma}, {"eta", p.eta}, {"R", p.R}, {"beta", p.beta}, {"psi", p.psi},
-                        {"m0", p.combined.m0}, {"m2", p.combined.m2}, {"m4", p.combined.m4}};
+  j["roughness"] = Json{{"sigma", p.sigma},    {"eta", p.eta},       {"R", p.R},
+                        {"beta", p.beta},      {"psi", p.psi},       {"m0", p.combined.m0},
+                        {"m2", p.combined.m2}, {"m4", p.combined.m4}};
   j["force_scale_KHA0"] = p.force_scale;
   if (p.loads.size() == 1) {  // the single-preload keys at the top level
     const Json first = load_json(p.loads.front());
@@ -73,34 +77,38 @@ Json prediction_json(const joint::JointCase& c, const joint::JointPrediction& p)
 std::string prediction_summary(const joint::JointCase& c, const joint::JointPrediction& p) {
   std::string s;
   s += fmt::format("joint: {} ({})\n", c.name.empty() ? "(unnamed)" : c.name, c.source);
-  s += fmt::format("model {}, A0 = {:.4g} mm^2; combined roughness sigma = {:.4g} um, eta = {:.4g} um^-2, "
-                   "R = {:.4g} um, beta = {:.4f}, psi = {:.4g}\n",
-                   contact::to_string(c.model), c.area * 1e6, p.sigma * 1e6, p.eta * 1e-12, p.R * 1e6,
-                   p.beta, p.psi);
+  s += fmt::format(
+      "model {}, A0 = {:.4g} mm^2; combined roughness sigma = {:.4g} um, eta = {:.4g} um^-2, "
+      "R = {:.4g} um, beta = {:.4f}, psi = {:.4g}\n",
+      contact::to_string(c.model), c.area * 1e6, p.sigma * 1e6, p.eta * 1e-12, p.R * 1e6, p.beta,
+      p.psi);
   const bool torques = c.bolts.has_value();
   s += fmt::format("\n{:>11} {}{:>10} {:>10} {:>8} {:>10} {:>10} {:>9}\n", "preload[N]",
-                   torques ? fmt::format("{:>14} ", "torque/bolt[Nm]") : "", "p[MPa]", "d[um]", "mu",
-                   "Q_max[N]", "k[N/um]", "Ar/A0");
+                   torques ? fmt::format("{:>14} ", "torque/bolt[Nm]") : "", "p[MPa]", "d[um]",
+                   "mu", "Q_max[N]", "k[N/um]", "Ar/A0");
   for (const auto& l : p.loads) {
-    s += fmt::format("{:>11.4g} {}{:>10.3g} {:>10.4g} {:>8.4f} {:>10.4g} {:>10.4g} {:>9.3g}\n", l.preload,
-                     torques ? fmt::format("{:>15.4g} ", l.torque) : "", l.mean_pressure * 1e-6,
-                     l.separation * 1e6, l.mu, l.Q_max, l.stiffness * 1e-6, l.contact_area_ratio);
+    s += fmt::format("{:>11.4g} {}{:>10.3g} {:>10.4g} {:>8.4f} {:>10.4g} {:>10.4g} {:>9.3g}\n",
+                     l.preload, torques ? fmt::format("{:>15.4g} ", l.torque) : "",
+                     l.mean_pressure * 1e-6, l.separation * 1e6, l.mu, l.Q_max, l.stiffness * 1e-6,
+                     l.contact_area_ratio);
   }
   for (const auto& l : p.loads) {
     if (l.amplitudes.empty()) continue;
     s += fmt::format("\nP = {:.4g} N: {:>14} {:>10} {:>14} {:>8}  {}\n", l.preload, "delta_max[um]",
                      "Q_peak[N]", "energy[uJ]", "Q/Q_max", "regime");
     for (const auto& a : l.amplitudes) {
-      s += fmt::format("{:>14}{:>14.4g} {:>10.4g} {:>14.5g} {:>8.4f}  {}\n", "", a.delta_max * 1e6, a.Q_peak,
-                       a.energy * 1e6, a.Q_ratio, a.regime);
+      s += fmt::format("{:>14}{:>14.4g} {:>10.4g} {:>14.5g} {:>8.4f}  {}\n", "", a.delta_max * 1e6,
+                       a.Q_peak, a.energy * 1e6, a.Q_ratio, a.regime);
     }
   }
   return s;
 }
 
 void write_prediction_files(const joint::JointCase& c, const joint::JointPrediction& p,
-                            joint::StagedDirectory& dir, bool plots) {
-  write_file_atomically(dir.file("summary.json"), prediction_json(c, p).dump(2) + "\n");
+                            joint::StagedDirectory& dir, bool plots, bool data,
+                            const std::string& prefix) {
+  const auto file = [&](const std::string& name) { return dir.file(prefix + name); };
+  if (data) write_file_atomically(file("summary.json"), prediction_json(c, p).dump(2) + "\n");
   // loops.csv: steady loops for every preload and amplitude (long format).
   std::vector<std::vector<double>> lc(4), ec(5);
   for (const auto& l : p.loads) {
@@ -119,27 +127,37 @@ void write_prediction_files(const joint::JointCase& c, const joint::JointPredict
       ec[4].push_back(a.Q_ratio);
     }
   }
-  if (!lc[0].empty()) {
-    core::write_csv_table(dir.file("loops.csv"), {"preload[N]", "delta_max[um]", "delta[um]", "Q[N]"}, lc);
-    core::write_csv_table(dir.file("energy.csv"),
-                          {"preload[N]", "delta_max[um]", "Q_peak[N]", "energy[J]", "Q_peak_over_Q_max"}, ec);
+  if (data && !lc[0].empty()) {
+    core::write_csv_table(file("loops.csv"), {"preload[N]", "delta_max[um]", "delta[um]", "Q[N]"},
+                          lc);
+    core::write_csv_table(
+        file("energy.csv"),
+        {"preload[N]", "delta_max[um]", "Q_peak[N]", "energy[J]", "Q_peak_over_Q_max"}, ec);
   }
   if (!plots) return;
   const bool sweep = p.loads.size() > 1;
   if (!lc[0].empty()) {
-    PlotSpec loops{fmt::format("Fretting loops: {}", c.name), "delta [um]", "Q [N]", false, false, {}, ""};
+    PlotSpec loops{
+        fmt::format("Fretting loops: {}", c.name), "delta [um]", "Q [N]", false, false, {}, ""};
     for (const auto& l : p.loads) {
       for (std::size_t k = 0; k < l.amplitudes.size(); ++k) {
-        if (sweep && k + 1 != l.amplitudes.size()) continue;  // sweeps: the largest amplitude per preload
+        if (sweep && k + 1 != l.amplitudes.size())
+          continue;  // sweeps: the largest amplitude per preload
         const auto& a = l.amplitudes[k];
         auto [x, Q] = joint::steady_loop(*l.backbone, a.delta_max, 100);
         for (double& v : x) v *= 1e6;
-        loops.series.push_back({fmt::format("P = {:.0f} N, {:.3g} um", l.preload, a.delta_max * 1e6), x, Q});
+        loops.series.push_back(
+            {fmt::format("P = {:.0f} N, {:.3g} um", l.preload, a.delta_max * 1e6), x, Q});
       }
     }
-    plot_png(dir.file("loops.png"), loops);
-    PlotSpec e{"Energy per cycle against peak force (guides: slope 2 and 3)", "Q_peak [N]",
-               "energy per cycle [J]", true, true, {}, ""};
+    plot_png(file("loops.png"), loops);
+    PlotSpec e{"Energy per cycle against peak force (guides: slope 2 and 3)",
+               "peak force [N]",
+               "energy per cycle [J]",
+               true,
+               true,
+               {},
+               ""};
     double qmin = 1e300, qmax = 0.0;
     for (const auto& l : p.loads) {
       Series sr{fmt::format("P = {:.0f} N", l.preload), {}, {}, "linespoints"};
@@ -162,7 +180,7 @@ void write_prediction_files(const joint::JointCase& c, const joint::JointPredict
       }
       e.series.push_back(g);
     }
-    plot_png(dir.file("energy_vs_force.png"), e);
+    plot_png(file("energy_vs_force.png"), e);
   }
   if (sweep) {
     Series mu{"mu = Q_max/P", {}, {}, "linespoints"}, k{"stiffness", {}, {}, "linespoints"};
@@ -172,11 +190,20 @@ void write_prediction_files(const joint::JointCase& c, const joint::JointPredict
       k.x.push_back(l.preload);
       k.y.push_back(l.stiffness * 1e-6);
     }
-    plot_png(dir.file("mu_vs_preload.png"),
-             {"Friction coefficient against preload", "preload [N]", "mu", false, false, {mu}, "set yrange [0:*]"});
-    plot_png(dir.file("stiffness_vs_preload.png"),
-             {"Tangential stiffness against preload", "preload [N]", "stiffness [N/um]", false, false, {k},
-              "set yrange [0:*]"});
+    plot_png(file("mu_vs_preload.png"), {"Friction coefficient against preload",
+                                         "preload [N]",
+                                         "mu",
+                                         false,
+                                         false,
+                                         {mu},
+                                         "set yrange [0:*]"});
+    plot_png(file("stiffness_vs_preload.png"), {"Tangential stiffness against preload",
+                                                "preload [N]",
+                                                "stiffness [N/um]",
+                                                false,
+                                                false,
+                                                {k},
+                                                "set yrange [0:*]"});
   }
 }
 
@@ -205,12 +232,13 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
         const auto p = joint::predict(c, progress);
         if (o->out) {
           joint::StagedDirectory dir(*o->out);
-          write_prediction_files(c, p, dir, !o->no_plots);
+          write_prediction_files(c, p, dir, !o->no_plots, true, "");
           dir.commit();
         }
         out = o->json ? prediction_json(c, p).dump(2) + "\n" : prediction_summary(c, p);
-        if (o->out && !o->json) out += fmt::format("\nwrote {}/ (summary.json, loops.csv, energy.csv{})\n", *o->out,
-                                                   o->no_plots ? "" : ", plots");
+        if (o->out && !o->json)
+          out += fmt::format("\nwrote {}/ (summary.json, loops.csv, energy.csv{})\n", *o->out,
+                             o->no_plots ? "" : ", plots");
       });
     };
   });

@@ -3,13 +3,13 @@
 
 #include <fmt/format.h>
 
+#include <toml++/toml.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/units.hpp"
@@ -24,7 +24,8 @@ double bolt_preload(double torque, double nut_factor, double diameter) {
     throw InvalidInput(fmt::format("bolt torque = {} N*m must be > 0", torque));
   }
   if (!(nut_factor > 0.0) || !std::isfinite(nut_factor)) {
-    throw InvalidInput(fmt::format("nut factor = {} must be > 0 (0.2 for steel bolts)", nut_factor));
+    throw InvalidInput(
+        fmt::format("nut factor = {} must be > 0 (0.2 for steel bolts)", nut_factor));
   }
   if (!(diameter > 0.0) || !std::isfinite(diameter)) {
     throw InvalidInput(fmt::format("bolt diameter = {} m must be > 0", diameter));
@@ -52,11 +53,13 @@ HalfRoughness half_roughness_from_files(const std::vector<std::string>& files,
   for (const auto& f : files) {
     const auto map = surface::read_height_file(f);
     if (!map.is_profile()) {
-      throw InvalidInput(fmt::format("{}: areal files are not supported in case files; give line "
-                                     "scans (or use `asperity roughness` and give parameters)",
-                                     f));
+      throw InvalidInput(
+          fmt::format("{}: areal files are not supported in case files; give line "
+                      "scans (or use `asperity roughness` and give parameters)",
+                      f));
     }
-    m[count++] = surface::process_profile(map.as_profile(), settings.level, settings.filter).moments;
+    m[count++] =
+        surface::process_profile(map.as_profile(), settings.level, settings.filter).moments;
   }
   if (count == 1) {
     out.moments = m[0];
@@ -64,8 +67,8 @@ HalfRoughness half_roughness_from_files(const std::vector<std::string>& files,
   } else {
     const surface::SpectralMoments m0 = m[0], m1 = m[1];
     const bool first_max = m0.m2 >= m1.m2;
-    out.moments = surface::equivalent_isotropic(first_max ? m0 : m1, first_max ? m1 : m0,
-                                                settings.rule);
+    out.moments =
+        surface::equivalent_isotropic(first_max ? m0 : m1, first_max ? m1 : m0, settings.rule);
     out.directions = {first_max ? "max_slope" : "min_slope", first_max ? "min_slope" : "max_slope"};
   }
   return out;
@@ -113,7 +116,8 @@ class Reader {
   Reader(std::string source, std::string base_dir)
       : source_(std::move(source)), base_(std::move(base_dir)) {}
 
-  [[noreturn]] void fail(const toml::node* n, const std::string& key, const std::string& what) const {
+  [[noreturn]] void fail(const toml::node* n, const std::string& key,
+                         const std::string& what) const {
     const auto line = n ? n->source().begin.line : 0U;
     if (line > 0) throw InvalidInput(fmt::format("{}:{}: {}: {}", source_, line, key, what));
     throw InvalidInput(fmt::format("{}: {}: {}", source_, key, what));
@@ -155,7 +159,11 @@ class Reader {
       }
       if (const auto s = n.value<std::string>()) return core::parse_quantity(*s, d, key);
     } catch (const InvalidInput& e) {
-      fail(&n, key, e.what());
+      // parse_quantity's message names the key already.
+      const std::string msg = e.what();
+      if (msg.starts_with(key))
+        throw InvalidInput(fmt::format("{}:{}: {}", source_, n.source().begin.line, msg));
+      fail(&n, key, msg);
     }
     fail(&n, key,
          d == dim::dimensionless ? "must be a number"
@@ -181,7 +189,8 @@ class Reader {
   double positive(const toml::table& t, const std::string& key, core::Dimension d,
                   const std::string& where) const {
     const double v = required(t, key, d, where);
-    if (!(v > 0.0) || !std::isfinite(v)) fail(t.get(key), where + "." + key, fmt::format("= {} must be > 0", v));
+    if (!(v > 0.0) || !std::isfinite(v))
+      fail(t.get(key), where + "." + key, fmt::format("= {} must be > 0", v));
     return v;
   }
 
@@ -212,7 +221,8 @@ class Reader {
 
   [[nodiscard]] std::string resolve(const std::string& p) const {
     const std::filesystem::path path(p);
-    return path.is_absolute() ? p : (std::filesystem::path(base_) / path).lexically_normal().string();
+    return path.is_absolute() ? p
+                              : (std::filesystem::path(base_) / path).lexically_normal().string();
   }
 
   [[nodiscard]] const std::string& source() const { return source_; }
@@ -233,12 +243,15 @@ class Reader {
 
 contact::Material parse_material(const Reader& r, const toml::node& n, const std::string& where) {
   const auto* t = n.as_table();
-  if (!t) r.fail(&n, where, "must be a table { E = \"200 GPa\", nu = 0.24, G = \"80.7 GPa\", H = \"5.8 GPa\" }");
+  if (!t)
+    r.fail(&n, where,
+           "must be a table { E = \"200 GPa\", nu = 0.24, G = \"80.7 GPa\", H = \"5.8 GPa\" }");
   r.check_keys(*t, where, {"E", "nu", "G", "H"});
   contact::Material m;
   m.E = r.positive(*t, "E", dim::pressure, where);
   m.nu = r.required(*t, "nu", dim::dimensionless, where);
-  if (!(m.nu >= 0.0 && m.nu < 0.5)) r.fail(t->get("nu"), where + ".nu", fmt::format("= {} must be in [0, 0.5)", m.nu));
+  if (!(m.nu >= 0.0 && m.nu < 0.5))
+    r.fail(t->get("nu"), where + ".nu", fmt::format("= {} must be in [0, 0.5)", m.nu));
   m.G = r.optional_quantity(*t, "G", dim::pressure, where).value_or(0.0);
   if (t->get("G") && !(m.G > 0.0)) r.fail(t->get("G"), where + ".G", "must be > 0");
   m.H = r.optional_quantity(*t, "H", dim::pressure, where).value_or(0.0);
@@ -258,7 +271,9 @@ HalfRoughness parse_roughness(const Reader& r, const toml::table& half, const st
   if (rough) {
     const std::string w = where + ".roughness";
     const auto* t = rough->as_table();
-    if (!t) r.fail(rough, w, "must be a table { sigma = \"1.763 um\", eta = \"3.34e-4 um^-2\", R = \"40.76 um\" }");
+    if (!t)
+      r.fail(rough, w,
+             "must be a table { sigma = \"1.763 um\", eta = \"3.34e-4 um^-2\", R = \"40.76 um\" }");
     r.check_keys(*t, w, {"sigma", "eta", "R"});
     const double sigma = r.positive(*t, "sigma", dim::length, w);
     const double eta = r.positive(*t, "eta", dim::inverse_area, w);
@@ -268,7 +283,8 @@ HalfRoughness parse_roughness(const Reader& r, const toml::table& half, const st
   const std::string w = where + ".profiles";
   const auto* a = prof->as_array();
   if (!a || a->empty() || a->size() > 2) {
-    r.fail(prof, w, "must be an array of one or two scan files, e.g. [\"pzt_max.csv\", \"pzt_min.csv\"]");
+    r.fail(prof, w,
+           "must be an array of one or two scan files, e.g. [\"pzt_max.csv\", \"pzt_min.csv\"]");
   }
   std::vector<std::string> files;
   for (std::size_t i = 0; i < a->size(); ++i) {
@@ -285,14 +301,15 @@ HalfRoughness parse_roughness(const Reader& r, const toml::table& half, const st
 
 }  // namespace
 
-JointCase parse_case(std::string_view text, const std::string& source, const std::string& base_dir) {
+JointCase parse_case(std::string_view text, const std::string& source,
+                     const std::string& base_dir) {
   const Reader r(source, base_dir);
   toml::table root;
   try {
     root = toml::parse(text, source);
   } catch (const toml::parse_error& e) {
-    throw InvalidInput(fmt::format("{}:{}: TOML syntax error: {}", source,
-                                   e.source().begin.line, e.description()));
+    throw InvalidInput(fmt::format("{}:{}: TOML syntax error: {}", source, e.source().begin.line,
+                                   e.description()));
   }
   r.check_keys(root, "", {"joint", "load", "excitation", "profiles"});
 
@@ -314,9 +331,11 @@ JointCase parse_case(std::string_view text, const std::string& source, const std
     if (!(*mu > 0.0)) r.fail(joint.get("mu_cfc"), "joint.mu_cfc", "must be > 0");
     c.friction.mu_cfc = *mu;
   } else if (c.model == contact::ModelName::cfc) {
-    r.fail(&joint, "joint.mu_cfc", "missing: the cfc model needs the constant friction coefficient");
+    r.fail(&joint, "joint.mu_cfc",
+           "missing: the cfc model needs the constant friction coefficient");
   }
-  if (const auto z = r.optional_quantity(joint, "zeta", dim::dimensionless, "joint")) c.friction.zeta = *z;
+  if (const auto z = r.optional_quantity(joint, "zeta", dim::dimensionless, "joint"))
+    c.friction.zeta = *z;
   {
     const std::string s = r.string(joint, "slip_scaling", "joint", "elastic");
     if (s == "elastic") {
@@ -324,7 +343,8 @@ JointCase parse_case(std::string_view text, const std::string& source, const std
     } else if (s == "own_law") {
       c.slip_scaling = surface::SlipScaling::own_law;
     } else {
-      r.fail(joint.get("slip_scaling"), "joint.slip_scaling", fmt::format("\"{}\": use elastic or own_law", s));
+      r.fail(joint.get("slip_scaling"), "joint.slip_scaling",
+             fmt::format("\"{}\": use elastic or own_law", s));
     }
   }
 
@@ -336,18 +356,22 @@ JointCase parse_case(std::string_view text, const std::string& source, const std
     try {
       if (const auto* n = t->get("lc")) {
         const auto s = n->value<std::string>();
-        c.profile_settings.filter.lc = (s && *s == "none") ? 0.0 : r.quantity(*n, dim::length, "profiles.lc");
+        c.profile_settings.filter.lc =
+            (s && *s == "none") ? 0.0 : r.quantity(*n, dim::length, "profiles.lc");
       }
       if (const auto* n = t->get("ls")) {
         const auto s = n->value<std::string>();
-        c.profile_settings.filter.ls = (s && *s == "none") ? 0.0 : r.quantity(*n, dim::length, "profiles.ls");
+        c.profile_settings.filter.ls =
+            (s && *s == "none") ? 0.0 : r.quantity(*n, dim::length, "profiles.ls");
       }
       c.profile_settings.filter.validate();
       if (t->get("rule")) {
-        c.profile_settings.rule = surface::parse_isotropic_rule(r.string(*t, "rule", "profiles", ""), "profiles.rule");
+        c.profile_settings.rule =
+            surface::parse_isotropic_rule(r.string(*t, "rule", "profiles", ""), "profiles.rule");
       }
       if (t->get("level")) {
-        c.profile_settings.level = surface::parse_levelling(r.string(*t, "level", "profiles", ""), "profiles.level");
+        c.profile_settings.level =
+            surface::parse_levelling(r.string(*t, "level", "profiles", ""), "profiles.level");
       }
     } catch (const InvalidInput& e) {
       if (std::string_view(e.what()).starts_with(source)) throw;
@@ -356,11 +380,14 @@ JointCase parse_case(std::string_view text, const std::string& source, const std
   }
 
   const auto* halves = joint.get("half");
-  if (!halves) r.fail(&joint, "joint.half", "missing: give two [[joint.half]] tables (the two joint halves)");
+  if (!halves)
+    r.fail(&joint, "joint.half", "missing: give two [[joint.half]] tables (the two joint halves)");
   const auto* arr = halves->as_array();
-  if (!arr || !arr->is_array_of_tables()) r.fail(halves, "joint.half", "must be [[joint.half]] tables");
+  if (!arr || !arr->is_array_of_tables())
+    r.fail(halves, "joint.half", "must be [[joint.half]] tables");
   if (arr->size() != 2) {
-    r.fail(halves, "joint.half", fmt::format("{} half given; a joint has two [[joint.half]] tables", arr->size()));
+    r.fail(halves, "joint.half",
+           fmt::format("{} half given; a joint has two [[joint.half]] tables", arr->size()));
   }
   for (std::size_t i = 0; i < 2; ++i) {
     const std::string w = fmt::format("joint.half[{}]", i + 1);
@@ -378,9 +405,11 @@ JointCase parse_case(std::string_view text, const std::string& source, const std
   // Load: exactly one of preload, preloads, bolts.
   const auto& load = r.table(root, "load", "");
   r.check_keys(load, "load", {"preload", "preloads", "bolts"});
-  const int given = (load.get("preload") ? 1 : 0) + (load.get("preloads") ? 1 : 0) + (load.get("bolts") ? 1 : 0);
+  const int given =
+      (load.get("preload") ? 1 : 0) + (load.get("preloads") ? 1 : 0) + (load.get("bolts") ? 1 : 0);
   if (given != 1) {
-    r.fail(&load, "load", "give exactly one of preload = \"526 N\", preloads = [...] or bolts = { ... }");
+    r.fail(&load, "load",
+           "give exactly one of preload = \"526 N\", preloads = [...] or bolts = { ... }");
   }
   if (const auto* n = load.get("preload")) {
     const double P = r.quantity(*n, dim::force, "load.preload");
@@ -391,32 +420,45 @@ JointCase parse_case(std::string_view text, const std::string& source, const std
   } else {
     const auto* bn = load.get("bolts");
     const auto* b = bn->as_table();
-    if (!b) r.fail(bn, "load.bolts", "must be a table { count = 2, torque = \"0.1525 N*m\", nut_factor = 0.2, diameter = \"2.9 mm\" }");
-    r.check_keys(*b, "load.bolts", {"count", "torque", "torques", "total_torque", "total_torques", "nut_factor", "diameter"});
+    if (!b)
+      r.fail(bn, "load.bolts",
+             "must be a table { count = 2, torque = \"0.1525 N*m\", nut_factor = 0.2, diameter = "
+             "\"2.9 mm\" }");
+    r.check_keys(
+        *b, "load.bolts",
+        {"count", "torque", "torques", "total_torque", "total_torques", "nut_factor", "diameter"});
     Bolts bolts;
     if (const auto* cn = b->get("count")) {
       const auto v = cn->value<int64_t>();
-      if (!cn->is_integer() || !v || *v < 1 || *v > 1000) r.fail(cn, "load.bolts.count", "must be a whole number >= 1");
+      if (!cn->is_integer() || !v || *v < 1 || *v > 1000)
+        r.fail(cn, "load.bolts.count", "must be a whole number >= 1");
       bolts.count = static_cast<int>(*v);
     }
-    bolts.nut_factor = r.optional_quantity(*b, "nut_factor", dim::dimensionless, "load.bolts").value_or(0.2);
-    if (!(bolts.nut_factor > 0.0)) r.fail(b->get("nut_factor"), "load.bolts.nut_factor", "must be > 0 (0.2 for steel bolts, Eq. 5.2)");
+    bolts.nut_factor =
+        r.optional_quantity(*b, "nut_factor", dim::dimensionless, "load.bolts").value_or(0.2);
+    if (!(bolts.nut_factor > 0.0))
+      r.fail(b->get("nut_factor"), "load.bolts.nut_factor",
+             "must be > 0 (0.2 for steel bolts, Eq. 5.2)");
     bolts.diameter = r.positive(*b, "diameter", dim::length, "load.bolts");
     const int nt = (b->get("torque") ? 1 : 0) + (b->get("torques") ? 1 : 0) +
                    (b->get("total_torque") ? 1 : 0) + (b->get("total_torques") ? 1 : 0);
     if (nt != 1) {
-      r.fail(b, "load.bolts", "give exactly one of torque, torques (per bolt), total_torque or total_torques (all bolts)");
+      r.fail(b, "load.bolts",
+             "give exactly one of torque, torques (per bolt), total_torque or total_torques (all "
+             "bolts)");
     }
     const bool total = b->get("total_torque") || b->get("total_torques");
     for (const char* key : {"torque", "total_torque"}) {
       if (const auto* tn = b->get(key)) {
         const double T = r.quantity(*tn, dim::energy, std::string("load.bolts.") + key);
-        if (!(T > 0.0)) r.fail(tn, std::string("load.bolts.") + key, fmt::format("= {} N*m must be > 0", T));
+        if (!(T > 0.0))
+          r.fail(tn, std::string("load.bolts.") + key, fmt::format("= {} N*m must be > 0", T));
         bolts.torques = {T};
       }
     }
     for (const char* key : {"torques", "total_torques"}) {
-      if (const auto* tn = b->get(key)) bolts.torques = r.quantity_list(*tn, dim::energy, std::string("load.bolts.") + key, true);
+      if (const auto* tn = b->get(key))
+        bolts.torques = r.quantity_list(*tn, dim::energy, std::string("load.bolts.") + key, true);
     }
     if (total) {
       for (double& T : bolts.torques) T /= static_cast<double>(bolts.count);
@@ -429,7 +471,8 @@ JointCase parse_case(std::string_view text, const std::string& source, const std
     const auto* e = en->as_table();
     if (!e) r.fail(en, "excitation", "must be a table");
     r.check_keys(*e, "excitation", {"amplitudes"});
-    if (const auto* a = e->get("amplitudes")) c.amplitudes = r.quantity_list(*a, dim::length, "excitation.amplitudes", true);
+    if (const auto* a = e->get("amplitudes"))
+      c.amplitudes = r.quantity_list(*a, dim::length, "excitation.amplitudes", true);
   }
   std::sort(c.amplitudes.begin(), c.amplitudes.end());
   c.validate();

@@ -6,9 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <numeric>
-#include <limits>
 #include <random>
 
 #include "asperity/core/csv.hpp"
@@ -106,8 +106,8 @@ double reversal_stiffness(const std::vector<double>& delta, const std::vector<do
   if (n < 6) return std::numeric_limits<double>::quiet_NaN();
   // Solve the 3x3 system [[S0 S1 S2][S1 S2 S3][S2 S3 S4]] (a b c) = T by Cramer's rule.
   const double a11 = S[0], a12 = S[1], a13 = S[2], a22 = S[2], a23 = S[3], a33 = S[4];
-  const double det = a11 * (a22 * a33 - a23 * a23) - a12 * (a12 * a33 - a23 * a13) +
-                     a13 * (a12 * a23 - a22 * a13);
+  const double det =
+      a11 * (a22 * a33 - a23 * a23) - a12 * (a12 * a33 - a23 * a13) + a13 * (a12 * a23 - a22 * a13);
   const double db = a11 * (T[1] * a33 - a23 * T[2]) - T[0] * (a12 * a33 - a23 * a13) +
                     a13 * (a12 * T[2] - T[1] * a13);
   const double b = db / det;
@@ -187,6 +187,30 @@ double pooled_stiffness(const std::vector<double>& delta, const std::vector<doub
   return 1.0 / x[0];
 }
 
+// Value at index i of a least-squares quadratic in time through the samples within
+// +-hw of i: an extreme of a noisy signal without the upward bias of max().
+double local_value(const std::vector<double>& v, std::size_t i, std::size_t hw) {
+  const std::size_t a = i > hw ? i - hw : 0, b = std::min(v.size() - 1, i + hw);
+  double S[5] = {0, 0, 0, 0, 0}, T[3] = {0, 0, 0};
+  for (std::size_t j = a; j <= b; ++j) {
+    const double x = static_cast<double>(j) - static_cast<double>(i);
+    double p = 1.0;
+    for (double& sv : S) {
+      sv += p;
+      p *= x;
+    }
+    T[0] += v[j];
+    T[1] += v[j] * x;
+    T[2] += v[j] * x * x;
+  }
+  const double det = S[0] * (S[2] * S[4] - S[3] * S[3]) - S[1] * (S[1] * S[4] - S[3] * S[2]) +
+                     S[2] * (S[1] * S[3] - S[2] * S[2]);
+  if (!(std::abs(det) > 0.0)) return v[i];
+  const double da = T[0] * (S[2] * S[4] - S[3] * S[3]) - S[1] * (T[1] * S[4] - S[3] * T[2]) +
+                    S[2] * (T[1] * S[3] - S[2] * T[2]);
+  return da / det;
+}
+
 // delta where the branch [a, b] (monotone in time) first crosses Q = level.
 double crossing(const std::vector<double>& delta, const std::vector<double>& Q, std::size_t a,
                 std::size_t b, double level) {
@@ -201,7 +225,8 @@ double crossing(const std::vector<double>& delta, const std::vector<double>& Q, 
 void resample(const std::vector<double>& v, std::size_t a, std::size_t b, std::size_t m,
               std::vector<double>& acc, std::size_t offset) {
   for (std::size_t j = 0; j < m; ++j) {
-    const double pos = static_cast<double>(a) + static_cast<double>(b - a) * static_cast<double>(j) /
+    const double pos = static_cast<double>(a) + static_cast<double>(b - a) *
+                                                    static_cast<double>(j) /
                                                     static_cast<double>(m - 1);
     const auto i = std::min(static_cast<std::size_t>(pos), b - 1);
     const double f = pos - static_cast<double>(i);
@@ -214,9 +239,11 @@ void resample(const std::vector<double>& v, std::size_t a, std::size_t b, std::s
 void FrettingData::validate() const {
   const std::size_t n = t.size();
   if (delta.size() != n || Q.size() != n || (!Delta.empty() && Delta.size() != n)) {
-    throw InvalidInput(fmt::format("{}: columns t, delta, Q (and Delta) must have equal length", source));
+    throw InvalidInput(
+        fmt::format("{}: columns t, delta, Q (and Delta) must have equal length", source));
   }
-  if (n < 10) throw InvalidInput(fmt::format("{}: {} samples: too few for a fretting cycle", source, n));
+  if (n < 10)
+    throw InvalidInput(fmt::format("{}: {} samples: too few for a fretting cycle", source, n));
   for (std::size_t i = 0; i < n; ++i) {
     if (!std::isfinite(t[i]) || !std::isfinite(delta[i]) || !std::isfinite(Q[i]) ||
         (!Delta.empty() && !std::isfinite(Delta[i]))) {
@@ -232,7 +259,8 @@ void FrettingData::validate() const {
   std::vector<double> dt(n - 1);
   for (std::size_t i = 1; i < n; ++i) dt[i - 1] = t[i] - t[i - 1];
   auto sorted = dt;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                   sorted.end());
   const double med = sorted[sorted.size() / 2];
   for (std::size_t i = 0; i < dt.size(); ++i) {
     if (dt[i] > 5.0 * med) {
@@ -281,11 +309,13 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
   // of a period and its own turning points split the cycles.
   const auto& coarse = imposed ? data.Delta : data.Q;
   const auto [clo, chi] = std::minmax_element(coarse.begin(), coarse.end());
-  if (!(*chi - *clo > 0.0)) throw InvalidInput(fmt::format("{}: the signals do not move", data.source));
+  if (!(*chi - *clo > 0.0))
+    throw InvalidInput(fmt::format("{}: the signals do not move", data.source));
   const auto tp0 = turning_points(coarse, 0.4 * (*chi - *clo));
-  const double spc = tp0.size() >= 3 ? 2.0 * static_cast<double>(tp0.back().first - tp0.front().first) /
-                                           static_cast<double>(tp0.size() - 1)
-                                     : static_cast<double>(n);
+  const double spc = tp0.size() >= 3
+                         ? 2.0 * static_cast<double>(tp0.back().first - tp0.front().first) /
+                               static_cast<double>(tp0.size() - 1)
+                         : static_cast<double>(n);
   std::size_t w = static_cast<std::size_t>(spc / 50.0);
   w = std::max<std::size_t>(1, w | 1U);
   const auto ds = moving_average(data.delta, w);
@@ -293,14 +323,17 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
   const auto& s = imposed ? data.Delta : ds;
   const auto [lo, hi] = std::minmax_element(s.begin(), s.end());
   const double range = *hi - *lo;
-  if (!(range > 0.0)) throw InvalidInput(fmt::format("{}: the displacement does not move", data.source));
+  if (!(range > 0.0))
+    throw InvalidInput(fmt::format("{}: the displacement does not move", data.source));
   // Threshold: 0.4 of the median swing of s between the coarse turning points (the
   // cycles may be much smaller than the whole record's range, e.g. after a ramp).
   double h = 0.4 * range;
   if (tp0.size() >= 3) {
     std::vector<double> swings;
-    for (std::size_t k = 1; k < tp0.size(); ++k) swings.push_back(std::abs(s[tp0[k].first] - s[tp0[k - 1].first]));
-    std::nth_element(swings.begin(), swings.begin() + static_cast<std::ptrdiff_t>(swings.size() / 2), swings.end());
+    for (std::size_t k = 1; k < tp0.size(); ++k)
+      swings.push_back(std::abs(s[tp0[k].first] - s[tp0[k - 1].first]));
+    std::nth_element(swings.begin(),
+                     swings.begin() + static_cast<std::ptrdiff_t>(swings.size() / 2), swings.end());
     h = std::min(h, 0.4 * swings[swings.size() / 2]);
   }
   const auto tp = turning_points(s, h);
@@ -321,12 +354,14 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
     c.energy = trapezoid_loop_area(ds, Qs, a, b);
     const auto [qlo, qhi] = std::minmax_element(Qs.begin() + static_cast<std::ptrdiff_t>(a),
                                                 Qs.begin() + static_cast<std::ptrdiff_t>(b) + 1);
-    const auto [dlo, dhi] = std::minmax_element(ds.begin() + static_cast<std::ptrdiff_t>(a),
-                                                ds.begin() + static_cast<std::ptrdiff_t>(b) + 1);
     c.Q_max = 0.5 * (*qhi - *qlo);
     c.Q_center = 0.5 * (*qhi + *qlo);
-    c.delta_max = 0.5 * (*dhi - *dlo);
-    c.delta_center = 0.5 * (*dhi + *dlo);
+    // Displacement extremes: local quadratic fits over +-1/25 period at the reversals.
+    const auto hw = static_cast<std::size_t>(spc / 25.0);
+    const double dhi = 0.5 * (local_value(data.delta, a, hw) + local_value(data.delta, b, hw));
+    const double dlo = local_value(data.delta, mid, hw);
+    c.delta_max = 0.5 * (dhi - dlo);
+    c.delta_center = 0.5 * (dhi + dlo);
     const double span = opt.stiffness_window * 2.0 * c.Q_max;
     c.stiffness_unloading = reversal_stiffness(data.delta, data.Q, Qs, a, mid, span);
     c.stiffness_reloading = reversal_stiffness(data.delta, data.Q, Qs, mid, b, span);
@@ -391,7 +426,8 @@ double power_law_exponent(const std::vector<double>& Q_max, const std::vector<do
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   const double n = static_cast<double>(Q_max.size());
   for (std::size_t i = 0; i < Q_max.size(); ++i) {
-    if (!(Q_max[i] > 0.0) || !(energy[i] > 0.0)) throw InvalidInput("power law: values must be > 0");
+    if (!(Q_max[i] > 0.0) || !(energy[i] > 0.0))
+      throw InvalidInput("power law: values must be > 0");
     const double x = std::log(Q_max[i]), y = std::log(energy[i]);
     sx += x;
     sy += y;
@@ -399,7 +435,8 @@ double power_law_exponent(const std::vector<double>& Q_max, const std::vector<do
     sxy += x * y;
   }
   const double den = n * sxx - sx * sx;
-  if (!(std::abs(den) > 1e-12 * n * sxx)) throw InvalidInput("power law: the runs have the same Q_max");
+  if (!(std::abs(den) > 1e-12 * n * sxx))
+    throw InvalidInput("power law: the runs have the same Q_max");
   return (n * sxy - sx * sy) / den;
 }
 
@@ -410,16 +447,20 @@ double Eq53Excitation::operator()(double t) const {
   if (t <= 0.0) return 0.0;
   if (t <= t_ramp) return amplitude * t / t_ramp;  // A t
   if (t <= t_end) {  // 0.5 A (1 + sin 2 pi f t), phase pi at the end of the ramp
-    return amplitude * (1.0 + std::sin(2.0 * std::numbers::pi * frequency * (t - t_ramp) + std::numbers::pi));
+    return amplitude *
+           (1.0 + std::sin(2.0 * std::numbers::pi * frequency * (t - t_ramp) + std::numbers::pi));
   }
-  const double x_end = amplitude * (1.0 + std::sin(2.0 * std::numbers::pi * static_cast<double>(cycles) + std::numbers::pi));
+  const double x_end =
+      amplitude *
+      (1.0 + std::sin(2.0 * std::numbers::pi * static_cast<double>(cycles) + std::numbers::pi));
   if (t <= t_end + t_ramp) return x_end * (1.0 - (t - t_end) / t_ramp);
   return 0.0;
 }
 
 FrettingData synthetic_experiment(std::shared_ptr<const hysteresis::Backbone> backbone,
                                   const SyntheticOptions& o) {
-  if (!(o.excitation.amplitude > 0.0) || !(o.excitation.frequency > 0.0) || o.excitation.cycles < 1) {
+  if (!(o.excitation.amplitude > 0.0) || !(o.excitation.frequency > 0.0) ||
+      o.excitation.cycles < 1) {
     throw InvalidInput("synthetic experiment: amplitude and frequency must be > 0, cycles >= 1");
   }
   if (!(o.sample_rate > 0.0) || !(o.pzt_stiffness > 0.0) || !(o.load_cell_stiffness > 0.0) ||
@@ -439,7 +480,8 @@ FrettingData synthetic_experiment(std::shared_ptr<const hysteresis::Backbone> ba
   for (std::size_t i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) / o.sample_rate;
     const double D = o.excitation(t);
-    // Solve x + Q(x) c = D on [x, x + (D - D_prev)] by bisection (Q moves with x).
+    // Solve x + Q(x) c = D on [x, x + (D - D_prev)] (Q moves with x, so the residual is
+    // monotone on the bracket) by regula falsi with the Illinois modification.
     double lo = x, hi = x + (D - D_prev);
     if (lo > hi) std::swap(lo, hi);
     const auto residual = [&](double xi) {
@@ -447,11 +489,37 @@ FrettingData synthetic_experiment(std::shared_ptr<const hysteresis::Backbone> ba
       return xi + copy.update(xi) * compliance - D;
     };
     if (hi > lo) {
-      for (int it = 0; it < 200 && hi - lo > 1e-15 * std::max(1e-9, std::abs(hi)); ++it) {
-        const double mid = 0.5 * (lo + hi);
-        (residual(mid) > 0.0 ? hi : lo) = mid;
+      double flo = residual(lo), fhi = residual(hi);
+      int side = 0;
+      double xm = lo;
+      for (int it = 0; it < 100; ++it) {
+        if (flo >= 0.0) {
+          xm = lo;
+          break;
+        }
+        if (fhi <= 0.0) {
+          xm = hi;
+          break;
+        }
+        xm = (lo * fhi - hi * flo) / (fhi - flo);
+        if (!(xm > lo && xm < hi)) xm = 0.5 * (lo + hi);
+        const double fm = residual(xm);
+        if (std::abs(fm) <= 1e-13 * std::abs(D - D_prev) ||
+            hi - lo <= 1e-15 * std::max(1e-9, std::abs(hi)))
+          break;
+        if (fm > 0.0) {
+          hi = xm;
+          fhi = fm;
+          if (side == -1) flo *= 0.5;
+          side = -1;
+        } else {
+          lo = xm;
+          flo = fm;
+          if (side == 1) fhi *= 0.5;
+          side = 1;
+        }
       }
-      x = 0.5 * (lo + hi);
+      x = xm;
     }
     const double Q = h.update(x);
     d.t[i] = t;

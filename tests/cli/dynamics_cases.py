@@ -40,8 +40,9 @@ def bad(exe, case_text, must_contain, code=2):
         return fail(f"expected exit {code}, got {r.returncode}; stderr: {r.stderr}")
     if r.stdout:
         return fail(f"stdout not empty: {r.stdout!r}")
-    if must_contain.lower() not in r.stderr.lower():
-        return fail(f"message does not mention {must_contain!r}: {r.stderr}")
+    for word in [must_contain] if isinstance(must_contain, str) else must_contain:
+        if word.lower() not in r.stderr.lower():
+            return fail(f"message does not mention {word!r}: {r.stderr}")
     return 0
 
 
@@ -210,10 +211,14 @@ def joint_runs_either_order(exe):
     return 0
 
 
+def at_load(text, word):
+    """(text, [...]): errors about the load name the file, the [load] line and `word`."""
+    return text, [f"case.toml:{line_of(text, '[load]')}: load: ", word]
+
+
 JOINT_BAD = {
     "joint.bad_input.unit": (joint_case(joint_extra='').replace('"170 mm^2"', '"3 N"'), "joint.area"),
-    "joint.bad_input.sweep":
-        (joint_case(load='preloads = ["234 N", "526 N"]'), "one preload"),
+    "joint.bad_input.sweep": at_load(joint_case(load='preloads = ["234 N", "526 N"]'), "one preload"),
     "joint.bad_input.conflicting_friction":
         (joint_case(friction='model = "coulomb"\nF_max = 1.5\nk_tan = 6.32\n'), "conflicts"),
     "joint.bad_input.unknown_friction_key":
@@ -224,8 +229,23 @@ JOINT_BAD = {
     "joint.bad_input.joint_backbone_without_joint":
         ('[dynamics]\nstiffness = "1e7 N/m"\namplitude = "12 um"\n[dynamics.friction]\n'
          'model = "physics"\nbackbone = "joint"\n', "[joint]"),
-    "joint.bad_input.preload_beyond_range": (joint_case(load='preload = "5 MN"'), "preload"),
+    "joint.bad_input.preload_beyond_range": at_load(joint_case(load='preload = "5 MN"'), "preload"),
 }
+
+
+def figures(exe):
+    """examples/dynamics/figures.sh regenerates Fig. 7.3-7.7 from the shipped cases."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "figs")
+        r = subprocess.run(["sh", os.path.join(EXAMPLES, "figures.sh"), exe, out],
+                           capture_output=True, text=True, timeout=600)
+        if r.returncode != 0:
+            return fail(f"figures.sh: exit {r.returncode}: {r.stderr}")
+        for n in range(3, 8):
+            png = os.path.join(out, f"fig_7_{n}.png")
+            if not os.path.exists(png) or os.path.getsize(png) < 10_000:
+                return fail(f"{png} missing or too small")
+    return 0
 
 
 def main():
@@ -234,6 +254,8 @@ def main():
         return summary_keys(exe)
     if case == "examples_table_7_2":
         return examples_table_7_2(exe)
+    if case == "figures":
+        return figures(exe)
     if case == "joint_example":
         return joint_example(exe)
     if case == "joint_either_order":

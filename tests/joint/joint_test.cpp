@@ -11,19 +11,25 @@
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/units.hpp"
+#include "asperity/hysteresis/backbones.hpp"
 #include "asperity/hysteresis/masing.hpp"
 #include "asperity/joint/case.hpp"
 #include "asperity/joint/fretting.hpp"
 #include "asperity/joint/output_dir.hpp"
 #include "asperity/joint/predict.hpp"
+#include "asperity/joint/validation.hpp"
 
 namespace asperity::joint {
 namespace {
 
 const std::string kExamples = std::string(ASPERITY_TEST_DATA_DIR) + "/../../examples/joints/";
 
-double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
-double lbf_in(double v) { return core::parse_quantity(std::to_string(v) + " lbf*in", core::dim::energy, "T"); }
+double rel(double a, double b) {
+  return std::abs(a - b) / std::abs(b);
+}
+double lbf_in(double v) {
+  return core::parse_quantity(std::to_string(v) + " lbf*in", core::dim::energy, "T");
+}
 
 // ---------------------------------------------------------------- Eq. 5.2 tables
 TEST(TorquePreload, Table52SingleBoltNo4UNF) {
@@ -37,13 +43,15 @@ TEST(TorquePreload, Table52SingleBoltNo4UNF) {
 
 TEST(TorquePreload, Table55TotalTorqueOfTwoM3Bolts) {
   // Table 5.5: total torque on the two M3 bolts 1.2/1.7/2.7/3.7 lb-in -> 234/331/526/721 N
-  // and p_mean = P/A0 = 1.4/2/3.2/4.4 MPa (A0 = 170 mm^2). D = 2.9 mm, k = 0.2.
+  // and p_mean = 1.4/2/3.2/4.4 MPa. D = 2.9 mm, k = 0.2. The printed p_mean follow from
+  // A0 = 165 mm^2 (the chapter 6 joints), not the 170 mm^2 of the chapter 5 joint
+  // (which gives 1.38/1.95/3.09/4.24): a slip in the thesis, see docs/joints.md.
   const double P[] = {234, 331, 526, 721}, T[] = {1.2, 1.7, 2.7, 3.7}, p[] = {1.4, 2.0, 3.2, 4.4};
   for (int i = 0; i < 4; ++i) {
     const Bolts b{.count = 2, .nut_factor = 0.2, .diameter = 2.9e-3, .torques = {}};
     const double F = b.preload(lbf_in(T[i]) / 2.0);
-    EXPECT_LT(rel(F, P[i]), 2.5e-3) << T[i];  // 3 printed digits
-    EXPECT_NEAR(F / 170e-6 / 1e6, p[i], 0.05) << T[i];  // 2 printed digits
+    EXPECT_LT(rel(F, P[i]), 2.5e-3) << T[i];            // 3 printed digits
+    EXPECT_NEAR(F / 165e-6 / 1e6, p[i], 0.05) << T[i];  // 2 printed digits
   }
 }
 
@@ -137,9 +145,10 @@ TEST(JointCase, WrongUnitsMissingHalvesAndBadLoads) {
   e = error_of(one);
   EXPECT_NE(e.find("joint.half"), std::string::npos) << e;
   EXPECT_NE(e.find("two"), std::string::npos) << e;
-  e = error_of(replaced(kCase, "preload = \"526 N\"",
-                        "bolts = { count = 2, torque = \"-0.1 N*m\", nut_factor = 0.2, diameter = \"2.9 mm\" }"));
-  EXPECT_NE(e.find("case.toml:15: load.bolts.torque"), std::string::npos) << e;
+  e = error_of(replaced(
+      kCase, "preload = \"526 N\"",
+      "bolts = { count = 2, torque = \"-0.1 N*m\", nut_factor = 0.2, diameter = \"2.9 mm\" }"));
+  EXPECT_NE(e.find("case.toml:13: load.bolts.torque"), std::string::npos) << e;
   EXPECT_NE(e.find("> 0"), std::string::npos) << e;
   e = error_of(replaced(kCase, "preload = \"526 N\"", "preload = \"526 N\"\npreloads = [\"1 N\"]"));
   EXPECT_NE(e.find("exactly one"), std::string::npos) << e;
@@ -148,16 +157,17 @@ TEST(JointCase, WrongUnitsMissingHalvesAndBadLoads) {
   e = error_of(replaced(kCase, "model = \"bke\"", "model = \"xyz\""));
   EXPECT_NE(e.find("joint.model"), std::string::npos) << e;
   e = error_of(replaced(kCase, "[excitation]", "[excitation"));
-  EXPECT_NE(e.find("case.toml:16: TOML syntax error"), std::string::npos) << e;
+  EXPECT_NE(e.find("case.toml:14: TOML syntax error"), std::string::npos) << e;
   e = error_of(replaced(kCase, "\"0.25 um\"", "\"-0.25 um\""));
   EXPECT_NE(e.find("excitation.amplitudes[2]"), std::string::npos) << e;
 }
 
 TEST(JointCase, TorqueSweepAndPerBoltTorque) {
-  const auto c = parse_case(replaced(kCase, "preload = \"526 N\"",
-                                     "bolts = { count = 2, torques = [\"0.1525 N*m\", \"0.209 N*m\"], "
-                                     "diameter = \"2.9 mm\" }"),
-                            "case.toml");
+  const auto c =
+      parse_case(replaced(kCase, "preload = \"526 N\"",
+                          "bolts = { count = 2, torques = [\"0.1525 N*m\", \"0.209 N*m\"], "
+                          "diameter = \"2.9 mm\" }"),
+                 "case.toml");
   ASSERT_EQ(c.preloads.size(), 2U);
   EXPECT_LT(rel(c.preloads[0], 526.0), 1e-3);  // 2 x 0.1525/(0.2 x 2.9 mm)
   EXPECT_LT(rel(c.preloads[1], 720.7), 1e-3);
@@ -247,7 +257,8 @@ struct Truth {
 Truth truth_of(const hysteresis::Backbone& bb, SyntheticOptions o) {
   o.noise_delta = 0.0;
   o.noise_Q = 0.0;
-  const auto clean = synthetic_experiment(std::shared_ptr<const hysteresis::Backbone>(&bb, [](auto*) {}), o);
+  const auto clean =
+      synthetic_experiment(std::shared_ptr<const hysteresis::Backbone>(&bb, [](auto*) {}), o);
   double lo = 1e300, hi = -1e300;
   for (std::size_t i = 0; i < clean.t.size(); ++i) {
     if (clean.t[i] >= 2.0 && clean.t[i] < 3.0) {
@@ -279,14 +290,43 @@ TEST_P(AnalyzeSynthetic, RecoversEnergyStiffnessAndMu) {
   EXPECT_EQ(a.cycles.size(), 9U);  // 10 harmonic periods: 9 maximum-to-maximum cycles
   EXPECT_LT(rel(a.mean.energy, truth.energy), 0.02) << a.mean.energy << " " << truth.energy;
   EXPECT_LT(rel(a.loop_energy, truth.energy), 0.02);
-  EXPECT_LT(rel(a.mean.stiffness, truth.stiffness), 0.05) << a.mean.stiffness << " " << truth.stiffness;
   EXPECT_LT(rel(a.mu, truth.Q_amp / P), 0.01) << a.mu << " " << truth.Q_amp / P;
   EXPECT_LT(rel(a.mean.delta_max, truth.delta_amp), 0.03);
 }
 
-INSTANTIATE_TEST_SUITE_P(Table56, AnalyzeSynthetic,
-                         ::testing::Values(std::make_tuple(234.0, 1, false), std::make_tuple(331.0, 2, false),
-                                           std::make_tuple(526.0, 3, true), std::make_tuple(526.0, 4, false),
+class AnalyzeSyntheticDense : public AnalyzeSynthetic {};
+
+TEST_P(AnalyzeSyntheticDense, RecoversStiffnessWithDenseSampling) {
+  // The stiffness at reversal of this joint (430-1200 N/um) makes the displacement over
+  // the fit window (0.3 of the force swing) only 0.1-0.2 um, comparable with the 0.1 um
+  // noise: at 1 kHz and 10 cycles the pooled fit scatters by tens of percent, at 20 kHz
+  // and 20 cycles by about 5 %. With 40 kHz (the LNS has 250 kHz bandwidth, section
+  // 5.2) and 40 cycles (scatter about 2.5 %, window 0.5: bias 1.2 %) it is within 5 %.
+  const auto [P, seed, imposed] = GetParam();
+  const auto c = read_case_file(kExamples + "steel420_two_bolts.toml");
+  const auto lp = predict_load(c.rough_flat(), P, {});
+  SyntheticOptions o;
+  o.excitation.amplitude = 6.75e-6;
+  o.excitation.cycles = 40;
+  o.sample_rate = 40000.0;
+  o.seed = static_cast<std::uint64_t>(seed) + 100;
+  auto data = synthetic_experiment(lp.backbone, o);
+  if (!imposed) data.Delta.clear();
+  const auto a = analyze_fretting(data, P, {.stiffness_window = 0.5});
+  const double k0 = lp.backbone->initial_stiffness();
+  EXPECT_LT(rel(a.mean.stiffness, k0), 0.05) << a.mean.stiffness << " " << k0;
+  EXPECT_LT(rel(a.mean.stiffness, lp.stiffness), 0.05);
+}
+
+INSTANTIATE_TEST_SUITE_P(AnalyzeTable56, AnalyzeSyntheticDense,
+                         ::testing::Values(std::make_tuple(234.0, 1, false),
+                                           std::make_tuple(526.0, 3, true),
+                                           std::make_tuple(721.0, 5, false)));
+INSTANTIATE_TEST_SUITE_P(AnalyzeTable56, AnalyzeSynthetic,
+                         ::testing::Values(std::make_tuple(234.0, 1, false),
+                                           std::make_tuple(331.0, 2, false),
+                                           std::make_tuple(526.0, 3, true),
+                                           std::make_tuple(526.0, 4, false),
                                            std::make_tuple(721.0, 5, false)));
 
 TEST(AnalyzeFretting, NoiseFreeJenkinsLoopIsExact) {
@@ -302,7 +342,9 @@ TEST(AnalyzeFretting, NoiseFreeJenkinsLoopIsExact) {
   o.sample_rate = 20000.0;
   const auto a = analyze_fretting(synthetic_experiment(bb, o), 100.0);
   const double d = 2e-6, F = 50.0, k = 100e6;
-  EXPECT_LT(rel(a.mean.energy, 4 * F * (d - F / k)), 1e-3);
+  // The moving average over 1/50 cycle rounds the loop's corners: 0.13 % less area.
+  EXPECT_LT(rel(a.mean.energy, 4 * F * (d - F / k)), 2e-3);
+  EXPECT_LT(rel(a.loop_energy, 4 * F * (d - F / k)), 1e-4);  // raw samples, averaged loop
   EXPECT_LT(rel(a.mean.sliding, d - F / k), 2e-3);
   EXPECT_LT(rel(a.mean.partial_slip, F / k), 2e-3 * d / (F / k));
   EXPECT_LT(rel(a.mean.stiffness, k), 1e-6);
@@ -356,6 +398,32 @@ TEST(AnalyzeFretting, Eq53Excitation) {
   EXPECT_NEAR(e(10.5), 1e-6, 1e-15);
   EXPECT_NEAR(e(11.0), 0.0, 1e-15);
   EXPECT_DOUBLE_EQ(e.duration(), 11.0);
+}
+
+}  // namespace
+}  // namespace asperity::joint
+
+namespace asperity::joint {
+namespace {
+
+TEST(ValidateReport, EveryReproductionAgreesOrIsDocumented) {
+  const auto rows = validation_rows();
+  std::size_t agrees = 0;
+  for (const auto& r : rows) {
+    EXPECT_NE(r.verdict, "FAIL") << r.source << " " << r.quantity << ": ours " << r.ours
+                                 << ", thesis " << r.thesis;
+    agrees += r.verdict == "agrees";
+  }
+  EXPECT_GE(agrees, 70U);
+  // Every table of issue 5 is covered.
+  for (const char* s : {"Table 3.2", "Table 3.4", "Table 4.1", "Fig. 4.4", "Table 5.2", "Table 5.4",
+                        "Table 5.5", "Table 5.6", "Table 6.2", "Table 6.3", "Ch. 5 mu (BKE)"}) {
+    EXPECT_TRUE(std::any_of(rows.begin(), rows.end(), [&](const ValidationRow& r) {
+      return r.source == s;
+    })) << s;
+  }
+  const auto md = validation_markdown(rows);
+  EXPECT_NE(md.find("| mu at 526 N | 0.335 |"), std::string::npos);
 }
 
 }  // namespace

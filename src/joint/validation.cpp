@@ -1,0 +1,343 @@
+// asperity validate: the thesis's numbers recomputed (chapters 3-6).
+#include "asperity/joint/validation.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <functional>
+#include <map>
+
+#include "asperity/contact/asperity_model.hpp"
+#include "asperity/contact/material.hpp"
+#include "asperity/hysteresis/masing.hpp"
+#include "asperity/joint/case.hpp"
+#include "asperity/joint/fretting.hpp"
+#include "asperity/joint/predict.hpp"
+#include "asperity/surface/rough_flat.hpp"
+#include "asperity/surface/roughness.hpp"
+
+namespace asperity::joint {
+
+double ValidationRow::relative_difference() const {
+  return thesis != 0.0 ? (ours - thesis) / std::abs(thesis) : ours - thesis;
+}
+
+namespace {
+
+using contact::ModelName;
+
+struct Builder {
+  std::vector<ValidationRow> rows;
+  // tol: relative tolerance; known: a documented disagreement (seed_notes.md).
+  void add(std::string source, std::string quantity, double thesis, double ours, double tol,
+           std::string note = {}, bool known = false) {
+    ValidationRow r{std::move(source), std::move(quantity), thesis, ours, tol, "", std::move(note)};
+    const bool ok = std::isfinite(ours) && std::abs(r.relative_difference()) <= tol;
+    r.verdict = ok ? "agrees" : (known ? "differs (documented)" : "FAIL");
+    rows.push_back(std::move(r));
+  }
+  void experiment(std::string source, std::string quantity, double measured, double ours,
+                  std::string note) {
+    ValidationRow r{std::move(source), std::move(quantity), measured, ours, 0.0,
+                    "experiment",      std::move(note)};
+    rows.push_back(std::move(r));
+  }
+};
+
+const contact::Material kSteel420{.E = 200e9, .nu = 0.24, .G = 80.7e9, .H = 5.8e9};
+
+void chapter3(Builder& b) {
+  const contact::Material ball{.E = 207e9, .nu = 0.3, .G = 82.7e9, .H = 6.83e9};
+  const contact::Material flat{.E = 207e9, .nu = 0.3, .G = 82.7e9, .H = 7.48e9};
+  const auto pair = contact::ContactPair::combine(ball, flat, 2.5e-3);
+  const auto c = pair.critical();
+  b.add("Table 3.2", "omega_c [um]", 7.41, c.omega_c * 1e6, 5e-3, "section 3.5 text, 3 digits");
+  b.add("Table 3.2", "a_c [mm]", 0.136, c.a_c * 1e3, 5e-3);
+  b.add("Table 3.2", "P_c [N]", 152.8, c.P_c, 5e-3);
+  const contact::FrictionParameters fp{.mu_cfc = 0.284};
+  const char* names[] = {"CFC", "CEB", "KE", "BKE"};
+  struct Row {
+    double P;
+    double mu[4];
+    double k;
+  };
+  for (const Row& r : {Row{35.0, {0.284, 0.528, 0.858, 1.444}, 16.17},
+                       Row{23.0, {0.284, 0.626, 0.992, 1.639}, 14.06}}) {
+    const auto hertz = contact::PartialSlipModel::from_load(pair, ModelName::cfc, r.P, fp);
+    for (int i = 0; i < 4; ++i) {
+      const auto m = contact::PartialSlipModel::from_interference_star(pair, contact::kAllModels[i],
+                                                                       hertz.omega_star(), fp);
+      b.add("Table 3.2", fmt::format("mu {} at {} N", names[i], r.P), r.mu[i], m.mu(), 1e-2,
+            i == 2 ? "the thesis's KE values are ~0.7 % below B.12" : "");
+    }
+    b.add("Table 3.2", fmt::format("8 G* a at {} N [N/um]", r.P), r.k, hertz.K_T() * 1e-6, 1e-2);
+  }
+  // Table 3.4 (nano-scale, silica on silicon).
+  const contact::Material sphere{.E = 68.0e9, .nu = 0.19, .G = 28.0e9, .H = 4.8e9};
+  const contact::Material si{.E = 112.4e9, .nu = 0.28, .G = 43.9e9, .H = 11.3e9};
+  const auto npair = contact::ContactPair::combine(sphere, si, 1.55e-6);
+  const contact::FrictionParameters np{.mu_cfc = 0.259};
+  struct NRow {
+    double P, w;
+    double mu[4];
+  };
+  for (const NRow& r : {NRow{1.1, 0.048, {0.259, 1.769, 2.498, 3.077}},
+                        NRow{1.2, 0.051, {0.259, 1.714, 2.424, 2.996}}}) {
+    for (int i = 0; i < 4; ++i) {
+      const auto m =
+          contact::PartialSlipModel::from_interference_star(npair, contact::kAllModels[i], r.w, np);
+      b.add("Table 3.4", fmt::format("mu {} at {} uN (omega* = {})", names[i], r.P, r.w), r.mu[i],
+            m.mu(), 5e-2, "the thesis evidently used nu = 0.2 (docs/asperity_scale.md)");
+    }
+  }
+}
+
+void chapter4(Builder& b) {
+  const double P = 1e-3;
+  const char* names[] = {"CFC", "CEB", "KE", "BKE"};
+  const double table41[3][4] = {
+      {0.3, 0.83, 1.02, 1.18}, {0.3, 0.29, 0.68, 0.94}, {0.3, 0.03, 0.29, 0.63}};
+  const double psis[] = {0.5, 1.0, 2.0};
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 4; ++i) {
+      const surface::RoughFlat f({.model = contact::kAllModels[i],
+                                  .beta = 0.04,
+                                  .psi = psis[j],
+                                  .nu = 0.3,
+                                  .G_over_E = 0.7 / 3.4,
+                                  .friction = {.mu_cfc = 0.3}});
+      const double d = f.separation_star(P);
+      b.add("Table 4.1", fmt::format("mu {} psi = {}", names[i], psis[j]), table41[j][i],
+            f.static_friction_star(d) / P, 5e-2,
+            "preload and nu not stated in the thesis: P* = 1e-3, nu = 0.3 (Fig. 4.4); Table 4.1 "
+            "does not follow "
+            "from the printed equations (seed_notes.md)",
+            i > 0);
+    }
+  }
+  // Fig. 4.4 statements (beta = 0.04, psi = 0.5, P* = 1e-3, nu = 0.3).
+  const auto flat = [&](ModelName m) {
+    return surface::RoughFlat({.model = m,
+                               .beta = 0.04,
+                               .psi = 0.5,
+                               .nu = 0.3,
+                               .G_over_E = 0.7 / 3.4,
+                               .friction = {.mu_cfc = 0.3}});
+  };
+  const auto cfc = flat(ModelName::cfc);
+  const double d = cfc.separation_star(P);
+  b.add("Fig. 4.4", "CFC Q*_max / P*", 0.3, cfc.static_friction_star(d) / P, 1e-9);
+  b.add("Fig. 4.4", "CFC Q*_l(0.6) / Q*_max (>= 0.997)", 0.997,
+        std::min(0.997, cfc.loading_force_star(0.6, d) / cfc.static_friction_star(d)), 1e-12,
+        "our value is capped at the statement's bound: the row agrees iff the statement holds");
+  double W[4];
+  for (int i = 1; i < 4; ++i) {
+    const auto f = flat(contact::kAllModels[i]);
+    W[i] = f.energy_star(0.6, f.separation_star(P));
+  }
+  b.add("Fig. 4.4", "loop area CEB > KE > BKE (1 = holds)", 1.0,
+        (W[1] > W[2] && W[2] > W[3]) ? 1.0 : 0.0, 0.0,
+        fmt::format("energy* per cycle {:.3g} > {:.3g} > {:.3g}", W[1], W[2], W[3]));
+}
+
+void roughness_rows(Builder& b, const std::string& source, const std::string& label,
+                    const contact::Material& mat, const double half1[3], const double half2[3],
+                    const double comb[3], bool with_R, const double* psi = nullptr) {
+  const auto m1 =
+      surface::SpectralMoments::from_parameters(half1[0] * 1e-6, half1[1] * 1e12, half1[2] * 1e-6);
+  const auto m2 =
+      surface::SpectralMoments::from_parameters(half2[0] * 1e-6, half2[1] * 1e12, half2[2] * 1e-6);
+  const auto c = surface::combine(m1, m2);
+  // Printed to 3 decimals: half a unit of the last digit of the result and of each input
+  // (d sigma = (s1 ds1 + s2 ds2)/sigma).
+  b.add(source, label + " combined sigma [um]", comb[0], c.sigma() * 1e6,
+        (0.5e-3 + 0.5e-3 * (half1[0] + half2[0]) / comb[0]) / comb[0],
+        "rounding of the printed inputs and result");
+  b.add(source, label + " combined eta [um^-2]", comb[1], c.eta() * 1e-12, 0.5e-6 / comb[1] + 2e-3);
+  if (with_R) b.add(source, label + " combined R [um]", comb[2], c.R() * 1e6, 1e-3);
+  if (psi) {
+    const auto pair = contact::ContactPair::combine(mat, mat, 1.0);
+    const char* note = "H = 5.8 GPa (Table 7.2), psi on sigma_a; 1 %: the thesis's H is not stated";
+    b.add(source, label + " psi PZT half", psi[0], surface::plasticity_index(pair, m1), 1e-2, note);
+    b.add(source, label + " psi LC half", psi[1], surface::plasticity_index(pair, m2), 1e-2, note);
+    b.add(source, label + " psi combined", psi[2], surface::plasticity_index(pair, c), 1e-2, note);
+  }
+}
+
+void chapter5_6(Builder& b) {
+  {
+    const double h1[] = {1.763, 3.34e-4, 40.76}, h2[] = {2.015, 2.51e-4, 44.77},
+                 c[] = {2.677, 2.91e-4, 30.14};
+    const double psi[] = {3.374, 3.230, 4.725};
+    roughness_rows(b, "Table 5.4", "before", kSteel420, h1, h2, c, true, psi);
+    const double a1[] = {1.859, 2.87e-4, 44.75}, a2[] = {1.847, 2.68e-4, 47.37},
+                 ac[] = {2.620, 2.77e-4, 32.53};
+    const double apsi[] = {3.284, 3.122, 4.534};
+    roughness_rows(b, "Table 5.4", "after", kSteel420, a1, a2, ac, true, apsi);
+  }
+  struct T62 {
+    const char* label;
+    double h1[3], h2[3], c[3];
+    bool R;
+  };
+  const T62 t62[] = {
+      {"smooth Al before",
+       {0.507, 3.87e-4, 129.451},
+       {0.655, 3.26e-4, 152.867},
+       {0.828, 3.59e-4, 98.788},
+       true},
+      {"smooth Al after",
+       {0.506, 4.09e-4, 130.186},
+       {0.537, 3.58e-4, 138.147},
+       {0.738, 3.83e-4, 94.745},
+       true},
+      {"rough Al before",
+       {2.243, 3.00e-4, 39.119},
+       {1.791, 3.35e-4, 40.071},
+       {2.870, 3.16e-4, 27.992},
+       true},
+      {"rough Al after",
+       {1.903, 3.12e-4, 41.142},
+       {1.812, 3.28e-4, 43.410},
+       {2.628, 3.20e-4, 29.862},
+       true},
+      {"smooth steel before",
+       {0.387, 3.63e-4, 194.631},
+       {0.424, 3.56e-4, 163.532},
+       {0.574, 3.59e-4, 125.204},
+       true},
+      {"smooth steel after",
+       {0.357, 3.68e-4, 210.931},
+       {0.438, 3.55e-4, 167.981},
+       {0.566, 3.60e-4, 131.403},
+       true},
+      // R of the rough steel is not legible in the thesis text: sigma and eta only (eta
+      // of the combination needs R of the halves: beta = 0.024 assumed, see the example).
+      {"rough steel before",
+       {1.848, 3.23e-4, 40.2},
+       {1.863, 3.05e-4, 42.2},
+       {2.624, 3.14e-4, 0.0},
+       false},
+  };
+  for (const auto& t : t62)
+    roughness_rows(b, "Table 6.2", t.label, kSteel420, t.h1, t.h2, t.c, t.R);
+
+  // Eq. 5.2 tables.
+  const double lbf_in = 0.112984829;  // N m
+  {
+    const double T[] = {0.5, 1.5, 5.0}, P[] = {99, 298, 993};
+    for (int i = 0; i < 3; ++i) {
+      b.add("Table 5.2", fmt::format("preload at {} lb-in [N]", T[i]), P[i],
+            bolt_preload(T[i] * lbf_in, 0.2, 2.845e-3), 5e-3, "#4-48 UNF, D = 2.845 mm, k = 0.2");
+    }
+  }
+  {
+    const double T[] = {1.2, 1.7, 2.7, 3.7}, P[] = {234, 331, 526, 721}, p[] = {1.4, 2.0, 3.2, 4.4};
+    for (int i = 0; i < 4; ++i) {
+      const double F = bolt_preload(T[i] * lbf_in, 0.2, 2.9e-3);
+      b.add("Table 5.5", fmt::format("preload at {} lb-in total [N]", T[i]), P[i], F, 2.5e-3,
+            "total torque of the two M3 bolts, D = 2.9 mm, k = 0.2");
+      b.add("Table 5.5", fmt::format("p_mean at {} lb-in [MPa], A0 = 165 mm^2", T[i]), p[i],
+            F / 165e-6 * 1e-6, 0.05 / p[i] + 1e-3,
+            "the printed p_mean use 165 mm^2 (ch. 6), not the 170 mm^2 of this joint");
+    }
+  }
+  {
+    const double T[] = {0.192, 0.305, 0.418}, P[] = {331, 526, 721};
+    for (int i = 0; i < 3; ++i) {
+      b.add("Table 6.3", fmt::format("preload at {} N m [N]", T[i]), P[i],
+            bolt_preload(T[i], 0.2, 2.9e-3), 2.5e-3);
+    }
+  }
+  // Chapter 5 BKE friction coefficients (section 5.3).
+  const auto flat = chapter5_joint().rough_flat();
+  const double P[] = {234, 331, 526, 721}, mu[] = {0.354, 0.334, 0.335, 0.347};
+  for (int i = 0; i < 4; ++i) {
+    const auto lp = predict_load(flat, P[i], {});
+    b.add("Ch. 5 mu (BKE)", fmt::format("mu at {} N", P[i]), mu[i], lp.mu, 5e-2,
+          "issue 5 asks for 5 %; ours falls slowly with preload, the thesis's is not monotone");
+  }
+  // Table 5.6: the model in the apparatus (Fig. 5.7) against the measurements.
+  const double dmax[] = {4.26, 2.69, 1.32, 0.79}, mu_exp[] = {0.479, 0.508, 0.420, 0.323};
+  for (int i = 0; i < 4; ++i) {
+    const auto lp = predict_load(flat, P[i], {});
+    SyntheticOptions o;
+    o.excitation.amplitude = 6.75e-6;
+    o.excitation.cycles = 3;
+    o.noise_delta = 0.0;
+    o.noise_Q = 0.0;
+    const auto d = synthetic_experiment(lp.backbone, o);
+    double lo = 1e300, hi = -1e300, qlo = 1e300, qhi = -1e300;
+    for (std::size_t k = 0; k < d.t.size(); ++k) {
+      if (d.t[k] >= 2.0 && d.t[k] < 3.0) {  // a steady cycle
+        lo = std::min(lo, d.delta[k]);
+        hi = std::max(hi, d.delta[k]);
+        qlo = std::min(qlo, d.Q[k]);
+        qhi = std::max(qhi, d.Q[k]);
+      }
+    }
+    b.experiment("Table 5.6", fmt::format("delta_max at {} N [um] (PZT 6.75 um)", P[i]), dmax[i],
+                 0.5 * (hi - lo) * 1e6, "model in series with the 38 N/um PZT side (Fig. 5.7)");
+    b.experiment("Table 5.6", fmt::format("mu = Q_max/P at {} N", P[i]), mu_exp[i],
+                 0.5 * (qhi - qlo) / P[i], "measured mu against the BKE loop");
+  }
+}
+
+}  // namespace
+
+JointCase chapter5_joint() {
+  JointCase c;
+  c.name = "steel 420 lap joint, two bolts (thesis ch. 5)";
+  c.source = "chapter 5 (built in)";
+  c.area = 170e-6;
+  c.halves[0] = {kSteel420,
+                 {surface::SpectralMoments::from_parameters(1.763e-6, 3.34e8, 40.76e-6), {}, {}}};
+  c.halves[1] = {kSteel420,
+                 {surface::SpectralMoments::from_parameters(2.015e-6, 2.51e8, 44.77e-6), {}, {}}};
+  c.preloads = {234.0, 331.0, 526.0, 721.0};
+  c.amplitudes = {0.05e-6, 0.1e-6, 0.25e-6, 0.5e-6, 1e-6, 2e-6, 4e-6};
+  return c;
+}
+
+std::vector<ValidationRow> validation_rows() {
+  Builder b;
+  chapter3(b);
+  chapter4(b);
+  chapter5_6(b);
+  return b.rows;
+}
+
+std::string validation_markdown(const std::vector<ValidationRow>& rows) {
+  std::string s = "# Validation against the thesis\n\n";
+  s += "Generated by `asperity validate` (the test suite runs it). Each row recomputes one number\n"
+       "of Eriten (2012) with the library; `agrees` means within the row's relative tolerance,\n"
+       "`differs (documented)` is a known disagreement explained in docs/seed_notes.md and the\n"
+       "linked docs, `experiment` compares the model with a measurement (not a reproduction).\n\n";
+  std::map<std::string, int> count;
+  for (const auto& r : rows) ++count[r.verdict];
+  s += "Figures (`asperity validate --out DIR` writes them next to validation.md): the chapter 5\n"
+       "joint's loops at 4 um (`ch5_loops.png`), energy per cycle against peak force with slope-2\n"
+       "and slope-3 guides (`ch5_energy_vs_force.png`, cf. Fig. 6.12-6.14), mu and stiffness\n"
+       "against preload (`ch5_mu_vs_preload.png`, `ch5_stiffness_vs_preload.png`).\n\n";
+  s += "Summary:";
+  for (const auto& [k, v] : count) s += fmt::format(" {} {};", v, k);
+  s.back() = '\n';
+  s += "\n";
+  std::string current;
+  for (const auto& r : rows) {
+    if (r.source != current) {
+      current = r.source;
+      s += fmt::format(
+          "\n## {}\n\n| quantity | thesis | ours | rel. diff. | tolerance | verdict | note |\n"
+          "| --- | --- | --- | --- | --- | --- | --- |\n",
+          current);
+    }
+    s += fmt::format("| {} | {:.5g} | {:.5g} | {:+.2f} % | {} | {} | {} |\n", r.quantity, r.thesis,
+                     r.ours, 100.0 * r.relative_difference(),
+                     r.verdict == "experiment" ? "-" : fmt::format("{:.3g} %", 100.0 * r.tolerance),
+                     r.verdict, r.note);
+  }
+  return s;
+}
+
+}  // namespace asperity::joint
