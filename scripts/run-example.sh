@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Sets everything up on a fresh Debian machine, builds asperity and runs the main job
-# on a shipped example: the micro-scale fretting experiment of the thesis's Table 3.2
-# (steel ball on a steel flat, P = 35 N, 1.5 um amplitude) with the four asperity
-# models, writing the loops to out/sphere_loops.csv and out/sphere_loops.png.
+# on a shipped example: the friction prediction for the thesis's two-bolt steel 420 lap
+# joint (chapter 5, Tables 5.3-5.5) over its four bolt torques - preload, separation,
+# mu, tangential stiffness, static friction and, per amplitude, peak force, energy per
+# cycle and regime - written to out/steel420/ (summary.json, loops.csv, energy.csv and
+# the plots loops.png, energy_vs_force.png, mu_vs_preload.png, stiffness_vs_preload.png).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -11,9 +13,4 @@ cmake --preset default >/dev/null
 cmake --build --preset default -j 2 >/dev/null
 
 mkdir -p out
-./build/release/src/cli/asperity sphere \
-  --E1 207GPa --nu1 0.3 --G1 82.7GPa --E2 207GPa --nu2 0.3 --G2 82.7GPa --H 6.83GPa \
-  --R1 2.5mm --P 35N --mu-cfc 0.284 --delta-max 1.5um \
-  --loop out/sphere_loops.csv --plot out/sphere_loops.png
-echo
-echo "wrote out/sphere_loops.csv and out/sphere_loops.png"
+./build/release/src/cli/asperity predict examples/joints/steel420_two_bolts.toml --out out/steel420

@@ -30,19 +30,21 @@ int main() {
   options.locate_reversals = true;
   options.integrator.method = Method::bogacki_shampine_32;  // MATLAB ode23, as the thesis
 
-  for (const FrictionModel* model : {static_cast<const FrictionModel*>(&none),
-                                     static_cast<const FrictionModel*>(&dankowicz),
-                                     static_cast<const FrictionModel*>(&physics)}) {
+  for (const FrictionModel* model :
+       {static_cast<const FrictionModel*>(&none), static_cast<const FrictionModel*>(&dankowicz),
+        static_cast<const FrictionModel*>(&physics)}) {
     const Trajectory tr = simulate(system, ImpulseExcitation{}, *model, options);
-    const Periodogram spectrum(uniform_samples(tr, options.output_interval), options.output_interval);
+    const Periodogram spectrum(uniform_samples(tr, options.output_interval),
+                               options.output_interval);
     const ModalEstimate m = modal_estimate(spectrum, 0.02, 5.0);
     const auto decay = free_decay(tr, 0.1);
-    std::printf("%-10s modal frequency %.4f, half-power damping %.4f; first cycle: f %.4f, "
-                "zeta %.4f; energy balance error %.2e; %zu steps\n",
-                model->name().c_str(), m.frequency, m.damping_ratio,
-                decay.empty() ? 0.0 : decay.front().frequency,
-                decay.empty() ? 0.0 : decay.front().damping_ratio, tr.energy_balance_error(),
-                tr.stats.steps);
+    std::printf(
+        "%-10s modal frequency %.4f, half-power damping %.4f; first cycle: f %.4f, "
+        "zeta %.4f; energy balance error %.2e; %zu steps\n",
+        model->name().c_str(), m.frequency, m.damping_ratio,
+        decay.empty() ? 0.0 : decay.front().frequency,
+        decay.empty() ? 0.0 : decay.front().damping_ratio, tr.energy_balance_error(),
+        tr.stats.steps);
   }
   return 0;
 }

@@ -136,14 +136,16 @@ void bind_joint(nb::module_& m) {
   m.def(
       "analyze_fretting",
       [](const Array1& t, const Array1& delta, const Array1& Q, double P,
-         std::optional<Array1> Delta, double stiffness_window) {
+         std::optional<Array1> Delta, double stiffness_window, bool stiffness_from_imposed) {
         FrettingData d;
         d.source = "data";
         d.t = vec(t);
         d.delta = vec(delta);
         d.Q = vec(Q);
         if (Delta) d.Delta = vec(*Delta);
-        const auto a = joint::analyze_fretting(d, P, {.stiffness_window = stiffness_window});
+        const auto a = joint::analyze_fretting(d, P,
+                                               {.stiffness_window = stiffness_window,
+                                                .stiffness_from_imposed = stiffness_from_imposed});
         nb::dict out;
         out["P"] = a.P;
         out["cycles"] = a.cycles.size();
@@ -155,12 +157,21 @@ void bind_joint(nb::module_& m) {
         out["loop_delta"] = array_of(a.loop_delta);
         out["loop_Q"] = array_of(a.loop_Q);
         out["loop_energy"] = a.loop_energy;
+        out["stiffness_from_imposed"] = a.stiffness_from_imposed;
+        if (a.stiffness_from_imposed) {
+          out["apparatus_compliance"] = a.apparatus_compliance;
+          out["apparatus_residual_rms"] = a.apparatus_residual_rms;
+        }
         return out;
       },
       "t"_a, "delta"_a, "Q"_a, "P"_a, "Delta"_a = nb::none(), "stiffness_window"_a = 0.3,
+      "stiffness_from_imposed"_a = true,
       "Fretting-data analysis (time [s], joint displacement [m], force [N], optional imposed "
       "displacement [m]): cycles, per_cycle and mean metrics (energy, Q_max, delta_max, "
-      "stiffness, sliding, partial_slip), mu = Q_max/P (Eq. 6.1), the averaged loop.");
+      "stiffness, sliding, partial_slip), mu = Q_max/P (Eq. 6.1), the averaged loop. With "
+      "Delta the stiffness comes from Q(Delta) and the fitted apparatus compliance "
+      "(apparatus_compliance [m/N], apparatus_residual_rms [m]) unless "
+      "stiffness_from_imposed=False.");
   m.def(
       "read_fretting_csv",
       [](const std::string& path) {

@@ -44,7 +44,8 @@ Spectrum power_spectrum(const Periodogram& p, double f_min, double f_max, std::s
   s.frequency.resize(bins);
   s.power.resize(bins);
   for (std::size_t i = 0; i < bins; ++i) {
-    const double f = f_min + (f_max - f_min) * static_cast<double>(i) / static_cast<double>(bins - 1);
+    const double f =
+        f_min + (f_max - f_min) * static_cast<double>(i) / static_cast<double>(bins - 1);
     s.frequency[i] = f;
     s.power[i] = p(f);
   }
@@ -64,8 +65,8 @@ ModalEstimate modal_estimate(const Periodogram& p, double f_min, double f_max, s
   }
   if (k == 0 || !(s.power[k] > 0.0)) {
     throw NumericalError(fmt::format(
-        "power spectrum: no peak between {:.6g} and {:.6g} (the response may be overdamped)",
-        f_min, f_max));
+        "power spectrum: no peak between {:.6g} and {:.6g} (the response may be overdamped)", f_min,
+        f_max));
   }
   const auto it = s.power.begin() + static_cast<std::ptrdiff_t>(k);
   const double df = s.frequency[1] - s.frequency[0];
@@ -73,7 +74,8 @@ ModalEstimate modal_estimate(const Periodogram& p, double f_min, double f_max, s
   {
     const double lo = std::max(f_min, s.frequency[k] - df);
     const double hi = std::min(f_max, s.frequency[k] + df);
-    const auto r = boost::math::tools::brent_find_minima([&](double f) { return -p(f); }, lo, hi, 50);
+    const auto r =
+        boost::math::tools::brent_find_minima([&](double f) { return -p(f); }, lo, hi, 50);
     m.frequency = r.first;
     m.peak_power = -r.second;
     if (m.peak_power < *it) {
@@ -87,18 +89,20 @@ ModalEstimate modal_estimate(const Periodogram& p, double f_min, double f_max, s
   std::size_t i = k;
   while (i > 0 && s.power[i] > half) --i;
   if (s.power[i] > half) {
-    throw NumericalError(fmt::format(
-        "power spectrum: the lower half-power point of the peak at {:.6g} lies below f_min = {:.6g}",
-        m.frequency, f_min));
+    throw NumericalError(
+        fmt::format("power spectrum: the lower half-power point of the peak at {:.6g} lies below "
+                    "f_min = {:.6g}",
+                    m.frequency, f_min));
   }
   m.f_low = core::find_root(g, s.frequency[i], std::min(m.frequency, s.frequency[i] + df),
                             "lower half-power point", 50);
   std::size_t j = k;
   while (j + 1 < bins && s.power[j] > half) ++j;
   if (s.power[j] > half) {
-    throw NumericalError(fmt::format(
-        "power spectrum: the upper half-power point of the peak at {:.6g} lies above f_max = {:.6g}",
-        m.frequency, f_max));
+    throw NumericalError(
+        fmt::format("power spectrum: the upper half-power point of the peak at {:.6g} lies above "
+                    "f_max = {:.6g}",
+                    m.frequency, f_max));
   }
   m.f_high = core::find_root(g, std::max(m.frequency, s.frequency[j] - df), s.frequency[j],
                              "upper half-power point", 50);
@@ -126,7 +130,8 @@ std::vector<double> uniform_samples(const Trajectory& tr, double output_interval
 
 std::vector<Extremum> extrema(const Trajectory& tr, double tau_start) {
   std::vector<Extremum> out;
-  const bool has_events = std::any_of(tr.is_event.begin(), tr.is_event.end(), [](bool b) { return b; });
+  const bool has_events =
+      std::any_of(tr.is_event.begin(), tr.is_event.end(), [](bool b) { return b; });
   if (has_events) {
     for (std::size_t i = 0; i < tr.size(); ++i) {
       if (tr.is_event[i] && tr.tau[i] >= tau_start) out.push_back({tr.tau[i], tr.u[i]});
@@ -155,16 +160,18 @@ std::vector<DecayPoint> free_decay(const Trajectory& tr, double tau_start, doubl
   const auto e = extrema(tr, tau_start);
   std::vector<DecayPoint> out;
   double s_max = 0.0;
-  for (std::size_t k = 0; k + 1 < e.size(); ++k) s_max = std::max(s_max, std::abs(e[k + 1].u - e[k].u));
+  for (std::size_t k = 0; k + 1 < e.size(); ++k)
+    s_max = std::max(s_max, std::abs(e[k + 1].u - e[k].u));
   for (std::size_t k = 0; k + 3 < e.size(); ++k) {
     const double s0 = std::abs(e[k + 1].u - e[k].u);
     const double s2 = std::abs(e[k + 3].u - e[k + 2].u);
     if (!(s0 > 0.0 && s2 > floor * s_max)) break;
     const double d = std::log(s0 / s2);
-    out.push_back({.tau = e[k].tau,
-                   .amplitude = 0.5 * s0,
-                   .frequency = 1.0 / (e[k + 2].tau - e[k].tau),
-                   .damping_ratio = d / std::sqrt(4.0 * std::numbers::pi * std::numbers::pi + d * d)});
+    out.push_back(
+        {.tau = e[k].tau,
+         .amplitude = 0.5 * s0,
+         .frequency = 1.0 / (e[k + 2].tau - e[k].tau),
+         .damping_ratio = d / std::sqrt(4.0 * std::numbers::pi * std::numbers::pi + d * d)});
   }
   return out;
 }

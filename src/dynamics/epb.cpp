@@ -25,15 +25,17 @@ void EpbContact::validate() const {
   core::require_positive("P (normal load)", P);
   const double beta = sigma * R * eta;
   if (!(beta > 0.01928)) {
-    throw InvalidInput(fmt::format(
-        "beta = sigma R eta = {:.4g} must exceed 0.01928 (the asperity-height spread "
-        "sqrt(1 - 3.717e-4/beta^2) is real only above it)",
-        beta));
+    throw InvalidInput(
+        fmt::format("beta = sigma R eta = {:.4g} must exceed 0.01928 (the asperity-height spread "
+                    "sqrt(1 - 3.717e-4/beta^2) is real only above it)",
+                    beta));
   }
   friction.validate();
 }
 
-EpbContact table_7_2_rough() { return {}; }
+EpbContact table_7_2_rough() {
+  return {};
+}
 
 EpbContact table_7_2_smooth() {
   EpbContact c;

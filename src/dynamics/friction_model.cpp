@@ -21,7 +21,9 @@ void RegularizedCoulombParameters::validate() const {
   core::require_positive("coulomb k_tan", k_tan);
 }
 
-RegularizedCoulomb::RegularizedCoulomb(RegularizedCoulombParameters p) : p_(p) { p_.validate(); }
+RegularizedCoulomb::RegularizedCoulomb(RegularizedCoulombParameters p) : p_(p) {
+  p_.validate();
+}
 
 std::unique_ptr<FrictionModel> RegularizedCoulomb::clone() const {
   return std::make_unique<RegularizedCoulomb>(*this);
@@ -36,7 +38,9 @@ void DankowiczParameters::validate() const {
   core::require_positive("dankowicz delta", delta);
 }
 
-Dankowicz::Dankowicz(DankowiczParameters p) : p_(p) { p_.validate(); }
+Dankowicz::Dankowicz(DankowiczParameters p) : p_(p) {
+  p_.validate();
+}
 
 std::unique_ptr<FrictionModel> Dankowicz::clone() const {
   return std::make_unique<Dankowicz>(*this);
@@ -66,7 +70,9 @@ double HysteresisFriction::force(double u, double, std::span<const double>) cons
   return h_.force(u);
 }
 
-void HysteresisFriction::commit_reversal(double u) { h_.commit_reversal(u); }
+void HysteresisFriction::commit_reversal(double u) {
+  h_.commit_reversal(u);
+}
 
 std::unique_ptr<FrictionModel> make_jenkins(double stiffness, double F_max) {
   return std::make_unique<HysteresisFriction>(
@@ -105,9 +111,9 @@ double SegalmanBackbone::force(double x) const {
 double SegalmanBackbone::displacement(double Q) const {
   core::require_non_negative("force", Q);
   if (Q >= p_.F_S) {
-    throw InvalidInput(fmt::format(
-        "tangential force {} reaches the Iwan macro-slip force {}: the joint slides",
-        core::format_value(Q), core::format_value(p_.F_S)));
+    throw InvalidInput(
+        fmt::format("tangential force {} reaches the Iwan macro-slip force {}: the joint slides",
+                    core::format_value(Q), core::format_value(p_.F_S)));
   }
   if (Q == 0.0) return 0.0;
   return core::find_root([&](double x) { return force(x) - Q; }, 0.0, phi_max_,
@@ -137,8 +143,8 @@ std::unique_ptr<FrictionModel> make_physics_based(
   core::require_positive("structural stiffness k", k);
   core::require_positive("reference amplitude A", A);
   // F_s(u) = Q(A u)/(k A): ScaledBackbone computes Q_scale * inner(x / x_scale).
-  auto scaled = std::make_shared<hysteresis::ScaledBackbone>(std::move(backbone_si), 1.0 / A,
-                                                             1.0 / (k * A));
+  auto scaled =
+      std::make_shared<hysteresis::ScaledBackbone>(std::move(backbone_si), 1.0 / A, 1.0 / (k * A));
   return std::make_unique<HysteresisFriction>(std::move(scaled), rule, "physics");
 }
 

@@ -30,10 +30,10 @@ Method parse_method(const std::string& name) {
   if (name == "dp54" || name == "ode45" || name == "dopri5" || name == "dormand_prince_54") {
     return Method::dormand_prince_54;
   }
-  throw InvalidInput(fmt::format(
-      "integrator method \"{}\" is not known: use \"bs23\" (MATLAB ode23) or \"dp54\" "
-      "(Dormand-Prince 5(4))",
-      name));
+  throw InvalidInput(
+      fmt::format("integrator method \"{}\" is not known: use \"bs23\" (MATLAB ode23) or \"dp54\" "
+                  "(Dormand-Prince 5(4))",
+                  name));
 }
 
 void IntegratorOptions::validate(std::size_t n_states) const {
@@ -44,8 +44,8 @@ void IntegratorOptions::validate(std::size_t n_states) const {
   }
   for (double a : atol) {
     if (!(std::isfinite(a) && a > 0.0 && a <= 1e3)) {
-      throw InvalidInput(fmt::format("atol = {} is not allowed: it must lie in (0, 1000]",
-                                     core::format_value(a)));
+      throw InvalidInput(
+          fmt::format("atol = {} is not allowed: it must lie in (0, 1000]", core::format_value(a)));
     }
   }
   core::require_non_negative("max_step", max_step);
@@ -70,21 +70,17 @@ struct Tableau {
 };
 
 // Bogacki & Shampine (1989); E and BI (ntrp23) as in MATLAB ode23.
-const Tableau kBS23{
-    4,
-    {0.0, 0.5, 0.75, 1.0},
-    {{{},
-      {0.5},
-      {0.0, 0.75},
-      {2.0 / 9.0, 1.0 / 3.0, 4.0 / 9.0}}},
-    {-5.0 / 72.0, 1.0 / 12.0, 1.0 / 9.0, -1.0 / 8.0},
-    3,
-    {{{1.0, -4.0 / 3.0, 5.0 / 9.0},
-      {0.0, 1.0, -2.0 / 3.0},
-      {0.0, 4.0 / 3.0, -8.0 / 9.0},
-      {0.0, -1.0, 1.0}}},
-    1.0 / 3.0,
-    0.5};
+const Tableau kBS23{4,
+                    {0.0, 0.5, 0.75, 1.0},
+                    {{{}, {0.5}, {0.0, 0.75}, {2.0 / 9.0, 1.0 / 3.0, 4.0 / 9.0}}},
+                    {-5.0 / 72.0, 1.0 / 12.0, 1.0 / 9.0, -1.0 / 8.0},
+                    3,
+                    {{{1.0, -4.0 / 3.0, 5.0 / 9.0},
+                      {0.0, 1.0, -2.0 / 3.0},
+                      {0.0, 4.0 / 3.0, -8.0 / 9.0},
+                      {0.0, -1.0, 1.0}}},
+                    1.0 / 3.0,
+                    0.5};
 
 // Dormand & Prince (1980); E and BI (ntrp45) as in MATLAB ode45.
 const Tableau kDP54{
@@ -204,7 +200,9 @@ class Stepper {
   double h_ = 1.0;
 };
 
-int sign_of(double v) { return (v > 0.0) - (v < 0.0); }
+int sign_of(double v) {
+  return (v > 0.0) - (v < 0.0);
+}
 
 }  // namespace
 
@@ -224,8 +222,7 @@ IntegratorStats integrate(OdeProblem& problem, std::span<const double> y0, doubl
   }
   for (double v : y0) core::require_finite("initial state", v);
 
-  const Tableau& tab =
-      options.method == Method::bogacki_shampine_32 ? kBS23 : kDP54;
+  const Tableau& tab = options.method == Method::bogacki_shampine_32 ? kBS23 : kDP54;
   const double rtol = options.rtol;
   std::vector<double> threshold(n);
   for (std::size_t m = 0; m < n; ++m) {
@@ -254,12 +251,12 @@ IntegratorStats integrate(OdeProblem& problem, std::span<const double> y0, doubl
                             std::abs(t)));
   };
   auto fail = [&](double t, double h, const std::string& why) {
-    throw NumericalError(fmt::format(
-        "{} integration: {} at t = {:.10g} (step {:.3g}, rtol {:.3g}, atol {:.3g}); "
-        "tried {} steps ({} rejected). Loosen the tolerances, or check the parameters "
-        "for a stiff or unbounded response",
-        to_string(options.method), why, t, h, rtol, options.atol.front(), stats.steps,
-        stats.rejected_steps));
+    throw NumericalError(
+        fmt::format("{} integration: {} at t = {:.10g} (step {:.3g}, rtol {:.3g}, atol {:.3g}); "
+                    "tried {} steps ({} rejected). Loosen the tolerances, or check the parameters "
+                    "for a stiff or unbounded response",
+                    to_string(options.method), why, t, h, rtol, options.atol.front(), stats.steps,
+                    stats.rejected_steps));
   };
 
   double t = t0;
@@ -307,21 +304,22 @@ IntegratorStats integrate(OdeProblem& problem, std::span<const double> y0, doubl
     double err = 0.0;
     for (;;) {
       const double tend = to_stop ? stop : t + h;
-      const double tend_eval =
-          to_stop && stop != t1 ? std::nextafter(stop, -std::numeric_limits<double>::infinity())
-                                : tend;
+      const double tend_eval = to_stop && stop != t1
+                                   ? std::nextafter(stop, -std::numeric_limits<double>::infinity())
+                                   : tend;
       err = stepper.attempt(t, y, f0, h, tend_eval, threshold, ynew);
       if (err <= rtol) break;
       ++stats.rejected_steps;
       if (absh <= hmin) {
-        fail(t, absh, std::isfinite(err) ? "the step size collapsed below the smallest allowed"
-                                         : "the state became non-finite and the step size "
-                                           "collapsed");
+        fail(t, absh,
+             std::isfinite(err) ? "the step size collapsed below the smallest allowed"
+                                : "the state became non-finite and the step size "
+                                  "collapsed");
       }
       if (nofailed && std::isfinite(err)) {
         nofailed = false;
-        absh = std::max(hmin, absh * std::max(tab.first_fail_min,
-                                              0.8 * std::pow(rtol / err, tab.pow)));
+        absh = std::max(hmin,
+                        absh * std::max(tab.first_fail_min, 0.8 * std::pow(rtol / err, tab.pow)));
       } else {
         nofailed = false;
         absh = std::max(hmin, 0.5 * absh);
@@ -346,9 +344,9 @@ IntegratorStats integrate(OdeProblem& problem, std::span<const double> y0, doubl
           if (ga <= 0.0) {
             t_event = sa;  // already at (or just past) zero at the start of the bracket
           } else {
-            t_event = core::find_root(
-                [&](double s) { return dir * stepper.dense_component(s, ev); }, sa, sb,
-                "event location", 52);
+            t_event =
+                core::find_root([&](double s) { return dir * stepper.dense_component(s, ev); }, sa,
+                                sb, "event location", 52);
           }
           break;
         }
@@ -386,7 +384,8 @@ IntegratorStats integrate(OdeProblem& problem, std::span<const double> y0, doubl
           if (g == 0.0 || !(dg != 0.0)) break;
           const double dh = -g / dg;
           const double he_new = std::clamp(he + dh, 0.5 * he, std::min(h, 1.5 * he));
-          if (std::abs(he_new - he) <= 4.0 * std::numeric_limits<double>::epsilon() * (std::abs(t) + he)) {
+          if (std::abs(he_new - he) <=
+              4.0 * std::numeric_limits<double>::epsilon() * (std::abs(t) + he)) {
             break;
           }
           he = he_new;

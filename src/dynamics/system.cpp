@@ -42,20 +42,20 @@ void validate(const Excitation& e) {
 
 BaseMotion base_motion(const Excitation& e, double tau) {
   return std::visit(
-      overloaded{[](const FreeVibration&) { return BaseMotion{}; },
-                 [tau](const ImpulseExcitation& x) {
-                   if (tau < 0.0 || tau >= std::numbers::pi / x.Omega) return BaseMotion{};
-                   return BaseMotion{x.amplitude * std::sin(x.Omega * tau),
-                                     x.amplitude * x.Omega * std::cos(x.Omega * tau)};
-                 },
-                 [tau](const RampExcitation& x) {
-                   return tau < 0.0 ? BaseMotion{} : BaseMotion{x.alpha * tau, x.alpha};
-                 },
-                 [tau](const HarmonicExcitation& x) {
-                   const double w = 2.0 * std::numbers::pi * x.frequency;
-                   return BaseMotion{x.amplitude * std::sin(w * tau),
-                                     x.amplitude * w * std::cos(w * tau)};
-                 }},
+      overloaded{
+          [](const FreeVibration&) { return BaseMotion{}; },
+          [tau](const ImpulseExcitation& x) {
+            if (tau < 0.0 || tau >= std::numbers::pi / x.Omega) return BaseMotion{};
+            return BaseMotion{x.amplitude * std::sin(x.Omega * tau),
+                              x.amplitude * x.Omega * std::cos(x.Omega * tau)};
+          },
+          [tau](const RampExcitation& x) {
+            return tau < 0.0 ? BaseMotion{} : BaseMotion{x.alpha * tau, x.alpha};
+          },
+          [tau](const HarmonicExcitation& x) {
+            const double w = 2.0 * std::numbers::pi * x.frequency;
+            return BaseMotion{x.amplitude * std::sin(w * tau), x.amplitude * w * std::cos(w * tau)};
+          }},
       e);
 }
 
@@ -74,9 +74,15 @@ void DimensionalScales::validate() const {
   core::require_positive("displacement scale A", A);
 }
 
-double DimensionalScales::time() const { return std::sqrt(m / k); }
-double DimensionalScales::force() const { return k * A; }
-double DimensionalScales::energy() const { return k * A * A; }
+double DimensionalScales::time() const {
+  return std::sqrt(m / k);
+}
+double DimensionalScales::force() const {
+  return k * A;
+}
+double DimensionalScales::energy() const {
+  return k * A * A;
+}
 double DimensionalScales::epsilon(double c) const {
   core::require_non_negative("damping c", c);
   return c / std::sqrt(m * k);
@@ -119,7 +125,10 @@ namespace {
 class SdofProblem final : public OdeProblem {
  public:
   SdofProblem(const SystemParameters& s, const Excitation& e, const FrictionModel& f, bool events)
-      : eps_(s.epsilon), exc_(e), model_(f.clone()), nz_(model_->internal_states()),
+      : eps_(s.epsilon),
+        exc_(e),
+        model_(f.clone()),
+        nz_(model_->internal_states()),
         events_(events || model_->uses_reversal_events()) {}
 
   [[nodiscard]] std::size_t size() const override { return 2 + nz_ + 3; }

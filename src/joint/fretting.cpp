@@ -81,26 +81,28 @@ double trapezoid_loop_area(const std::vector<double>& x, const std::vector<doubl
   return std::abs(A);
 }
 
-// Slope dQ/d(delta) at the reversal at index r, moving in direction dir (+1: the
-// index increases) until |Q - Q_r| exceeds `span`: quadratic delta(Q) fit.
-double reversal_stiffness(const std::vector<double>& delta, const std::vector<double>& Q,
-                          const std::vector<double>& Qs, std::size_t r, std::size_t end,
-                          double span) {
-  const double Qr = Qs[r];
-  // Normal equations of delta = a + b q + c q^2, q = Q - Qr.
+// Slope dy/dx at the reversal at index r of a least-squares quadratic y(x - x0[r]) over
+// the samples from r, moving towards `end`, until the smoothed force Qs leaves
+// |Qs - Qs[r]| <= span. x is the regressor: Q with y = delta, or the imposed Delta with
+// y = Q; x0 is x's reference at r (the smoothed Qs, or Delta itself).
+double slope_at_reversal(const std::vector<double>& x, const std::vector<double>& y,
+                         const std::vector<double>& x0, const std::vector<double>& Qs,
+                         std::size_t r, std::size_t end, double span) {
+  const double xr = x0[r];
+  // Normal equations of y = a + b q + c q^2, q = x - xr.
   double S[5] = {0, 0, 0, 0, 0}, T[3] = {0, 0, 0};
   std::size_t n = 0;
   for (std::size_t i = r; i <= end; ++i) {
-    if (std::abs(Qs[i] - Qr) > span) break;
-    const double q = Q[i] - Qr;
+    if (std::abs(Qs[i] - Qs[r]) > span) break;
+    const double q = x[i] - xr;
     double p = 1.0;
-    for (double& s : S) {
-      s += p;
+    for (double& sv : S) {
+      sv += p;
       p *= q;
     }
-    T[0] += delta[i];
-    T[1] += delta[i] * q;
-    T[2] += delta[i] * q * q;
+    T[0] += y[i];
+    T[1] += y[i] * q;
+    T[2] += y[i] * q * q;
     ++n;
   }
   if (n < 6) return std::numeric_limits<double>::quiet_NaN();
@@ -110,8 +112,7 @@ double reversal_stiffness(const std::vector<double>& delta, const std::vector<do
       a11 * (a22 * a33 - a23 * a23) - a12 * (a12 * a33 - a23 * a13) + a13 * (a12 * a23 - a22 * a13);
   const double db = a11 * (T[1] * a33 - a23 * T[2]) - T[0] * (a12 * a33 - a23 * a13) +
                     a13 * (a12 * T[2] - T[1] * a13);
-  const double b = db / det;
-  return 1.0 / b;
+  return db / det;
 }
 
 struct Reversal {
@@ -120,49 +121,48 @@ struct Reversal {
   double span;
 };
 
-// Stiffness at the reversals pooled over all of them: y = s delta, q = s (Q - Q_r)
-// (s = +-1 the direction), y = a_r + b q + c q^2 + d q^3 with one intercept a_r per
-// reversal and common b, c, d (least squares after removing each reversal's means);
-// stiffness = 1/b. Pooling is what makes the slope usable when the displacement noise
-// is comparable with the displacement over the fit window.
-double pooled_stiffness(const std::vector<double>& delta, const std::vector<double>& Q,
-                        const std::vector<double>& Qs, const std::vector<Reversal>& revs,
-                        double fraction) {
+// Slope at the reversals pooled over all of them: y' = s y, q = s (x - x0[r]) (s = +-1
+// the direction), y' = a_r + b q + c q^2 + d q^3 with one intercept a_r per reversal and
+// common b, c, d (least squares after removing each reversal's means); returns b.
+// Pooling is what makes the slope usable when the noise is comparable with the motion
+// over the fit window.
+double pooled_slope(const std::vector<double>& x, const std::vector<double>& y,
+                    const std::vector<double>& x0, const std::vector<double>& Qs,
+                    const std::vector<Reversal>& revs) {
   constexpr int P = 3;
   double A[P][P] = {}, B[P] = {};
   for (const auto& rv : revs) {
     const double s = rv.dir;
-    const double Qr = Qs[rv.r];
+    const double Qr = Qs[rv.r], xr = x0[rv.r];
     std::size_t j = rv.r;
     while (j <= rv.end && std::abs(Qs[j] - Qr) <= rv.span) ++j;
     const std::size_t n = j - rv.r;
     if (n < 6) continue;
     double mx[P] = {}, my = 0.0;
     for (std::size_t i = rv.r; i < j; ++i) {
-      const double q = s * (Q[i] - Qr);
+      const double q = s * (x[i] - xr);
       double p = q;
       for (double& v : mx) {
         v += p / static_cast<double>(n);
         p *= q;
       }
-      my += s * delta[i] / static_cast<double>(n);
+      my += s * y[i] / static_cast<double>(n);
     }
     for (std::size_t i = rv.r; i < j; ++i) {
-      const double q = s * (Q[i] - Qr);
-      double x[P];
+      const double q = s * (x[i] - xr);
+      double u[P];
       double p = q;
       for (int k = 0; k < P; ++k) {
-        x[k] = p - mx[k];
+        u[k] = p - mx[k];
         p *= q;
       }
-      const double y = s * delta[i] - my;
+      const double v = s * y[i] - my;
       for (int k = 0; k < P; ++k) {
-        B[k] += x[k] * y;
-        for (int l = 0; l < P; ++l) A[k][l] += x[k] * x[l];
+        B[k] += u[k] * v;
+        for (int l = 0; l < P; ++l) A[k][l] += u[k] * u[l];
       }
     }
   }
-  (void)fraction;
   // Gaussian elimination with partial pivoting (3 x 3).
   for (int k = 0; k < P; ++k) {
     int piv = k;
@@ -178,13 +178,13 @@ double pooled_stiffness(const std::vector<double>& delta, const std::vector<doub
       B[i] -= f * B[k];
     }
   }
-  double x[P];
+  double c[P];
   for (int k = P - 1; k >= 0; --k) {
     double v = B[k];
-    for (int l = k + 1; l < P; ++l) v -= A[k][l] * x[l];
-    x[k] = v / A[k][k];
+    for (int l = k + 1; l < P; ++l) v -= A[k][l] * c[l];
+    c[k] = v / A[k][k];
   }
-  return 1.0 / x[0];
+  return c[0];
 }
 
 // Value at index i of a least-squares quadratic in time through the samples within
@@ -340,6 +340,37 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
 
   FrettingAnalysis out;
   out.P = P;
+  // Stiffness at a reversal from the slope b of the fit (see AnalysisOptions): 1/b for
+  // delta(Q), 1/(1/b - c) for Q(Delta) with the apparatus compliance c.
+  out.stiffness_from_imposed = imposed && opt.stiffness_from_imposed;
+  if (out.stiffness_from_imposed) {
+    // Delta - delta = c Q + e, least squares over every sample (Fig. 5.7: linear springs).
+    double mq = 0.0, mr = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      mq += data.Q[i] / static_cast<double>(n);
+      mr += (data.Delta[i] - data.delta[i]) / static_cast<double>(n);
+    }
+    double sqq = 0.0, sqr = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      sqq += (data.Q[i] - mq) * (data.Q[i] - mq);
+      sqr += (data.Q[i] - mq) * (data.Delta[i] - data.delta[i] - mr);
+    }
+    const double c = sqr / sqq;
+    double ss = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double e = data.Delta[i] - data.delta[i] - mr - c * (data.Q[i] - mq);
+      ss += e * e;
+    }
+    out.apparatus_compliance = c;
+    out.apparatus_residual_rms = std::sqrt(ss / static_cast<double>(n));
+  }
+  const double c_app = out.apparatus_compliance;
+  const auto& fit_x = out.stiffness_from_imposed ? data.Delta : data.Q;
+  const auto& fit_y = out.stiffness_from_imposed ? data.Q : data.delta;
+  const auto& fit_x0 = out.stiffness_from_imposed ? data.Delta : Qs;
+  const auto stiffness_of = [&](double b) {
+    return out.stiffness_from_imposed ? 1.0 / (1.0 / b - c_app) : 1.0 / b;
+  };
   const std::size_t m = std::max<std::size_t>(opt.loop_points, 10);
   std::vector<double> acc_d(2 * m, 0.0), acc_Q(2 * m, 0.0);
   std::vector<Reversal> reversals;
@@ -363,8 +394,8 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
     c.delta_max = 0.5 * (dhi - dlo);
     c.delta_center = 0.5 * (dhi + dlo);
     const double span = opt.stiffness_window * 2.0 * c.Q_max;
-    c.stiffness_unloading = reversal_stiffness(data.delta, data.Q, Qs, a, mid, span);
-    c.stiffness_reloading = reversal_stiffness(data.delta, data.Q, Qs, mid, b, span);
+    c.stiffness_unloading = stiffness_of(slope_at_reversal(fit_x, fit_y, fit_x0, Qs, a, mid, span));
+    c.stiffness_reloading = stiffness_of(slope_at_reversal(fit_x, fit_y, fit_x0, Qs, mid, b, span));
     reversals.push_back({a, mid, -1, span});
     reversals.push_back({mid, b, 1, span});
     c.stiffness = 0.5 * (c.stiffness_unloading + c.stiffness_reloading);
@@ -401,7 +432,7 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
     mean.partial_slip += c.partial_slip / nc;
   }
   out.mu = mean.Q_max / P;  // Eq. 6.1
-  mean.stiffness = pooled_stiffness(data.delta, data.Q, Qs, reversals, opt.stiffness_window);
+  mean.stiffness = stiffness_of(pooled_slope(fit_x, fit_y, fit_x0, Qs, reversals));
   mean.stiffness_unloading = mean.stiffness_reloading = mean.stiffness;
   out.loop_delta.resize(2 * m);
   out.loop_Q.resize(2 * m);
@@ -415,6 +446,13 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
         "{}: too few samples after a reversal to fit the stiffness (sample faster, or widen the "
         "stiffness window)",
         data.source));
+  }
+  if (!(mean.stiffness > 0.0)) {
+    throw InvalidInput(fmt::format(
+        "{}: the joint's compliance at the reversals is not resolved (fitted stiffness {:.4g} "
+        "N/um): the noise is too large against the joint's motion in the fit window (widen the "
+        "stiffness window, record more cycles or sample faster)",
+        data.source, mean.stiffness * 1e-6));
   }
   return out;
 }

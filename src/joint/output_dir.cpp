@@ -23,7 +23,8 @@ StagedDirectory::StagedDirectory(const std::string& final_dir) : final_(final_di
     name = final_.filename();
   }
   std::random_device rd;
-  tmp_ = final_.parent_path() / fmt::format(".{}.tmp-{:08x}", name.string(), static_cast<unsigned>(rd()));
+  tmp_ = final_.parent_path() /
+         fmt::format(".{}.tmp-{:08x}", name.string(), static_cast<unsigned>(rd()));
   if (!fs::create_directory(tmp_, ec) || ec) {
     throw InvalidInput(fmt::format(
         "--out \"{}\": cannot create a directory next to it ({}): does the parent exist and is it "
@@ -39,16 +40,20 @@ StagedDirectory::~StagedDirectory() {
   }
 }
 
-std::string StagedDirectory::file(const std::string& name) const { return (tmp_ / name).string(); }
+std::string StagedDirectory::file(const std::string& name) const {
+  return (tmp_ / name).string();
+}
 
 void StagedDirectory::commit() {
   std::error_code ec;
   fs::path old;
   if (fs::exists(final_, ec)) {
     std::random_device rd;
-    old = final_.parent_path() / fmt::format(".{}.old-{:08x}", final_.filename().string(), static_cast<unsigned>(rd()));
+    old = final_.parent_path() /
+          fmt::format(".{}.old-{:08x}", final_.filename().string(), static_cast<unsigned>(rd()));
     fs::rename(final_, old, ec);
-    if (ec) throw InvalidInput(fmt::format("cannot replace \"{}\": {}", final_.string(), ec.message()));
+    if (ec)
+      throw InvalidInput(fmt::format("cannot replace \"{}\": {}", final_.string(), ec.message()));
   }
   fs::rename(tmp_, final_, ec);
   if (ec) {

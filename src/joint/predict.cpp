@@ -81,7 +81,8 @@ std::pair<std::vector<double>, std::vector<double>> steady_loop(const hysteresis
     Q.push_back(Qm - 2.0 * b.force((delta_max - xi) / 2.0));
   }
   for (std::size_t i = 1; i <= n; ++i) {  // reloading: -Q_m + 2 Q_l((x + x_m)/2)
-    const double xi = -delta_max + 2.0 * delta_max * static_cast<double>(i) / static_cast<double>(n);
+    const double xi =
+        -delta_max + 2.0 * delta_max * static_cast<double>(i) / static_cast<double>(n);
     x.push_back(xi);
     Q.push_back(-Qm + 2.0 * b.force((xi + delta_max) / 2.0));
   }

@@ -28,7 +28,8 @@ TEST(DynamicsAnalysisTest, PeriodogramOfASinusoid) {
   // x = sin(2 pi f0 t) over an integer number of periods: P(f0) = (T/2)^2.
   const double dt = 0.01, f0 = 2.0;
   std::vector<double> x(1000);
-  for (std::size_t i = 0; i < x.size(); ++i) x[i] = std::sin(2 * std::numbers::pi * f0 * dt * static_cast<double>(i));
+  for (std::size_t i = 0; i < x.size(); ++i)
+    x[i] = std::sin(2 * std::numbers::pi * f0 * dt * static_cast<double>(i));
   const Periodogram p(x, dt);
   EXPECT_NEAR(p(f0), 25.0, 25.0 * 1e-10);
   EXPECT_LT(p(3.0), 1e-20);  // an exact DFT bin away: no leakage
@@ -81,8 +82,8 @@ TEST(DynamicsAnalysisTest, FrictionChangesModalFrequencyAndDampingExceptCoulombs
   o.output_interval = 0.01;
   // Coulomb: a pulse large enough to slide (the Table 7.2 pulse of 1 is overdamped by
   // F_max k_tan = 9.5 >> 2: the mass creeps without oscillating).
-  const auto tc = simulate({.epsilon = kEps}, ImpulseExcitation{.amplitude = 200.0},
-                           RegularizedCoulomb({}), o);
+  const auto tc =
+      simulate({.epsilon = kEps}, ImpulseExcitation{.amplitude = 200.0}, RegularizedCoulomb({}), o);
   const auto dc = free_decay(tc, 0.1);
   ASSERT_GE(dc.size(), 1u);
   EXPECT_NEAR(dc[0].frequency / kFn, 1.0, 0.01);
@@ -169,8 +170,8 @@ TEST(DynamicsAnalysisTest, SteadyLoopOfJenkinsMatchesMasingEnergy) {
   o.duration = 40.0;
   o.output_interval = 0.002;
   // Base amplitude 5: the element slides (amplitude above F/k = 0.011).
-  const auto tr = simulate({.epsilon = kEps}, HarmonicExcitation{.amplitude = 5.0},
-                           HysteresisFriction(bb), o);
+  const auto tr =
+      simulate({.epsilon = kEps}, HarmonicExcitation{.amplitude = 5.0}, HysteresisFriction(bb), o);
   const auto loop = steady_loop(tr, 1.0, 4);
   ASSERT_GT(loop.displacement_amplitude, 2 * 1.5 / 136.0);
   const double expected = hysteresis::energy_per_cycle(*bb, loop.displacement_amplitude);
@@ -218,7 +219,8 @@ TEST(DynamicsAnalysisTest, SmoothContactIsStifferThanRough) {
   o.duration = 40.0;
   o.output_interval = 0.002;
   const auto lr = steady_loop(simulate({.epsilon = kEps}, HarmonicExcitation{}, *rough, o), 1.0, 5);
-  const auto ls = steady_loop(simulate({.epsilon = kEps}, HarmonicExcitation{}, *smooth, o), 1.0, 5);
+  const auto ls =
+      steady_loop(simulate({.epsilon = kEps}, HarmonicExcitation{}, *smooth, o), 1.0, 5);
   EXPECT_LT(ls.displacement_amplitude, 0.5 * lr.displacement_amplitude);
   EXPECT_LT(ls.energy_per_cycle, lr.energy_per_cycle);  // smaller loop (section 7.4)
 }

@@ -47,7 +47,7 @@ TEST(FrictionModelTest, HysteresisFrictionFollowsMasingAndCommitsReversals) {
   EXPECT_DOUBLE_EQ(h.force(0.05, 1.0, {}), 1.0);  // slid
   h.commit_reversal(0.05);
   EXPECT_NEAR(h.force(0.045, -1.0, {}), 0.5, 1e-12);  // unloading with the initial stiffness
-  EXPECT_DOUBLE_EQ(h.force(0.0, -1.0, {}), -1.0);    // slides the other way
+  EXPECT_DOUBLE_EQ(h.force(0.0, -1.0, {}), -1.0);     // slides the other way
   auto copy = h.clone();
   h.reset();
   EXPECT_DOUBLE_EQ(h.force(0.0, -1.0, {}), 0.0);
@@ -96,9 +96,9 @@ TEST(FrictionModelTest, SegalmanIwanDissipationPowerLaw) {
   // 1e-4 phi_max: within 1e-3 of 3 + chi.
   const SegalmanBackbone b({.F_S = 1.0, .K_T = 1.0, .chi = -0.4, .beta = 0.2});
   const double x1 = 1e-4 * b.phi_max(), x2 = 1e-3 * b.phi_max();
-  const double slope = std::log(hysteresis::energy_per_cycle(b, x2) /
-                                hysteresis::energy_per_cycle(b, x1)) /
-                       std::log(10.0);
+  const double slope =
+      std::log(hysteresis::energy_per_cycle(b, x2) / hysteresis::energy_per_cycle(b, x1)) /
+      std::log(10.0);
   EXPECT_NEAR(slope, 2.6, 1e-3);
 }
 
@@ -109,12 +109,13 @@ TEST(FrictionModelTest, SaturatingBackboneApproachesJenkinsAtLargeAmplitude) {
   // both tend to 4 F x_max.
   const double F = 1.0, s = 0.01;
   const hysteresis::FunctionBackbone cfc(
-      [=](double x) { return x >= s ? F : F * (1.0 - std::pow(1.0 - x / s, 1.5)); }, F, 1.5 * F / s);
+      [=](double x) { return x >= s ? F : F * (1.0 - std::pow(1.0 - x / s, 1.5)); }, F,
+      1.5 * F / s);
   const hysteresis::JenkinsBackbone jenkins(1.5 * F / s, F);
   double previous_gap = 1.0;
   for (double amp : {0.02, 0.2, 2.0}) {
-    const double ratio = hysteresis::energy_per_cycle(cfc, amp) /
-                         hysteresis::energy_per_cycle(jenkins, amp);
+    const double ratio =
+        hysteresis::energy_per_cycle(cfc, amp) / hysteresis::energy_per_cycle(jenkins, amp);
     const double gap = std::abs(ratio - 1.0);
     EXPECT_LT(gap, previous_gap) << amp;
     previous_gap = gap;
@@ -137,8 +138,8 @@ TEST(FrictionModelTest, RoughFlatWithCfcApproachesJenkinsAtLargeAmplitude) {
   const double slip = bb->limit() / bb->initial_stiffness();
   double previous_gap = 1.0;
   for (double amp : {3.0 * slip, 30.0 * slip, 300.0 * slip}) {
-    const double gap = std::abs(hysteresis::energy_per_cycle(*bb, amp) /
-                                    hysteresis::energy_per_cycle(jenkins, amp) - 1.0);
+    const double gap = std::abs(
+        hysteresis::energy_per_cycle(*bb, amp) / hysteresis::energy_per_cycle(jenkins, amp) - 1.0);
     EXPECT_LT(gap, previous_gap) << amp;
     previous_gap = gap;
   }

@@ -64,7 +64,8 @@ class Kink final : public OdeProblem {
 double end_value(OdeProblem& p, std::vector<double> y0, double t1, const IntegratorOptions& o,
                  IntegratorStats* stats = nullptr) {
   std::vector<double> y = y0;
-  auto s = integrate(p, y0, 0.0, t1, o, [&](const StepView& v) { y.assign(v.y.begin(), v.y.end()); });
+  auto s =
+      integrate(p, y0, 0.0, t1, o, [&](const StepView& v) { y.assign(v.y.begin(), v.y.end()); });
   if (stats) *stats = s;
   return y[0];
 }
@@ -96,8 +97,10 @@ TEST(IntegratorTest, ErrorFallsWithTheToleranceAtTheMethodsOrder) {
 TEST(IntegratorTest, HigherOrderTakesFewerSteps) {
   Decay p1(-1.0), p2(-1.0);
   IntegratorStats s1, s2;
-  end_value(p1, {1.0}, 5.0, {.method = Method::bogacki_shampine_32, .rtol = 1e-9, .atol = {1e-12}}, &s1);
-  end_value(p2, {1.0}, 5.0, {.method = Method::dormand_prince_54, .rtol = 1e-9, .atol = {1e-12}}, &s2);
+  end_value(p1, {1.0}, 5.0, {.method = Method::bogacki_shampine_32, .rtol = 1e-9, .atol = {1e-12}},
+            &s1);
+  end_value(p2, {1.0}, 5.0, {.method = Method::dormand_prince_54, .rtol = 1e-9, .atol = {1e-12}},
+            &s2);
   EXPECT_LT(s2.steps * 3, s1.steps);
 }
 

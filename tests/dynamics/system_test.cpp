@@ -136,8 +136,8 @@ TEST(DynamicsSystemTest, DankowiczForceNeverExceedsFmax) {
     SimulationOptions o;
     o.duration = 40.0;
     o.integrator.method = m;
-    const auto tr = simulate({.epsilon = kEps}, HarmonicExcitation{.frequency = 0.15, .amplitude = 20.0},
-                             model, o);
+    const auto tr = simulate({.epsilon = kEps},
+                             HarmonicExcitation{.frequency = 0.15, .amplitude = 20.0}, model, o);
     double peak = 0.0;
     for (double F : tr.friction) peak = std::max(peak, std::abs(F));
     EXPECT_LE(peak, 1.5) << to_string(m);

@@ -296,12 +296,13 @@ TEST_P(AnalyzeSynthetic, RecoversEnergyStiffnessAndMu) {
 
 class AnalyzeSyntheticDense : public AnalyzeSynthetic {};
 
-TEST_P(AnalyzeSyntheticDense, RecoversStiffnessWithDenseSampling) {
-  // The stiffness at reversal of this joint (430-1200 N/um) makes the displacement over
-  // the fit window (0.3 of the force swing) only 0.1-0.2 um, comparable with the 0.1 um
-  // noise: at 1 kHz and 10 cycles the pooled fit scatters by tens of percent, at 20 kHz
-  // and 20 cycles by about 5 %. With 40 kHz (the LNS has 250 kHz bandwidth, section
-  // 5.2) and 40 cycles (scatter about 2.5 %, window 0.5: bias 1.2 %) it is within 5 %.
+TEST_P(AnalyzeSyntheticDense, RecoversStiffnessFromDeltaAlone) {
+  // Without the imposed displacement the stiffness comes from delta(Q). The stiffness at
+  // reversal of this joint (430-1200 N/um) makes the displacement over the fit window
+  // (0.3 of the force swing) only 0.1-0.2 um, comparable with the 0.1 um noise: at 1 kHz
+  // and 10 cycles the pooled fit scatters by tens of percent, at 20 kHz and 20 cycles by
+  // about 5 %. With 40 kHz (the LNS has 250 kHz bandwidth, section 5.2) and 40 cycles
+  // (scatter about 2.5 %, window 0.5: bias 1.2 %) it is within 5 %.
   const auto [P, seed, imposed] = GetParam();
   const auto c = read_case_file(kExamples + "steel420_two_bolts.toml");
   const auto lp = predict_load(c.rough_flat(), P, {});
@@ -311,13 +312,54 @@ TEST_P(AnalyzeSyntheticDense, RecoversStiffnessWithDenseSampling) {
   o.sample_rate = 40000.0;
   o.seed = static_cast<std::uint64_t>(seed) + 100;
   auto data = synthetic_experiment(lp.backbone, o);
-  if (!imposed) data.Delta.clear();
-  const auto a = analyze_fretting(data, P, {.stiffness_window = 0.5});
+  if (!imposed) data.Delta.clear();  // with Delta: it splits the cycles, not the stiffness
+  const auto a =
+      analyze_fretting(data, P, {.stiffness_window = 0.5, .stiffness_from_imposed = false});
+  EXPECT_FALSE(a.stiffness_from_imposed);
   const double k0 = lp.backbone->initial_stiffness();
   EXPECT_LT(rel(a.mean.stiffness, k0), 0.05) << a.mean.stiffness << " " << k0;
   EXPECT_LT(rel(a.mean.stiffness, lp.stiffness), 0.05);
 }
 
+class AnalyzeSyntheticImposed : public ::testing::TestWithParam<std::tuple<double, int>> {};
+
+TEST_P(AnalyzeSyntheticImposed, RecoversStiffnessAndApparatusCompliance) {
+  // Table 5.6's experiment as in AnalyzeSynthetic (Eq. 5.3, 10 cycles, noise 0.1 um and
+  // 1 N) with the imposed Delta: Q(Delta) has a noise-free regressor and the apparatus
+  // compliance is fitted on all samples, so the stiffness needs far fewer samples than
+  // from delta(Q): at 20 kHz, window 0.5, the cubic's bias is -1 % (noise-free, below)
+  // and the scatter over seeds about 1.5 % (24 runs within 4.3 %), so within the issue's
+  // 5 %. At 1 kHz it still scatters by about 15 %.
+  const auto [P, seed] = GetParam();
+  const auto c = read_case_file(kExamples + "steel420_two_bolts.toml");
+  const auto lp = predict_load(c.rough_flat(), P, {});
+  SyntheticOptions o;
+  o.excitation.amplitude = 6.75e-6;
+  o.sample_rate = 20000.0;
+  o.seed = static_cast<std::uint64_t>(seed) + 200;
+  const auto a =
+      analyze_fretting(synthetic_experiment(lp.backbone, o), P, {.stiffness_window = 0.5});
+  ASSERT_TRUE(a.stiffness_from_imposed);
+  const double k0 = lp.backbone->initial_stiffness();
+  EXPECT_LT(rel(a.mean.stiffness, k0), 0.05) << a.mean.stiffness << " " << k0;
+  // Fig. 5.7: the springs in series; the fit's standard error is about 0.03 %, so 0.5 %
+  // is about 15 standard errors. The residual is the displacement noise (0.1 um) plus
+  // c times the force noise (0.027 um) in quadrature.
+  const double c_app = 1.0 / o.pzt_stiffness + 1.0 / o.load_cell_stiffness;
+  EXPECT_LT(rel(a.apparatus_compliance, c_app), 5e-3) << a.apparatus_compliance;
+  EXPECT_LT(rel(a.apparatus_residual_rms, std::hypot(o.noise_delta, c_app * o.noise_Q)), 0.05);
+  // Noise-free: the bias of the method alone.
+  o.noise_delta = 0.0;
+  o.noise_Q = 0.0;
+  const auto clean =
+      analyze_fretting(synthetic_experiment(lp.backbone, o), P, {.stiffness_window = 0.5});
+  EXPECT_LT(rel(clean.mean.stiffness, k0), 0.02) << clean.mean.stiffness << " " << k0;
+  EXPECT_LT(clean.apparatus_residual_rms, 1e-3 * o.excitation.amplitude);
+}
+
+INSTANTIATE_TEST_SUITE_P(AnalyzeTable56, AnalyzeSyntheticImposed,
+                         ::testing::Values(std::make_tuple(234.0, 1), std::make_tuple(331.0, 2),
+                                           std::make_tuple(526.0, 3), std::make_tuple(721.0, 4)));
 INSTANTIATE_TEST_SUITE_P(AnalyzeTable56, AnalyzeSyntheticDense,
                          ::testing::Values(std::make_tuple(234.0, 1, false),
                                            std::make_tuple(526.0, 3, true),

@@ -53,10 +53,10 @@ struct ModalEstimate {
   double f_high = 0.0;  ///< half-power point above the peak
 };
 
-/// Finds the largest interior peak (a local maximum, not a range end) on a grid of `bins` frequencies in [f_min, f_max], refines it
-/// by Brent's method on the periodogram, and locates the half-power points by root
-/// finding on the periodogram (not on the grid). Throws NumericalError if a half-power
-/// point lies outside [f_min, f_max] (widen the range or lengthen the record).
+/// Finds the largest interior peak (a local maximum, not a range end) on a grid of `bins`
+/// frequencies in [f_min, f_max], refines it by Brent's method on the periodogram, and locates the
+/// half-power points by root finding on the periodogram (not on the grid). Throws NumericalError if
+/// a half-power point lies outside [f_min, f_max] (widen the range or lengthen the record).
 [[nodiscard]] ModalEstimate modal_estimate(const Periodogram& p, double f_min, double f_max,
                                            std::size_t bins = 4000);
 
@@ -85,7 +85,8 @@ struct DecayPoint {
 /// Amplitude-dependent frequency and damping of a free decay by the logarithmic
 /// decrement over each full cycle, using swings between successive extrema so that a
 /// shifted equilibrium (a stuck friction contact) does not bias it:
-///   s_k = |u_{k+1} - u_k|,  delta_k = ln(s_k / s_{k+2}),  zeta_k = delta_k/sqrt(4 pi^2 + delta_k^2).
+///   s_k = |u_{k+1} - u_k|,  delta_k = ln(s_k / s_{k+2}),  zeta_k = delta_k/sqrt(4 pi^2 +
+///   delta_k^2).
 /// Exact for a linear viscously damped oscillator. Stops when a swing falls below
 /// `floor` times the largest one (there the motion is at the level of the integration
 /// tolerance, or the contact has stuck).
@@ -103,7 +104,7 @@ struct MotionInterval {
 
 /// The friction loop of a steady harmonic response over the last `cycles` periods.
 struct LoopSummary {
-  double energy_per_cycle = 0.0;    ///< closed integral of F_s du, per cycle
+  double energy_per_cycle = 0.0;        ///< closed integral of F_s du, per cycle
   double displacement_amplitude = 0.0;  ///< (max u - min u)/2
   double force_amplitude = 0.0;         ///< (max F - min F)/2
   double mean_displacement = 0.0;

@@ -12,15 +12,15 @@ namespace asperity::dynamics {
 
 /// Combined properties and roughness as Table 7.2 gives them (SI units).
 struct EpbContact {
-  double E_star = 106e9;  ///< combined Young's modulus E* [Pa]
-  double G_star = 22.9e9; ///< combined shear modulus G* [Pa]
-  double H = 5.8e9;       ///< hardness of the softer material [Pa]
-  double nu = 0.3;        ///< Poisson's ratio of the softer material
-  double sigma = 2.7e-6;  ///< combined rms roughness [m]
-  double R = 30.1e-6;     ///< mean asperity radius [m]
-  double eta = 2.9e8;     ///< areal density of asperities [1/m^2]
-  double A0 = 0.0;        ///< nominal contact area [m^2] (Table 7.2 gives none)
-  double P = 0.0;         ///< normal load [N]
+  double E_star = 106e9;   ///< combined Young's modulus E* [Pa]
+  double G_star = 22.9e9;  ///< combined shear modulus G* [Pa]
+  double H = 5.8e9;        ///< hardness of the softer material [Pa]
+  double nu = 0.3;         ///< Poisson's ratio of the softer material
+  double sigma = 2.7e-6;   ///< combined rms roughness [m]
+  double R = 30.1e-6;      ///< mean asperity radius [m]
+  double eta = 2.9e8;      ///< areal density of asperities [1/m^2]
+  double A0 = 0.0;         ///< nominal contact area [m^2] (Table 7.2 gives none)
+  double P = 0.0;          ///< normal load [N]
   contact::ModelName model = contact::ModelName::bke;  ///< asperity law (BKE: section 7.3)
   contact::FrictionParameters friction{};
   void validate() const;

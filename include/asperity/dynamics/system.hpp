@@ -111,7 +111,7 @@ struct Trajectory {
   std::vector<double> work_base, dissipated_damper, work_friction, energy;
   std::vector<double> event_tau;  ///< located velocity reversals
   std::vector<double> event_u;
-  std::vector<bool> is_event;     ///< per sample: sample is a located reversal
+  std::vector<bool> is_event;  ///< per sample: sample is a located reversal
   IntegratorStats stats;
   std::size_t force_evaluations = 0;
   std::string friction_model;

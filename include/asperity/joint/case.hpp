@@ -28,8 +28,8 @@ namespace asperity::joint {
 /// D = 2.9 mm reproduces them (see docs/joints.md).
 struct Bolts {
   int count = 1;
-  double nut_factor = 0.2;  ///< k of Eq. 5.2 (0.2 in the thesis)
-  double diameter = 0.0;    ///< nominal diameter D [m]
+  double nut_factor = 0.2;      ///< k of Eq. 5.2 (0.2 in the thesis)
+  double diameter = 0.0;        ///< nominal diameter D [m]
   std::vector<double> torques;  ///< torque on each bolt [N m], one per load case
   [[nodiscard]] double preload(double torque) const;
 };

@@ -38,6 +38,14 @@ struct AnalysisOptions {
   /// common coefficients pooled over every reversal (one intercept each). On
   /// noise-free Masing loops of the ch. 5 joint the cubic's bias is 0.2 % at 0.3.
   double stiffness_window = 0.3;
+  /// With the imposed displacement Delta in the data (noise-free: the PZT drive) the
+  /// apparatus between the PZT tip and the joint is a linear spring in series (Fig.
+  /// 5.7), Delta = delta + c Q + const: its compliance c is fitted to all samples, the
+  /// force is fitted as a polynomial in Delta after each reversal (the regressor has no
+  /// noise, so the slope is unbiased) and stiffness = 1/(dDelta/dQ - c). The joint's
+  /// displacement then enters only through c, fitted on every sample, instead of
+  /// through the 0.1-0.2 um it moves inside each fit window. false: delta(Q) as above.
+  bool stiffness_from_imposed = true;
   /// Points per branch of the averaged loop.
   std::size_t loop_points = 200;
 };
@@ -57,10 +65,16 @@ struct CycleMetrics {
 struct FrettingAnalysis {
   double P = 0.0;
   std::vector<CycleMetrics> cycles;
-  CycleMetrics mean;       ///< mean over cycles; the stiffness pooled over all reversals
-  double mu = 0.0;         ///< mean Q_max / P (Eq. 6.1)
+  CycleMetrics mean;  ///< mean over cycles; the stiffness pooled over all reversals
+  double mu = 0.0;    ///< mean Q_max / P (Eq. 6.1)
   std::vector<double> loop_delta, loop_Q;  ///< averaged loop (unloading then reloading branch)
-  double loop_energy = 0.0;  ///< area of the averaged loop [J]
+  double loop_energy = 0.0;                ///< area of the averaged loop [J]
+  /// Set when the stiffness came from the imposed displacement: the fitted compliance
+  /// c of Delta = delta + c Q + const [m/N] and the rms residual of that fit [m] (about
+  /// the displacement noise when the apparatus is linear; much larger: it is not).
+  bool stiffness_from_imposed = false;
+  double apparatus_compliance = 0.0;
+  double apparatus_residual_rms = 0.0;
 };
 
 /// Splits into cycles (maximum -> minimum -> maximum of the displacement, smoothed by a
@@ -80,8 +94,8 @@ struct FrettingAnalysis {
 /// period. The print's last branch A(10.5 - t) is discontinuous; we ramp from the
 /// value at the end of the harmonic part down to 0 (docs/joints.md).
 struct Eq53Excitation {
-  double amplitude = 0.0;   ///< half the peak-to-peak motion of the harmonic part [m] (0.5 A)
-  double frequency = 1.0;   ///< f [Hz]
+  double amplitude = 0.0;  ///< half the peak-to-peak motion of the harmonic part [m] (0.5 A)
+  double frequency = 1.0;  ///< f [Hz]
   int cycles = 10;
   [[nodiscard]] double duration() const { return (static_cast<double>(cycles) + 1.0) / frequency; }
   [[nodiscard]] double operator()(double t) const;
@@ -90,11 +104,11 @@ struct Eq53Excitation {
 /// 1-DOF apparatus of Fig. 5.7 and the sensors of section 5.2.
 struct SyntheticOptions {
   Eq53Excitation excitation;
-  double sample_rate = 1000.0;        ///< [Hz]
-  double pzt_stiffness = 38e6;        ///< PZT side, A-B [N/m] (section 5.2: 38 N/um)
+  double sample_rate = 1000.0;          ///< [Hz]
+  double pzt_stiffness = 38e6;          ///< PZT side, A-B [N/m] (section 5.2: 38 N/um)
   double load_cell_stiffness = 1462e6;  ///< connector block + load cell [N/m] (1462 N/um)
-  double noise_delta = 0.1e-6;        ///< rms noise of the LNS [m] (0.1 um)
-  double noise_Q = 1.0;               ///< rms noise of the load cell [N] (1 N)
+  double noise_delta = 0.1e-6;          ///< rms noise of the LNS [m] (0.1 um)
+  double noise_Q = 1.0;                 ///< rms noise of the load cell [N] (1 N)
   std::uint64_t seed = 1;
 };
 
@@ -103,7 +117,7 @@ struct SyntheticOptions {
 /// Delta = delta + Q(delta) (1/k_pzt + 1/k_lc) is solved for the joint displacement
 /// delta; Gaussian noise is added to the recorded delta and Q (seeded). Delta is
 /// recorded without noise (the PZT's strain gauge).
-[[nodiscard]] FrettingData synthetic_experiment(std::shared_ptr<const hysteresis::Backbone> backbone,
-                                                const SyntheticOptions& options);
+[[nodiscard]] FrettingData synthetic_experiment(
+    std::shared_ptr<const hysteresis::Backbone> backbone, const SyntheticOptions& options);
 
 }  // namespace asperity::joint

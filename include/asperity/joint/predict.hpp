@@ -27,9 +27,9 @@ struct LoadPrediction {
   double P_star = 0.0;      ///< P/(K H A0)
   double separation = 0.0;  ///< mean-plane separation d [m] (d* sigma_s)
   double d_star = 0.0;
-  double Q_max = 0.0;       ///< static friction force [N] (Eq. 4.7)
-  double mu = 0.0;          ///< Q_max/P
-  double stiffness = 0.0;   ///< tangential stiffness at every reversal [N/m]
+  double Q_max = 0.0;               ///< static friction force [N] (Eq. 4.7)
+  double mu = 0.0;                  ///< Q_max/P
+  double stiffness = 0.0;           ///< tangential stiffness at every reversal [N/m]
   double contact_area_ratio = 0.0;  ///< real over nominal area
   double mean_pressure = 0.0;       ///< P/A0 [Pa]
   /// Backbone in SI units (x [m], Q [N]): a ScaledBackbone over the rough flat's table.
@@ -45,8 +45,8 @@ struct JointPrediction {
 };
 
 /// Predicts every load case of `c`. `progress(i, n)` (if given) is called after each.
-[[nodiscard]] JointPrediction predict(const JointCase& c,
-                                      const std::function<void(std::size_t, std::size_t)>& progress = {});
+[[nodiscard]] JointPrediction predict(
+    const JointCase& c, const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 /// Predictions at one preload (SI) for given amplitudes.
 [[nodiscard]] LoadPrediction predict_load(const surface::RoughFlat& flat, double preload,
