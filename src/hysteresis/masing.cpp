@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/numerics.hpp"
@@ -44,8 +45,20 @@ Hysteresis::Hysteresis(std::shared_ptr<const Backbone> backbone, MemoryRule rule
   stack_.reserve(64);
 }
 
+void Hysteresis::refresh_top() {
+  if (stack_.empty()) {
+    top_ = ReversalPoint{};
+    return;
+  }
+  top_ = stack_.back();
+  if (rule_ == MemoryRule::reset_at_reversal) {
+    top_.closes_at = top_.direction * std::numeric_limits<double>::infinity();
+  }
+}
+
 void Hysteresis::reset() {
   stack_.clear();
+  refresh_top();
   x_ = 0.0;
   Q_ = 0.0;
   direction_ = 0;
@@ -54,6 +67,7 @@ void Hysteresis::reset() {
 void Hysteresis::push_reversal(double x, double Q, int direction) {
   const double closes_at = stack_.empty() ? -x : stack_.back().x;
   stack_.push_back({x, Q, static_cast<double>(direction), closes_at});
+  refresh_top();
 }
 
 std::size_t Hysteresis::active_branch(double x) const {
@@ -144,6 +158,7 @@ double Hysteresis::tangent_stiffness(double x) const {
 
 void Hysteresis::move_to(std::size_t k, double x, double Q) {
   stack_.resize(k);
+  refresh_top();
   x_ = x;
   Q_ = Q;
 }

@@ -78,14 +78,10 @@ class Hysteresis {
     const int d = (dx > 0.0) - (dx < 0.0);
     // NaN and +-inf always leave through update_general (NaN gives d = 0; an infinite x
     // passes every closing point), which rejects them.
-    if (d == direction_ && d != 0 && !stack_.empty()) {
-      const ReversalPoint& r = stack_.back();
-      if ((x - r.closes_at) * r.direction < 0.0 ||
-          (rule_ == MemoryRule::reset_at_reversal && std::isfinite(x))) {
-        Q_ = r.Q + r.direction * 2.0 * backbone_->force(std::abs(x - r.x) * 0.5);
-        x_ = x;
-        return Q_;
-      }
+    if (d == direction_ && d != 0 && (x - top_.closes_at) * top_.direction < 0.0) {
+      Q_ = top_.Q + top_.direction * 2.0 * backbone_->force(std::abs(x - top_.x) * 0.5);
+      x_ = x;
+      return Q_;
     }
     return update_general(x);
   }
@@ -132,6 +128,12 @@ class Hysteresis {
   std::shared_ptr<const Backbone> backbone_;
   MemoryRule rule_;
   void push_reversal(double x, double Q, int direction);
+
+  // Copy of the newest reversal for the inline fast path, its closing point moved to
+  // infinity under the Eq. 7.10 rule (no loop closing) and direction 0 when the stack is
+  // empty (the fast path then never applies). Kept by refresh_top() after every change.
+  void refresh_top();
+  ReversalPoint top_{};
 
   std::vector<ReversalPoint> stack_;
   double x_ = 0.0;

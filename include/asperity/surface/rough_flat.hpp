@@ -127,7 +127,8 @@ class RoughFlat {
 /// first and second derivatives come from one fixed-rule quadrature pass per node. The grid is
 /// refined until the interpolant matches the quadrature at every interval midpoint to `rel_tol`
 /// (the verified error bound); beyond the table's end Q_l equals Q_max to < 1e-12 relative.
-/// Evaluation costs a square root and a quintic: as cheap as a regularized Coulomb law.
+/// Evaluation costs a square root, a segment search and a quintic (about one `tanh`;
+/// through the Masing engine about twice a regularized Coulomb law, bench/).
 class RoughFlatBackbone final : public hysteresis::Backbone {
  public:
   RoughFlatBackbone(const RoughFlat& flat, double d_star, double rel_tol = 1e-9);
