@@ -71,8 +71,9 @@ class Hysteresis {
   [[nodiscard]] MemoryRule rule() const { return rule_; }
 
   /// Displacement-driven step: moves to x, detecting a reversal when the direction of
-  /// motion changes, and returns the force there. O(1) amortized; inline fast path for
-  /// motion along the newest branch, short of its closing point.
+  /// motion changes, and returns the force there. O(1) amortized; inline fast paths for
+  /// motion along the newest branch short of its closing point, and for a reversal whose
+  /// fresh branch does not close within the step.
   double update(double x) {
     const double dx = x - x_;
     const int d = (dx > 0.0) - (dx < 0.0);
@@ -82,6 +83,19 @@ class Hysteresis {
       Q_ = top_.Q + top_.direction * 2.0 * backbone_->force(std::abs(x - top_.x) * 0.5);
       x_ = x;
       return Q_;
+    }
+    if (d == -direction_ && d != 0 && rule_ == MemoryRule::masing && std::isfinite(x)) {
+      // A reversal at the current point whose fresh branch does not close at once: the
+      // stack is already pruned to the active branch, so push and follow the new branch.
+      const double closes_at = stack_.empty() ? -x_ : stack_.back().x;
+      if ((x - closes_at) * d < 0.0) {
+        stack_.push_back({x_, Q_, static_cast<double>(d), closes_at});
+        top_ = stack_.back();
+        direction_ = d;
+        Q_ = top_.Q + top_.direction * 2.0 * backbone_->force(std::abs(x - top_.x) * 0.5);
+        x_ = x;
+        return Q_;
+      }
     }
     return update_general(x);
   }
