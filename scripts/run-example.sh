@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 bash scripts/setup.sh >/dev/null
-cmake --preset default >/dev/null
+cmake --preset default -DPython3_EXECUTABLE="$PWD/.venv/bin/python" >/dev/null
 cmake --build --preset default -j 2 >/dev/null
 
 mkdir -p out

@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
 # Installs every dependency of asperity on a fresh Debian 12 machine:
-# system packages with apt-get, Python packages with pip.
-# Idempotent: packages already present are left alone.
+# system packages with apt-get, Python packages with pip into the virtual environment
+# .venv in the repository root (Debian's python3 is "externally managed", PEP 668:
+# pip may not install into it). Activate it with `source .venv/bin/activate` for the
+# Python package and examples; the scripts call .venv/bin/python directly.
+# Idempotent: packages already present are left alone, an existing .venv is reused.
 set -euo pipefail
+cd "$(dirname "$0")/.."
 
 apt_packages=(
   build-essential cmake ninja-build pkg-config git
@@ -18,7 +22,7 @@ apt_packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   clang-format
   clang libclang-rt-14-dev    # libFuzzer targets under fuzz/ (ASPERITY_BUILD_FUZZ)
-  python3-dev
+  python3 python3-dev python3-pip python3-venv   # the Python package, in .venv
 )
 
 missing=()
@@ -32,4 +36,10 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-python3 -m pip install --quiet --disable-pip-version-check -r "$(dirname "$0")/../python/requirements.txt"
+# The virtual environment: reused when its interpreter still runs (a venv breaks when
+# the python3 it was made from is removed or upgraded), made anew otherwise.
+if ! .venv/bin/python -c "import sys" >/dev/null 2>&1; then
+  rm -rf .venv
+  python3 -m venv .venv
+fi
+.venv/bin/python -m pip install --quiet --disable-pip-version-check -r python/requirements.txt

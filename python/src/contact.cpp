@@ -425,10 +425,24 @@ void bind_tangential(nb::module_& m) {
           "Reloading displacement after a reversal at -Q_max (Eq. 3.9, B.17) [m].")
       .def(
           "regime_for_displacement",
-          [](const MC& c, double delta_max) {
-            return std::string(to_string(c.regime_for_displacement(delta_max)));
+          [](const MC& c, const ArrayLike& delta_max) -> nb::object {
+            // 1 for gross slip, 0 for partial slip, elementwise (with vectorize's checks
+            // and broadcasting); then the names.
+            const auto gross = vectorize(
+                [&c](double d) {
+                  return c.regime_for_displacement(d) == SlipRegime::gross_slip ? 1.0 : 0.0;
+                },
+                delta_max);
+            const char* names[] = {"partial_slip", "gross_slip"};
+            if (PyFloat_Check(gross.obj.ptr())) {
+              return nb::str(names[nb::cast<double>(gross.obj) != 0.0 ? 1 : 0]);
+            }
+            nb::module_ np = nb::module_::import_("numpy");
+            return np.attr("where")(gross.obj, names[1], names[0]);
           },
-          "delta_max"_a, "'partial_slip' or 'gross_slip' for a displacement amplitude.")
+          "delta_max"_a,
+          "'partial_slip' or 'gross_slip' for a displacement amplitude; for an array, a numpy "
+          "array of these names of the same shape.")
       .def(
           "energy_per_cycle",
           [](const MC& c, const ArrayLike& delta_max) {
@@ -457,21 +471,30 @@ void bind_models(nb::module_& m) {
       .def_static(
           "from_load",
           [](const ContactPair& pair, const std::string& model, double P,
-             const FrictionParameters& params) {
-            return PSM::from_load(pair, parse_model_name(model), P, params);
+             const FrictionParameters& params, const std::string& interference) {
+            return PSM::from_load(pair, parse_model_name(model), P, params,
+                                  parse_interference_reading(interference));
           },
-          "pair"_a, "model"_a, "P"_a, "params"_a = FrictionParameters{},
-          "From a normal load P [N] > 0. Inside a jump of the CEB or KE load law the "
-          "interference is the branch point and P stays as given.")
+          "pair"_a, "model"_a, "P"_a, "params"_a = FrictionParameters{}, "interference"_a = "own",
+          "From a normal load P [N] > 0, which stays as given. interference='own': the "
+          "model's normal law gives omega and a (inside a jump of the CEB or KE load law the "
+          "branch point); 'hertz': Hertz's omega and a for every model, the thesis's reading "
+          "of Table 3.2.")
       .def_static(
           "from_interference_star",
           [](const ContactPair& pair, const std::string& model, double omega_star,
-             const FrictionParameters& params) {
-            return PSM::from_interference_star(pair, parse_model_name(model), omega_star, params);
+             const FrictionParameters& params, const std::string& interference) {
+            return PSM::from_interference_star(pair, parse_model_name(model), omega_star, params,
+                                               parse_interference_reading(interference));
           },
           "pair"_a, "model"_a, "omega_star"_a, "params"_a = FrictionParameters{},
-          "From the dimensionless interference omega* = omega/omega_c > 0.")
+          "interference"_a = "own",
+          "From the dimensionless interference omega* = omega/omega_c > 0; P and a from the "
+          "model's normal law (interference='own') or from Hertz's ('hertz').")
       .def_prop_ro("model", [](const PSM& p) { return std::string(to_string(p.model())); })
+      .def_prop_ro(
+          "interference", [](const PSM& p) { return std::string(to_string(p.reading())); },
+          "'own' or 'hertz': whose normal law gave omega and a")
       .def_prop_ro("pair", &PSM::pair)
       .def_prop_ro("critical", &PSM::critical)
       .def_prop_ro("omega_star", &PSM::omega_star, "omega/omega_c")

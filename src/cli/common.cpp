@@ -1,19 +1,23 @@
 #include "common.hpp"
 
 #include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
-#include <cstdio>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <random>
 #include <sstream>
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
+
+extern char** environ;  // POSIX: the environment, for posix_spawnp
 
 namespace asperity::cli {
 
@@ -33,15 +37,26 @@ void MaterialOptions::add_to(CLI::App* cmd, const std::string& body1, const std:
   cmd->add_option("--E1", E1, "Young's modulus of " + body1)->required();
   cmd->add_option("--nu1", nu1, "Poisson's ratio of " + body1 + ", in [0, 0.5)")->required();
   cmd->add_option("--G1", G1, "shear modulus of " + body1 + " (default E1/(2(1+nu1)))");
-  cmd->add_option("--H1", H1, "hardness of " + body1);
+  cmd->add_option("--H1", H1,
+                  "hardness of " + body1 +
+                      "; with --H2 the smaller is the softer material's, alone it marks body 1 "
+                      "as the softer material");
   cmd->add_option("--E2", E2, "Young's modulus of " + body2)->required();
   cmd->add_option("--nu2", nu2, "Poisson's ratio of " + body2 + ", in [0, 0.5)")->required();
   cmd->add_option("--G2", G2, "shear modulus of " + body2 + " (default E2/(2(1+nu2)))");
-  cmd->add_option("--H2", H2, "hardness of " + body2);
+  cmd->add_option("--H2", H2,
+                  "hardness of " + body2 +
+                      "; with --H1 the smaller is the softer material's, alone it marks body 2 "
+                      "as the softer material");
   cmd->add_option("--H", H, "hardness of the softer material (when nu1 = nu2)");
 }
 
 std::pair<contact::Material, contact::Material> MaterialOptions::parse() const {
+  auto m = parse_described();
+  return {m.body1, m.body2};
+}
+
+ParsedMaterials MaterialOptions::parse_described() const {
   namespace dim = core::dim;
   contact::Material b1{.E = required_quantity(E1, dim::pressure, "--E1"),
                        .nu = required_quantity(nu1, dim::dimensionless, "--nu1"),
@@ -60,45 +75,165 @@ std::pair<contact::Material, contact::Material> MaterialOptions::parse() const {
   if (G2) core::require_positive("--G2", b2.G);
   if (H1) core::require_positive("--H1", b1.H);
   if (H2) core::require_positive("--H2", b2.H);
+  ParsedMaterials out;
   if (H) {
     if (H1 || H2) throw InvalidInput("give either --H (softer material) or --H1/--H2, not both");
     if (b1.nu != b2.nu) {
       throw InvalidInput(
           "--H does not say which body is softer and --nu1 differs from --nu2: give --H1 and "
-          "--H2 instead");
+          "--H2 instead (or only the softer body's)");
     }
     b1.H = b2.H = required_quantity(H, dim::pressure, "--H");
     core::require_positive("--H", b1.H);
-  }
-  if (b1.H == 0.0 && b2.H == 0.0) {
+    out.softer_body = 0;
+    out.softer_rule =
+        "--H is the softer material's hardness; nu1 = nu2, so which body is "
+        "softer does not matter";
+  } else if (H1 && H2) {
+    if (b1.H == b2.H && b1.nu != b2.nu) {
+      throw InvalidInput(fmt::format(
+          "--H1 = --H2 = {} Pa but --nu1 = {} differs from --nu2 = {}: neither body is the "
+          "softer one, so the Poisson's ratio of the softer material is undefined; give "
+          "only the hardness of the body whose nu is to be used",
+          core::format_value(b1.H), core::format_value(b1.nu), core::format_value(b2.nu)));
+    }
+    out.softer_body = b1.H < b2.H ? 1 : (b2.H < b1.H ? 2 : 0);
+    out.softer_rule = out.softer_body == 0
+                          ? "--H1 = --H2 and nu1 = nu2: the bodies are alike"
+                          : fmt::format("the smaller hardness (--H{})", out.softer_body);
+  } else if (H1 || H2) {
+    out.softer_body = H1 ? 1 : 2;
+    out.softer_rule = fmt::format(
+        "only --H{0} is given: body {0} is taken as the softer material (give --H1 and --H2 to "
+        "compare)",
+        out.softer_body);
+  } else {
     throw InvalidInput("the hardness is required: give --H (or --H1/--H2)");
   }
-  return {b1, b2};
+  out.body1 = b1;
+  out.body2 = b2;
+  return out;
 }
-
-namespace {
-
-std::filesystem::path temporary_sibling(const std::filesystem::path& path) {
-  std::random_device rd;
-  return path.parent_path() /
-         fmt::format(".{}.tmp-{:08x}", path.filename().string(), static_cast<unsigned>(rd()));
-}
-
-}  // namespace
 
 void write_file_atomically(const std::string& path, const std::string& content) {
   core::write_file_atomically(path, content);
 }
 
+void require_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs) {
+  namespace fs = std::filesystem;
+  std::vector<std::pair<std::string, fs::path>> seen;
+  for (const auto& [flag, path] : outputs) {
+    if (path.empty()) continue;
+    std::error_code ec;
+    // weakly_canonical resolves "." and ".." and symbolic links of the parts that exist.
+    fs::path norm = fs::weakly_canonical(fs::absolute(path), ec);
+    if (ec) norm = fs::absolute(path).lexically_normal();
+    for (const auto& [other_flag, other] : seen) {
+      if (other == norm) {
+        throw InvalidInput(fmt::format("{} and {} both name \"{}\": give each output its own file",
+                                       other_flag, flag, path));
+      }
+    }
+    seen.emplace_back(flag, norm);
+  }
+}
+
+std::string gnuplot_string(const std::string& s) {
+  // gnuplot expands `command` (a shell command) and escapes inside double-quoted
+  // strings, but nothing inside single-quoted ones, where '' is a single quote. A line
+  // break would end the command, so control characters become spaces.
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'') {
+      out += "''";
+    } else if (static_cast<unsigned char>(c) < 0x20 || c == '\x7f') {
+      out += ' ';
+    } else {
+      out += c;
+    }
+  }
+  return out + "'";
+}
+
 namespace {
 
-std::string gnuplot_quote(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
+/// A private directory under the system's temporary directory, removed with its
+/// contents on destruction.
+class TemporaryDirectory {
+ public:
+  TemporaryDirectory() {
+    std::string templ = (std::filesystem::temp_directory_path() / "asperity-plot-XXXXXX").string();
+    if (mkdtemp(templ.data()) == nullptr) {
+      throw Error(fmt::format("cannot create a temporary directory for gnuplot ({}): {}", templ,
+                              std::strerror(errno)));
+    }
+    path_ = templ;
   }
-  return out + "\"";
+  ~TemporaryDirectory() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TemporaryDirectory(const TemporaryDirectory&) = delete;
+  TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+struct GnuplotRun {
+  bool found = false;  ///< false: no gnuplot executable on PATH
+  bool exited_zero = false;
+  std::string messages;  ///< gnuplot's stdout and stderr
+};
+
+/// Runs `gnuplot script` without a shell (no quoting of the path needed), collecting
+/// its output.
+GnuplotRun run_gnuplot(const std::filesystem::path& script) {
+  int fds[2];
+  if (pipe(fds) != 0) throw Error(fmt::format("cannot run gnuplot: {}", std::strerror(errno)));
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
+  posix_spawn_file_actions_addclose(&actions, fds[0]);
+  posix_spawn_file_actions_addclose(&actions, fds[1]);
+  std::string program = "gnuplot";
+  std::string script_arg = script.string();
+  char* argv[] = {program.data(), script_arg.data(), nullptr};
+  pid_t pid = 0;
+  const int rc = posix_spawnp(&pid, program.c_str(), &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(fds[1]);
+  GnuplotRun run;
+  if (rc != 0) {
+    close(fds[0]);
+    if (rc == ENOENT) return run;
+    throw Error(fmt::format("cannot run gnuplot: {}", std::strerror(rc)));
+  }
+  run.found = true;
+  char buf[512];
+  for (;;) {
+    const ssize_t n = read(fds[0], buf, sizeof buf);
+    if (n > 0) {
+      run.messages.append(buf, static_cast<std::size_t>(n));
+    } else if (n == 0 || errno != EINTR) {
+      break;
+    }
+  }
+  close(fds[0]);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  run.exited_zero = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  return run;
+}
+
+std::string read_binary(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
 }
 
 }  // namespace
@@ -107,26 +242,17 @@ void plot_png(const std::string& path, const PlotSpec& spec) {
   const std::filesystem::path target(path);
   if (target.filename().empty())
     throw InvalidInput(fmt::format("output path \"{}\" names no file", path));
-  const auto tmp_png = temporary_sibling(target);
-  {
-    // An unwritable output path is bad input (exit 2), not a gnuplot failure: probe it
-    // by creating the temporary file gnuplot will overwrite.
-    std::ofstream probe(tmp_png, std::ios::binary | std::ios::trunc);
-    if (!probe) {
-      throw InvalidInput(fmt::format(
-          "cannot write \"{}\": the directory does not exist or is not writable", path));
-    }
-  }
-  const auto dir = std::filesystem::temp_directory_path();
-  std::random_device rd;
-  const auto script_path =
-      dir / fmt::format("asperity-plot-{:08x}.gp", static_cast<unsigned>(rd()));
+  // gnuplot writes into a private directory under fixed names; the user's path never
+  // enters the gnuplot script. The PNG is then moved into place atomically.
+  const TemporaryDirectory dir;
+  const auto png = dir.path() / "plot.png";
+  const auto script_path = dir.path() / "plot.gp";
   std::ostringstream gp;
   gp << "set terminal pngcairo size 900,650 enhanced font 'DejaVu Sans,11'\n";
-  gp << "set output " << gnuplot_quote(tmp_png.string()) << "\n";
-  gp << "set title " << gnuplot_quote(spec.title) << " noenhanced\n";
-  gp << "set xlabel " << gnuplot_quote(spec.xlabel) << "\n";
-  gp << "set ylabel " << gnuplot_quote(spec.ylabel) << "\n";
+  gp << "set output " << gnuplot_string(png.string()) << "\n";
+  gp << "set title " << gnuplot_string(spec.title) << " noenhanced\n";
+  gp << "set xlabel " << gnuplot_string(spec.xlabel) << " noenhanced\n";
+  gp << "set ylabel " << gnuplot_string(spec.ylabel) << " noenhanced\n";
   gp << "set grid\nset key outside right top noenhanced\n";
   if (spec.logx) gp << "set logscale x\nset format x '10^{%T}'\n";
   if (spec.logy) gp << "set logscale y\nset format y '10^{%T}'\n";
@@ -134,7 +260,7 @@ void plot_png(const std::string& path, const PlotSpec& spec) {
   gp << "plot ";
   for (std::size_t i = 0; i < spec.series.size(); ++i) {
     gp << (i ? ", " : "") << "'-' using 1:2 with " << spec.series[i].style << " lw 2 title "
-       << gnuplot_quote(spec.series[i].title);
+       << gnuplot_string(spec.series[i].title);
   }
   gp << "\n";
   for (const auto& s : spec.series) {
@@ -145,33 +271,31 @@ void plot_png(const std::string& path, const PlotSpec& spec) {
   {
     std::ofstream script(script_path);
     script << gp.str();
+    script.close();
+    if (script.fail()) {
+      throw Error(fmt::format("cannot write the gnuplot script {}", script_path.string()));
+    }
   }
-  const std::string cmd = fmt::format("gnuplot {} 2>&1", gnuplot_quote(script_path.string()));
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string messages;
-  int status = -1;
-  if (pipe) {
-    char buf[512];
-    while (std::fgets(buf, sizeof buf, pipe)) messages += buf;
-    status = pclose(pipe);
+  const auto run = run_gnuplot(script_path);
+  if (!run.found) {
+    // The user's environment, like an unwritable directory: exit 2 (README).
+    throw InvalidInput(
+        fmt::format("cannot draw \"{}\": gnuplot is not installed (no gnuplot on PATH); install it "
+                    "(scripts/setup.sh installs gnuplot-nox) or leave out the plot",
+                    path));
   }
   std::error_code ec;
-  std::filesystem::remove(script_path, ec);
-  if (status != 0 || !std::filesystem::exists(tmp_png) ||
-      std::filesystem::file_size(tmp_png, ec) == 0) {
-    std::filesystem::remove(tmp_png, ec);
-    if (messages.find("pngcairo") != std::string::npos) {
-      throw Error(fmt::format("plotting \"{}\" failed: gnuplot has no pngcairo terminal ({})", path,
-                              messages));
+  if (!run.exited_zero || !std::filesystem::exists(png) ||
+      std::filesystem::file_size(png, ec) == 0) {
+    if (run.messages.find("pngcairo") != std::string::npos) {
+      throw InvalidInput(fmt::format(
+          "cannot draw \"{}\": this gnuplot has no pngcairo terminal; install gnuplot-nox "
+          "(scripts/setup.sh) or leave out the plot ({})",
+          path, run.messages));
     }
-    throw Error(fmt::format("plotting \"{}\" failed: is gnuplot installed (scripts/setup.sh)? {}",
-                            path, messages));
+    throw Error(fmt::format("plotting \"{}\" failed: gnuplot said: {}", path, run.messages));
   }
-  std::filesystem::rename(tmp_png, target, ec);
-  if (ec) {
-    std::filesystem::remove(tmp_png, ec);
-    throw InvalidInput(fmt::format("cannot write \"{}\": {}", path, ec.message()));
-  }
+  core::write_file_atomically(path, read_binary(png));
 }
 
 int run_guarded(const std::function<void(std::string& out)>& body) {

@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the subcommands: quantity options, atomic output files, gnuplot.
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -13,13 +14,30 @@ namespace asperity::cli {
 
 using Json = nlohmann::ordered_json;
 
+/// Two parsed materials and which one is the softer (whose H and nu the contact
+/// uses, Eq. 3.5), with the rule that decided it in words.
+struct ParsedMaterials {
+  contact::Material body1;
+  contact::Material body2;
+  int softer_body = 0;  ///< 1 or 2; 0 when it does not matter (same H and nu)
+  std::string softer_rule;
+};
+
 /// The flags of two materials (--E1 --nu1 --G1 --H1, --E2 ..., or --H for the softer
 /// one when nu1 = nu2), shared by the subcommands.
+///
+/// Hardness rule: the contact needs the hardness H and Poisson's ratio of the softer
+/// material. --H gives that H when nu1 = nu2 (then it does not matter which body is
+/// softer). --H1 and --H2 together: the smaller is the softer body's (equal values
+/// need nu1 = nu2). Only one of --H1/--H2: that body is taken as the softer one, and
+/// the commands say so in their output.
 struct MaterialOptions {
   std::optional<std::string> E1, nu1, G1, H1, E2, nu2, G2, H2, H;
   void add_to(CLI::App* cmd, const std::string& body1, const std::string& body2);
   /// Parses and checks each value under its flag's name.
   [[nodiscard]] std::pair<contact::Material, contact::Material> parse() const;
+  /// As parse(), and says which body is the softer one and why.
+  [[nodiscard]] ParsedMaterials parse_described() const;
 };
 
 /// Parses an optional option's text as a quantity of the given dimension; the error
@@ -33,6 +51,15 @@ double required_quantity(const std::optional<std::string>& text, core::Dimension
 /// Writes `content` to a temporary file next to `path` and renames it over `path`,
 /// so the file is written whole or not at all. Throws InvalidInput on failure.
 void write_file_atomically(const std::string& path, const std::string& content);
+
+/// Throws InvalidInput when two output flags name the same file (after resolving
+/// ".", ".." and symbolic links). Each pair is (flag, path); empty paths are skipped.
+void require_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs);
+
+/// `s` as a gnuplot single-quoted string literal: no command substitution or escape
+/// is expanded inside; quotes are doubled, control characters become spaces. Use it
+/// for every text that reaches a gnuplot script (plot_png does for PlotSpec's texts).
+std::string gnuplot_string(const std::string& s);
 
 /// One data series for a plot: (x, y) points and a title.
 struct Series {
@@ -52,8 +79,11 @@ struct PlotSpec {
   std::string extra;  ///< further gnuplot commands before the plot line
 };
 
-/// Draws `spec` with gnuplot into a PNG at `path` (written atomically). Throws Error
-/// if gnuplot is missing or fails.
+/// Draws `spec` with gnuplot into a PNG at `path` (written atomically). gnuplot writes
+/// into a private temporary directory, so `path` never enters its script; titles and
+/// labels are passed as gnuplot_string. `extra` is inserted verbatim: build any text
+/// in it with gnuplot_string. Throws InvalidInput (exit 2) when gnuplot or its
+/// pngcairo terminal is missing or `path` is not writable, Error if gnuplot fails.
 void plot_png(const std::string& path, const PlotSpec& spec);
 
 /// Runs a subcommand body, mapping errors to a one-line message on stderr and exit

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
 
@@ -26,6 +28,17 @@ ModelName parse_model_name(std::string_view name) {
     if (name == to_string(m)) return m;
   }
   throw InvalidInput(fmt::format("model \"{}\" is unknown: allowed are cfc, ceb, ke, bke", name));
+}
+
+std::string_view to_string(InterferenceReading r) {
+  return r == InterferenceReading::hertz ? "hertz" : "own";
+}
+
+InterferenceReading parse_interference_reading(std::string_view name) {
+  if (name == "hertz") return InterferenceReading::hertz;
+  if (name == "own") return InterferenceReading::own;
+  throw InvalidInput(
+      fmt::format("interference reading \"{}\" is unknown: allowed are hertz, own", name));
 }
 
 NormalLaw normal_law_of(ModelName m) {
@@ -101,31 +114,42 @@ std::vector<double> AsperityLaws::break_points() const {
 }
 
 PartialSlipModel::PartialSlipModel(const ContactPair& pair, const AsperityLaws& laws,
-                                   double omega_star, double P)
+                                   InterferenceReading reading, double omega_star, double P)
     : pair_(pair),
       critical_(pair.critical()),
       laws_(laws),
+      reading_(reading),
       omega_star_(omega_star),
-      a_(critical_.a_c * laws.radius_star(omega_star)),
+      // B.5 (Hertz) for the hertz reading, else the model's own B.5-B.8.
+      a_(critical_.a_c * (reading == InterferenceReading::hertz ? std::sqrt(omega_star)
+                                                                : laws.radius_star(omega_star))),
       P_(P),
       contact_(laws.mu(omega_star), P_, pair.G_star, a_) {}
 
 PartialSlipModel PartialSlipModel::from_load(const ContactPair& pair, ModelName model, double P,
-                                             const FrictionParameters& params) {
+                                             const FrictionParameters& params,
+                                             InterferenceReading reading) {
   pair.validate();
   core::require_positive("P", P);
   AsperityLaws laws(model, pair.nu, params);
-  const double P_c = pair.critical().P_c;
-  return PartialSlipModel(pair, laws, laws.interference_star(P / P_c), P);
+  const double P_star = P / pair.critical().P_c;
+  const double w = reading == InterferenceReading::hertz
+                       ? interference_star(NormalLaw::hertz, P_star, pair.nu)  // B.1 inverted
+                       : laws.interference_star(P_star);
+  return PartialSlipModel(pair, laws, reading, w, P);
 }
 
 PartialSlipModel PartialSlipModel::from_interference_star(const ContactPair& pair, ModelName model,
                                                           double omega_star,
-                                                          const FrictionParameters& params) {
+                                                          const FrictionParameters& params,
+                                                          InterferenceReading reading) {
   pair.validate();
   core::require_positive("omega_star", omega_star);
   const AsperityLaws laws(model, pair.nu, params);
-  return PartialSlipModel(pair, laws, omega_star, pair.critical().P_c * laws.load_star(omega_star));
+  const double P_star = reading == InterferenceReading::hertz
+                            ? normal_load_star(NormalLaw::hertz, omega_star, pair.nu)  // B.1
+                            : laws.load_star(omega_star);
+  return PartialSlipModel(pair, laws, reading, omega_star, pair.critical().P_c * P_star);
 }
 
 double PartialSlipModel::delta_scale() const {

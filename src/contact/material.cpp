@@ -53,6 +53,20 @@ ContactPair ContactPair::combine(const Material& body1, const Material& body2, d
   const Material& softer = first_softer ? body1 : body2;
   p.H = softer.H;
   p.nu = softer.nu;
+  // The combined values can leave the double range for moduli of extreme magnitude.
+  if (!std::isfinite(p.E_star) || !(p.E_star > 0.0)) {
+    throw InvalidInput(fmt::format(
+        "E* = 1/((1 - nu1^2)/E1 + (1 - nu2^2)/E2) = {} for E1 = {} Pa, E2 = {} Pa: it must be a "
+        "finite number > 0",
+        core::format_value(p.E_star), core::format_value(body1.E), core::format_value(body2.E)));
+  }
+  if (!std::isfinite(p.G_star) || !(p.G_star > 0.0)) {
+    throw InvalidInput(fmt::format(
+        "G* = 1/((2 - nu1)/G1 + (2 - nu2)/G2) = {} for G1 = {} Pa, G2 = {} Pa: it must be a "
+        "finite number > 0",
+        core::format_value(p.G_star), core::format_value(body1.shear_modulus()),
+        core::format_value(body2.shear_modulus())));
+  }
   p.validate();
   return p;
 }

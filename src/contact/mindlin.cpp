@@ -48,8 +48,9 @@ double energy_series(double x) {
 }  // namespace
 
 double stick_displacement_tilde(double Q_tilde) {
-  return 2.0 / 3.0 * Q_tilde;
-}  // B.14
+  require_unit_force(Q_tilde, "Q~ = Q/(mu P)");
+  return 2.0 / 3.0 * Q_tilde;  // B.14
+}
 
 double loading_displacement_tilde(double Q_tilde) {
   require_unit_force(Q_tilde, "Q~ = Q/(mu P)");
@@ -57,6 +58,7 @@ double loading_displacement_tilde(double Q_tilde) {
 }
 
 double loading_force_tilde(double delta_tilde) {
+  core::require_finite("delta~ = 16 G* a delta/(3 mu P)", delta_tilde);
   const double d = std::abs(delta_tilde);
   // B.15 inverted; expm1/log1p keep the relative accuracy for small delta~.
   const double q = d >= 1.0 ? 1.0 : -std::expm1(1.5 * std::log1p(-d));
@@ -80,9 +82,11 @@ double reloading_displacement_tilde(double Q_tilde, double Q_max_tilde) {
 }
 
 double unloading_force_tilde(double delta_tilde, double delta_max_tilde) {
-  if (!(delta_max_tilde >= 0.0) || !(std::abs(delta_tilde) <= delta_max_tilde)) {
+  if (!std::isfinite(delta_max_tilde) || !(delta_max_tilde >= 0.0) ||
+      !(std::abs(delta_tilde) <= delta_max_tilde)) {
     throw InvalidInput(
-        fmt::format("delta~ = {} must lie in [-delta~max, delta~max], delta~max = {}",
+        fmt::format("delta~ = {} must lie in [-delta~max, delta~max] with delta~max finite and "
+                    ">= 0; delta~max = {}",
                     core::format_value(delta_tilde), core::format_value(delta_max_tilde)));
   }
   // Masing: equals B.16 solved for Q~, and holds in gross slip too.
@@ -103,6 +107,7 @@ double energy_tilde(double Q_max_tilde) {
 }
 
 double energy_tilde_small_amplitude(double Q_max_tilde) {
+  require_unit_force(Q_max_tilde, "Q~max = Q_max/(mu P)");
   const double x = Q_max_tilde;
   return 5.0 * x * x * x / 162.0 * (1.0 + 2.0 * x / 3.0);  // B.20
 }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -56,6 +57,10 @@ void check_interference(double w) {
   core::require_non_negative("interference w = omega/omega_c", w);
 }
 
+// Beyond this interference w^1.5 may overflow while P/P_c (which grows only like
+// w^(1.5 - alpha)) is still a double: B.4 is then evaluated in logarithms.
+constexpr double kBkeLogForm = 1e150;
+
 double bke_load(const BkeConstants& c, double w) {
   // B.4
   const double scale = c.l_c / std::pow(c.delta_c, 1.5);
@@ -64,7 +69,10 @@ double bke_load(const BkeConstants& c, double w) {
   const double gap = std::pow(w, c.alpha) - da;
   // Just above delta_c the rounded gap can be 0: the factor is then exactly 1 (B.4's limit).
   if (!(gap > 0.0)) return scale * std::pow(w, 1.5);
-  return scale * std::pow(w, 1.5) * (1.0 - std::exp(-da / gap));
+  // 1 - exp(-x) as -expm1(-x): exact also where x = da/gap is below the round-off of 1.
+  const double factor = -std::expm1(-da / gap);
+  if (w > kBkeLogForm) return std::exp(std::log(scale) + 1.5 * std::log(w) + std::log(factor));
+  return scale * std::pow(w, 1.5) * factor;
 }
 
 }  // namespace
@@ -157,17 +165,34 @@ double interference_star(NormalLaw law, double P_star, double nu) {
       const auto c = BkeConstants::for_poisson(nu);
       const double scale = c.l_c / std::pow(c.delta_c, 1.5);
       if (P_star <= scale * std::pow(c.delta_c, 1.5)) return std::pow(P_star / scale, 2.0 / 3.0);
-      // Plastic branch: monotone in w, grows at least like w^(1.5 - alpha).
-      double hi = 2.0 * c.delta_c;
-      int expansions = 0;
-      while (bke_load(c, hi) < P_star) {
-        hi *= 2.0;
-        if (++expansions > 200) {
-          throw NumericalError(fmt::format("BKE inverse: no interference carries P/P_c = {}",
-                                           core::format_value(P_star)));
-        }
+      // Plastic branch, monotone in w. The factor 1 - exp(-x) of B.4 lies between
+      // x/(1 + x) and 1 (x = delta_c^alpha/(w^alpha - delta_c^alpha)), so
+      //   scale delta_c^alpha w^(1.5 - alpha) <= P/P_c <= scale w^1.5,
+      // which brackets the root in closed form for any finite P/P_c (in logarithms:
+      // w reaches ~1e236 at the largest double).
+      const double log_lo = 2.0 / 3.0 * (std::log(P_star) - std::log(scale));
+      const double log_hi =
+          (std::log(P_star) - std::log(scale) - c.alpha * std::log(c.delta_c)) / (1.5 - c.alpha);
+      // Widened by 1e-9 against round-off at the bounds (the log form of B.4 is good to
+      // ~1e-13); f(delta_c) < 0 since P/P_c is above the elastic branch's end.
+      const double lo = std::max(c.delta_c, std::exp(log_lo) * (1.0 - 1e-9));
+      const double hi = std::max(lo, std::exp(log_hi)) * (1.0 + 1e-9);
+      if (!std::isfinite(hi)) {
+        throw NumericalError(
+            fmt::format("BKE inverse: P/P_c = {} needs an interference beyond "
+                        "the double range",
+                        core::format_value(P_star)));
       }
-      return core::find_root([&](double w) { return bke_load(c, w) - P_star; }, c.delta_c, hi,
+      if (hi > 16.0 * lo) {
+        // A bracket over decades (very large P/P_c): in logarithms, where the load is
+        // nearly linear (slope 1.5 - alpha to 1.5), TOMS 748 converges in a few steps.
+        const double log_P = std::log(P_star);
+        const double u = core::find_root(
+            [&](double x) { return std::log(bke_load(c, std::exp(x))) - log_P; }, std::log(lo),
+            std::log(hi), "BKE interference for a load (logarithmic)", 62);
+        return std::exp(u);
+      }
+      return core::find_root([&](double w) { return bke_load(c, w) - P_star; }, lo, hi,
                              "BKE interference for a load", 62);
     }
   }

@@ -138,7 +138,8 @@ void write_file_atomically(const std::string& path, const std::string& content) 
           "cannot write \"{}\": the directory does not exist or is not writable", path));
     }
     f << content;
-    if (!f.flush()) {
+    f.close();  // a full disk may show only when the buffer is written out
+    if (f.fail()) {
       std::error_code ec;
       std::filesystem::remove(tmp, ec);
       throw InvalidInput(fmt::format("writing \"{}\" failed", path));

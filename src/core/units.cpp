@@ -5,6 +5,8 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <optional>
 
 #include "asperity/core/error.hpp"
@@ -131,6 +133,18 @@ Quantity parse_quantity(std::string_view text, std::string_view field) {
   // std::from_chars does not accept a leading '+'.
   if (text[i] == '+') ++first;
   const auto [ptr, ec] = std::from_chars(first, text.data() + n, number);
+  if (ec == std::errc::result_out_of_range) {
+    // from_chars says so for a magnitude beyond the double range in either direction.
+    const std::string digits(first, static_cast<std::size_t>(ptr - first));
+    const bool tiny = !std::isinf(std::strtod(digits.c_str(), nullptr));
+    fail(field, text,
+         tiny ? fmt::format("the number {} underflows: its magnitude is below the smallest "
+                            "double ({:.3g}); write it with a unit prefix or as 0",
+                            digits, std::numeric_limits<double>::denorm_min())
+              : fmt::format("the number {} overflows: its magnitude is above the largest "
+                            "double ({:.3g})",
+                            digits, std::numeric_limits<double>::max()));
+  }
   if (ec != std::errc() || ptr == first) fail(field, text, "it does not start with a number");
   if (!std::isfinite(number)) fail(field, text, "the number is not finite");
   i = static_cast<std::size_t>(ptr - text.data());
@@ -188,7 +202,14 @@ Quantity parse_quantity(std::string_view text, std::string_view field) {
     divide = false;
   }
   if (expect_unit) fail(field, text, "it ends with an operator");
-  if (!std::isfinite(q.value)) fail(field, text, "the value overflows");
+  if (!std::isfinite(q.value)) {
+    fail(field, text,
+         "the value in SI units overflows (its magnitude is above the largest double)");
+  }
+  if (q.value == 0.0 && number != 0.0) {
+    fail(field, text,
+         "the value in SI units underflows to 0 (its magnitude is below the smallest double)");
+  }
   return q;
 }
 

@@ -3,7 +3,8 @@
 
 Usage: cli_cases.py ASPERITY_EXE CASE   (CASE: one of CASES below, or "list")
 
-Standard library only. Exit 0 = pass, 1 = fail (also when gnuplot, which setup.sh installs, is missing).
+Standard library only. Exit 0 = pass, 1 = fail (also when gnuplot, which setup.sh installs,
+is missing).
 Contract checked (issue 2, "Bad input"): every input error exits 2, prints one message
 on stderr naming the flag, and prints nothing on stdout (no partial JSON); an amplitude
 beyond gross slip is not an error (exit 0, regime gross_slip); --loop and --plot write
@@ -11,6 +12,7 @@ whole files, and an unwritable output path exits 2 leaving no file behind.
 """
 import csv
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -54,6 +56,24 @@ BAD_INPUT = {
     "missing_load": (args(drop=("--P",)), "--P", "required"),
     "both_loads": (args(extra=["--omega-star=0.3"]), "--omega-star", "not both"),
     "cfc_without_mu": (args(drop=("--mu-cfc",)), "--mu-cfc", "cfc"),
+    "unknown_interference": (args(extra=["--interference=hertzian"]), "--interference", "own"),
+    # BKE's fits need nu in about (0.118, 0.5): asked for explicitly, the message names
+    # the Poisson's ratio flags and suggests another model.
+    "bke_small_nu": (args({"--nu1": "0.1", "--nu2": "0.1"}, extra=["--model=bke"]), "--nu1",
+                     "another --model"),
+    "equal_H_different_nu": (args({"--nu1": "0.25", "--H1": "6GPa", "--H2": "6GPa"},
+                                  drop=("--H",)), "--H1", "--nu1"),
+    # Derived quantities beyond the double range name the input that caused them, not an
+    # internal variable (4th element: text that must not appear).
+    "omega_star_overflow": (args(drop=("--P",), extra=["--omega-star=1e300"]), "--omega-star",
+                            "too large", "P = inf"),
+    "tiny_modulus": (args({"--E1": "1e-300Pa", "--E2": "1e-300Pa"}), "--E1", "critical values",
+                     "contact radius a = 0"),
+    "delta_max_overflow": (args(extra=["--delta-max=1e307m"]), "--delta-max", "too large",
+                           "delta~max"),
+    "number_overflow": (args({"--P": "1e400N"}), "--P", "overflows", "does not start"),
+    "number_underflow": (args({"--P": "1e-400N"}), "--P", "underflows", "does not start"),
+    "points_one": (args(extra=["--delta-max=1um", "--points=1"]), "--points", "--points = 1"),
 }
 
 
@@ -67,7 +87,7 @@ def fail(message):
 
 
 def bad_input(exe, name):
-    argv, flag, text = BAD_INPUT[name]
+    argv, flag, text, *forbidden = BAD_INPUT[name]
     r = run(exe, argv + ["--json"])
     problems = []
     if r.returncode != 2:
@@ -78,6 +98,9 @@ def bad_input(exe, name):
         problems.append(f"stderr does not name {flag}: {r.stderr!r}")
     if text not in r.stderr:
         problems.append(f"stderr does not contain {text!r}: {r.stderr!r}")
+    for bad in forbidden:
+        if bad in r.stderr:
+            problems.append(f"stderr names the internal {bad!r}: {r.stderr!r}")
     if problems:
         return fail(f"{name} ({' '.join(argv)}): " + "; ".join(problems))
     return 0
@@ -191,8 +214,129 @@ def unwritable_output(exe):
     return 0
 
 
+def plot_path_is_not_code(exe):
+    """A plot path with a backquote and quotes of both kinds is a file name, nothing else:
+    gnuplot expands `...` in double-quoted strings, so none of it may reach gnuplot."""
+    if shutil.which("gnuplot") is None:
+        print("gnuplot is not installed: scripts/setup.sh installs it", file=sys.stderr)
+        return 1
+    with tempfile.TemporaryDirectory() as tmp:
+        name = "a`touch PWNED1`'b\"$(touch PWNED2)\".png"
+        r = subprocess.run(
+            [os.path.abspath(exe)] + args(extra=["--delta-max=1.5um", f"--plot={name}"]),
+            capture_output=True, text=True, timeout=60, cwd=tmp)
+        if r.returncode != 0:
+            return fail(f"exit {r.returncode}: {r.stderr}")
+        if sorted(os.listdir(tmp)) != [name]:
+            return fail(f"files in the working directory: {sorted(os.listdir(tmp))}")
+        with open(os.path.join(tmp, name), "rb") as f:
+            if f.read(8) != b"\x89PNG\r\n\x1a\n":
+                return fail(f"{name!r} is not a PNG")
+    return 0
+
+
+def plot_without_gnuplot(exe):
+    """No gnuplot on PATH: a clear message and exit 2 (the user's environment, like an
+    unwritable directory; README), no file, no stdout."""
+    with tempfile.TemporaryDirectory() as tmp:
+        empty = os.path.join(tmp, "bin")
+        os.mkdir(empty)
+        png = os.path.join(tmp, "loop.png")
+        r = subprocess.run([exe] + args(extra=["--delta-max=1.5um", f"--plot={png}", "--json"]),
+                           capture_output=True, text=True, timeout=60,
+                           env=dict(os.environ, PATH=empty))
+        if r.returncode != 2:
+            return fail(f"exit {r.returncode}, expected 2: {r.stderr}")
+        for text in ("gnuplot", png, "scripts/setup.sh"):
+            if text not in r.stderr:
+                return fail(f"message does not contain {text!r}: {r.stderr!r}")
+        if r.stdout != "" or sorted(os.listdir(tmp)) != ["bin"]:
+            return fail(f"stdout {r.stdout[:100]!r}, files {sorted(os.listdir(tmp))}")
+    return 0
+
+
+def same_output_twice(exe):
+    """Two outputs into one file would overwrite each other: exit 2, nothing written."""
+    with tempfile.TemporaryDirectory() as tmp:
+        a = os.path.join(tmp, "x.png")
+        b = os.path.join(tmp, ".", "x.png")  # the same file, spelt differently
+        for extra in ([f"--loop={a}", f"--plot={a}"], [f"--loop={a}", f"--energy-curve={b}"]):
+            r = run(exe, args(extra=["--delta-max=1.5um", "--json"] + extra))
+            flags = [e.split("=")[0] for e in extra]
+            if r.returncode != 2 or r.stdout != "":
+                return fail(f"{extra}: exit {r.returncode}, stdout {r.stdout[:100]!r}")
+            if not all(f in r.stderr for f in flags):
+                return fail(f"{extra}: message does not name {flags}: {r.stderr!r}")
+            if os.listdir(tmp):
+                return fail(f"{extra}: files written: {os.listdir(tmp)}")
+    return 0
+
+
+def bke_skipped_for_small_nu(exe):
+    """--model all with nu in [0, 0.118): BKE's fits do not apply, the other three run."""
+    small = {"--nu1": "0.1", "--nu2": "0.1"}
+    r = run(exe, args(small, extra=["--delta-max=1.5um", "--json"]))
+    if r.returncode != 0:
+        return fail(f"exit {r.returncode}: {r.stderr}")
+    models = json.loads(r.stdout)["models"]
+    if sorted(models) != ["bke", "ceb", "cfc", "ke"]:
+        return fail(f"models {sorted(models)}")
+    if set(models["bke"]) != {"skipped"} or "nu = 0.1" not in models["bke"]["skipped"]:
+        return fail(f"models.bke = {models['bke']}")
+    for name in ("cfc", "ceb", "ke"):
+        if "mu" not in models[name] or "skipped" in models[name]:
+            return fail(f"models.{name} = {models[name]}")
+    r = run(exe, args(small))
+    if r.returncode != 0 or "bke   skipped: " not in r.stdout:
+        return fail(f"table: exit {r.returncode}, {r.stdout!r}")
+    return 0
+
+
+def softer_body_rule(exe):
+    """Hardness rule (README): H and nu are the softer material's. One of --H1/--H2 alone
+    marks that body as the softer one, and the output says so; with both, the smaller."""
+    cases = [  # overrides, softer body, its H, its nu
+        ({"--nu1": "0.25", "--H2": "6GPa"}, 2, 6e9, 0.3),
+        ({"--nu1": "0.25", "--H1": "6GPa"}, 1, 6e9, 0.25),
+        ({"--nu1": "0.25", "--H1": "7GPa", "--H2": "6GPa"}, 2, 6e9, 0.3),
+        ({"--nu1": "0.25", "--H1": "5GPa", "--H2": "6GPa"}, 1, 5e9, 0.25),
+    ]
+    for overrides, body, H, nu in cases:
+        r = run(exe, args(overrides, drop=("--H",), extra=["--json"]))
+        if r.returncode != 0:
+            return fail(f"{overrides}: exit {r.returncode}: {r.stderr}")
+        j = json.loads(r.stdout)
+        if (j["softer_body"], j["H"], j["nu"]) != (body, H, nu):
+            return fail(f"{overrides}: softer_body {j['softer_body']}, H {j['H']}, nu {j['nu']}")
+        t = run(exe, args(overrides, drop=("--H",)))
+        if f"softer material (H, nu): body {body}" not in t.stdout:
+            return fail(f"{overrides}: the table does not name body {body}: {t.stdout[:400]!r}")
+    # --H (nu1 = nu2): which body is softer does not matter, and the JSON says null.
+    j = json.loads(run(exe, args(extra=["--json"])).stdout)
+    if j["softer_body"] is not None or "--H" not in j["softer_rule"]:
+        return fail(f"--H: softer_body {j['softer_body']}, rule {j['softer_rule']!r}")
+    return 0
+
+
+def huge_load(exe):
+    """Any finite load has an interference (the BKE inverse brackets in closed form):
+    --P 1e300N with each model's own normal law runs, all numbers finite."""
+    r = run(exe, args({"--P": "1e300N"}, extra=["--interference=own", "--json"]))
+    if r.returncode != 0:
+        return fail(f"exit {r.returncode}: {r.stderr}")
+    for name, m in json.loads(r.stdout)["models"].items():
+        if not all(isinstance(v, float) and math.isfinite(v) for v in m.values()):
+            return fail(f"{name}: {m}")
+        if m["P"] != 1e300:
+            return fail(f"{name}: P = {m['P']}")
+    return 0
+
+
 CASES = {"gross_slip": gross_slip, "loop_file": loop_file, "plot_file": plot_file,
-         "unwritable_output": unwritable_output}
+         "unwritable_output": unwritable_output, "plot_path_is_not_code": plot_path_is_not_code,
+         "plot_without_gnuplot": plot_without_gnuplot, "same_output_twice": same_output_twice,
+         "bke_skipped_for_small_nu": bke_skipped_for_small_nu,
+         "softer_body_rule": softer_body_rule, "huge_load": huge_load}
 CASES.update({f"bad_input.{n}": (lambda exe, n=n: bad_input(exe, n)) for n in BAD_INPUT})
 
 

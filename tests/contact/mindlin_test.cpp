@@ -24,6 +24,7 @@
 namespace asperity::contact {
 namespace {
 
+using asperity::testing::invalid_input_message;
 using asperity::testing::rel;
 
 constexpr double kMu = 0.284;
@@ -373,6 +374,34 @@ TEST(Mindlin, InvalidInputIsRejected) {
   EXPECT_THROW((void)mindlin::energy_tilde(1.5), InvalidInput);
   EXPECT_THROW((void)mindlin::unloading_displacement_tilde(0.9, 0.5), InvalidInput);
   EXPECT_THROW((void)c.loading_force(std::nan("")), InvalidInput);
+}
+
+TEST(Mindlin, TildeFunctionsRejectValuesOutsideTheirDomain) {
+  // Public helpers: NaN, infinities and values outside the documented range throw
+  // InvalidInput naming the variable and the range, never a NaN or a value outside [0, 1].
+  const double nan = std::nan("");
+  const double inf = std::numeric_limits<double>::infinity();
+  for (double q : {nan, -0.1, 1.5, inf}) {
+    const auto stick = invalid_input_message([q] { (void)mindlin::stick_displacement_tilde(q); });
+    EXPECT_NE(stick.find("Q~"), std::string::npos) << q << ": " << stick;
+    EXPECT_NE(stick.find("[0, 1]"), std::string::npos) << stick;
+    EXPECT_THROW((void)mindlin::energy_tilde_small_amplitude(q), InvalidInput) << q;
+    EXPECT_THROW((void)mindlin::energy_tilde(q), InvalidInput) << q;
+    EXPECT_THROW((void)mindlin::loading_displacement_tilde(q), InvalidInput) << q;
+  }
+  EXPECT_NE(invalid_input_message([] { (void)mindlin::stick_displacement_tilde(5.0); }).find("5"),
+            std::string::npos);
+  for (double d : {nan, inf, -inf}) {
+    const auto msg = invalid_input_message([d] { (void)mindlin::loading_force_tilde(d); });
+    EXPECT_NE(msg.find("delta~"), std::string::npos) << d << ": " << msg;
+    EXPECT_THROW((void)mindlin::unloading_force_tilde(0.0, d), InvalidInput) << d;
+    EXPECT_THROW((void)mindlin::energy_tilde_for_displacement(d), InvalidInput) << d;
+  }
+  // The valid ends of the ranges are accepted: B.14 at Q~ = 1, B.20 at 0 and 1.
+  EXPECT_DOUBLE_EQ(mindlin::stick_displacement_tilde(1.0), 2.0 / 3.0);
+  EXPECT_EQ(mindlin::energy_tilde_small_amplitude(0.0), 0.0);
+  EXPECT_DOUBLE_EQ(mindlin::energy_tilde_small_amplitude(1.0), 5.0 / 162.0 * 5.0 / 3.0);
+  EXPECT_EQ(mindlin::loading_force_tilde(-3.0), -1.0);  // gross slip, odd in delta~
 }
 
 TEST(PartialSlipModel, EnergyCurveUsesTheContact) {

@@ -155,6 +155,27 @@ TEST(NormalLaw, ForwardOfInverseReturnsTheLoadOutsideJumps) {
   EXPECT_EQ(interference_star(NormalLaw::bke, 0.0, kNu), 0.0);
 }
 
+TEST(NormalLaw, BkeInverseCoversEveryFiniteLoad) {
+  // The plastic-branch bracket of the BKE inverse is closed-form (normal_law.cpp), so
+  // any finite P/P_c has an interference; B.4 switches to logarithms above w = 1e150.
+  // Forward of inverse to the inverse's accuracy across 300 decades.
+  for (double P : {1e3, 1e6, 1e20, 1e100, 1e200, 1e250, 1e300, 1.7e308}) {
+    const double w = interference_star(NormalLaw::bke, P, kNu);
+    ASSERT_TRUE(std::isfinite(w)) << P;
+    EXPECT_LT(rel(normal_load_star(NormalLaw::bke, w, kNu), P), kInverse) << "P = " << P;
+  }
+  // B.4 at large w: finite where w^1.5 alone overflows, growing like w^(1.5 - alpha)
+  // (alpha = 0.198 for nu = 0.3), and continuous across the switch to logarithms.
+  const double P_huge = normal_load_star(NormalLaw::bke, 1e230, kNu);
+  EXPECT_TRUE(std::isfinite(P_huge));
+  // The log form rounds to about |ln P*| eps ~ 1e-13: 1e-11 leaves a factor 100.
+  EXPECT_LT(rel(normal_load_star(NormalLaw::bke, 1e220, kNu) / P_huge, std::pow(1e-10, 1.302)),
+            1e-11);
+  EXPECT_LT(rel(normal_load_star(NormalLaw::bke, std::nextafter(1e150, 0.0), kNu),
+                normal_load_star(NormalLaw::bke, std::nextafter(1e150, 2e150), kNu)),
+            1e-12);
+}
+
 TEST(NormalLaw, InverseInsideAJumpReturnsTheBranchPoint) {
   // Documented behaviour (normal_law.hpp): a load that no interference carries exactly
   // maps to the branch point, the smallest w whose load reaches it.

@@ -125,6 +125,24 @@ TEST(Units, MalformedTextIsRejectedNamingTheField) {
             std::string::npos);
 }
 
+TEST(Units, OverflowAndUnderflowAreNamedAsSuch) {
+  // A number outside the double range is well formed: the message must say overflow
+  // or underflow, not "does not start with a number".
+  const auto big = invalid_input_message([] { (void)parse_quantity("1e400", "--P"); });
+  EXPECT_NE(big.find("--P"), std::string::npos) << big;
+  EXPECT_NE(big.find("overflows"), std::string::npos) << big;
+  EXPECT_EQ(big.find("does not start with a number"), std::string::npos) << big;
+  const auto tiny = invalid_input_message([] { (void)parse_quantity("1e-400 N", "--P"); });
+  EXPECT_NE(tiny.find("underflows"), std::string::npos) << tiny;
+  const auto neg = invalid_input_message([] { (void)parse_quantity("-1e400 N", "--P"); });
+  EXPECT_NE(neg.find("overflows"), std::string::npos) << neg;
+  // In range as a number, out of range once in SI units.
+  const auto si = invalid_input_message([] { (void)parse_quantity("1e300 TPa", "--E1"); });
+  EXPECT_NE(si.find("overflows"), std::string::npos) << si;
+  const auto si_tiny = invalid_input_message([] { (void)parse_quantity("1e-315 pm", "--R1"); });
+  EXPECT_NE(si_tiny.find("underflows"), std::string::npos) << si_tiny;
+}
+
 TEST(Units, NonPrefixableUnitsRejectPrefixes) {
   // "kpsi" and "min" as milli-inch must not be invented; "min" is minutes.
   EXPECT_THROW((void)parse_quantity("1 kpsi", "x"), InvalidInput);

@@ -106,3 +106,21 @@ def test_wrong_python_types_raise_type_error():
         asperity.normal_load_star(3, 1.0, 0.3)
     with pytest.raises(TypeError):
         asperity.Material(E="207 GPa", nu=0.3)
+
+
+@pytest.mark.parametrize("f", [mindlin.stick_displacement_tilde,
+                               mindlin.energy_tilde_small_amplitude, mindlin.energy_tilde,
+                               mindlin.loading_displacement_tilde])
+@pytest.mark.parametrize("q", [math.nan, -0.1, 5.0])
+def test_mindlin_force_helpers_check_their_range(f, q):
+    # Q~ = Q/(mu P) lies in [0, 1]: outside (NaN included) an error naming Q~ and the
+    # range, never a NaN or a displacement outside [0, 1].
+    with pytest.raises(asperity.InvalidInput, match=r"Q~.*\[0, 1\]"):
+        f(q)
+
+
+def test_mindlin_loading_force_rejects_nan():
+    with pytest.raises(asperity.InvalidInput, match="delta~"):
+        mindlin.loading_force_tilde(math.nan)
+    with pytest.raises(asperity.InvalidInput, match="delta~"):
+        mindlin.loading_force_tilde(np.array([0.5, math.nan]))

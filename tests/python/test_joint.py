@@ -76,7 +76,8 @@ def test_validation_report_has_no_failure():
 
 
 def test_plot_helpers(tmp_path):
-    matplotlib = pytest.importorskip("matplotlib")
+    import matplotlib  # a dependency (python/requirements.txt): a missing one must fail
+
     matplotlib.use("Agg")
     r = asperity.predict(os.path.join(EX, "steel420_two_bolts.toml"))
     ax = asperity.joints.plot_loops(r, load=2)

@@ -68,6 +68,27 @@ def test_table_3_2(micro_pair, micro_params, P, omega_star, omega, mu, stiffness
 
 @pytest.mark.parametrize("P, omega_star, omega, mu, stiffness", TABLE_3_2,
                          ids=["exp1_35N", "exp2_23N"])
+def test_table_3_2_hertz_reading(micro_pair, micro_params, P, omega_star, omega, mu,
+                                 stiffness):
+    # interference="hertz" (the CLI's default): the load as given, Hertz's omega and a
+    # for every model, so section 3.5's 8 G* a (16.17 / 14.06 N/um) holds for all four.
+    for name, expected in zip(asperity.models, mu):
+        m = asperity.PartialSlipModel.from_load(micro_pair, name, P, micro_params,
+                                                interference="hertz")
+        assert m.interference == "hertz"
+        assert m.P == P
+        assert rel(m.omega, omega) < 1e-2
+        assert rel(m.K_T, stiffness) < 1e-2, name
+        assert rel(m.mu, expected) < MU_TOL[name], (name, m.mu, expected)
+    assert asperity.PartialSlipModel.from_load(micro_pair, "bke", P,
+                                               micro_params).interference == "own"
+    with pytest.raises(asperity.InvalidInput, match="hertz, own"):
+        asperity.PartialSlipModel.from_load(micro_pair, "bke", P, micro_params,
+                                            interference="Hertz")
+
+
+@pytest.mark.parametrize("P, omega_star, omega, mu, stiffness", TABLE_3_2,
+                         ids=["exp1_35N", "exp2_23N"])
 def test_table_3_2_with_own_normal_law(micro_pair, micro_params, P, omega_star, omega, mu,
                                        stiffness):
     # Each model with its own normal law: the interference differs slightly (BKE's

@@ -92,6 +92,22 @@ def test_model_methods_vectorized(micro_pair, micro_params):
     assert laws.interference_star(laws.load_star(np.array([0.5, 2.0]))).shape == (2,)
 
 
+def test_regime_for_displacement_vectorized(micro_pair, micro_params):
+    # Like its siblings: a float gives a str, an array the names in the same shape,
+    # each equal to the scalar call.
+    c = asperity.PartialSlipModel.from_load(micro_pair, "ke", 35.0, micro_params).contact
+    s = c.slip_displacement
+    d = np.array([[0.0, 0.5 * s], [s, 3.0 * s]])
+    names = c.regime_for_displacement(d)
+    assert names.shape == (2, 2)
+    assert names.tolist() == [["partial_slip", "partial_slip"], ["gross_slip", "gross_slip"]]
+    assert [c.regime_for_displacement(float(x)) for x in d.ravel()] == names.ravel().tolist()
+    assert type(c.regime_for_displacement(0.5 * s)) is str
+    assert c.regime_for_displacement([0.5 * s]).tolist() == ["partial_slip"]
+    with pytest.raises(asperity.InvalidInput, match="delta_max"):
+        c.regime_for_displacement(np.array([s, -1.0]))
+
+
 def test_loop_arrays(micro_pair, micro_params):
     m = asperity.PartialSlipModel.from_load(micro_pair, "bke", 35.0, micro_params)
     loop = m.loop(1.5e-6, 50)

@@ -23,6 +23,18 @@ inline constexpr std::array<ModelName, 4> kAllModels{ModelName::cfc, ModelName::
 [[nodiscard]] NormalLaw normal_law_of(ModelName m);
 [[nodiscard]] FrictionLaw friction_law_of(ModelName m);
 
+/// Which normal state (interference omega, contact radius a) a model is evaluated at.
+///  - own: each model's own normal law (CFC: Hertz) gives omega and a; P as given
+///    (or from the law, for a given omega*).
+///  - hertz: Hertz's laws (B.1, B.5) give omega and a for every model, which then
+///    contributes only its friction coefficient mu(omega*). This is the thesis's
+///    reading of Table 3.2 ("the penetration for all the models is estimated to be
+///    2.77 um", section 3.5, and K_T = 8 G* a = 16.17 N/um for all).
+enum class InterferenceReading { own, hertz };
+[[nodiscard]] std::string_view to_string(InterferenceReading r);
+/// "own" or "hertz"; throws InvalidInput listing the allowed names.
+[[nodiscard]] InterferenceReading parse_interference_reading(std::string_view name);
+
 /// A model's asperity laws in dimensionless form, validated once: P/P_c, a/a_c and mu
 /// as functions of w = omega/omega_c.
 class AsperityLaws {
@@ -52,16 +64,21 @@ class AsperityLaws {
 /// state (omega, a, P), mu, and its Cattaneo-Mindlin tangential response.
 class PartialSlipModel {
  public:
-  /// From a normal load P [N] > 0. Inside a jump of the CEB or KE load law the
-  /// interference is the branch point (see interference_star) and P stays as given.
+  /// From a normal load P [N] > 0, which stays as given. With the own reading, inside
+  /// a jump of the CEB or KE load law the interference is the branch point (see
+  /// interference_star); with the hertz reading omega and a are Hertz's for P.
   static PartialSlipModel from_load(const ContactPair& pair, ModelName model, double P,
-                                    const FrictionParameters& params = {});
-  /// From the dimensionless interference omega* = omega/omega_c > 0.
-  static PartialSlipModel from_interference_star(const ContactPair& pair, ModelName model,
-                                                 double omega_star,
-                                                 const FrictionParameters& params = {});
+                                    const FrictionParameters& params = {},
+                                    InterferenceReading reading = InterferenceReading::own);
+  /// From the dimensionless interference omega* = omega/omega_c > 0; P and a follow
+  /// from the model's normal law (own) or from Hertz's (hertz).
+  static PartialSlipModel from_interference_star(
+      const ContactPair& pair, ModelName model, double omega_star,
+      const FrictionParameters& params = {},
+      InterferenceReading reading = InterferenceReading::own);
 
   [[nodiscard]] ModelName model() const { return laws_.model(); }
+  [[nodiscard]] InterferenceReading reading() const { return reading_; }
   [[nodiscard]] const ContactPair& pair() const { return pair_; }
   [[nodiscard]] const CriticalValues& critical() const { return critical_; }
   [[nodiscard]] double omega_star() const { return omega_star_; }
@@ -82,11 +99,13 @@ class PartialSlipModel {
   [[nodiscard]] std::vector<double> energy_curve(const std::vector<double>& delta_max) const;
 
  private:
-  PartialSlipModel(const ContactPair& pair, const AsperityLaws& laws, double omega_star, double P);
+  PartialSlipModel(const ContactPair& pair, const AsperityLaws& laws, InterferenceReading reading,
+                   double omega_star, double P);
 
   ContactPair pair_;
   CriticalValues critical_;
   AsperityLaws laws_;
+  InterferenceReading reading_;
   double omega_star_;
   double a_;
   double P_;

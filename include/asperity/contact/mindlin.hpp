@@ -11,12 +11,14 @@ namespace asperity::contact {
 
 namespace mindlin {
 
-/// Full stick, B.14: delta~ = 2/3 Q~.
+/// Full stick, B.14: delta~ = 2/3 Q~ for Q~ in [0, 1]. Every function below throws
+/// InvalidInput (naming the variable, its value and the allowed range) outside its
+/// domain, NaN included.
 [[nodiscard]] double stick_displacement_tilde(double Q_tilde);
 /// Partial slip, increasing Q, B.15: delta~ = 1 - (1 - Q~)^{2/3}, Q~ in [0, 1].
 [[nodiscard]] double loading_displacement_tilde(double Q_tilde);
 /// Inverse of B.15: Q~ = 1 - (1 - delta~)^{3/2} for delta~ in [0, 1), 1 beyond
-/// (gross slip). Odd in delta~.
+/// (gross slip). Odd in delta~; any finite delta~.
 [[nodiscard]] double loading_force_tilde(double delta_tilde);
 /// Unloading from Q~max, B.16 (delta~ for a force Q~ in [-Q~max, Q~max]).
 [[nodiscard]] double unloading_displacement_tilde(double Q_tilde, double Q_max_tilde);
@@ -29,7 +31,7 @@ namespace mindlin {
 [[nodiscard]] double reloading_force_tilde(double delta_tilde, double delta_max_tilde);
 /// Energy per cycle over 9 (mu P)^2/(10 G* a), B.19, for Q~max in [0, 1].
 [[nodiscard]] double energy_tilde(double Q_max_tilde);
-/// Small-amplitude form of B.19 (B.20): 5 Q~^3/162 (1 + 2 Q~/3).
+/// Small-amplitude form of B.19 (B.20): 5 Q~^3/162 (1 + 2 Q~/3), Q~max in [0, 1].
 [[nodiscard]] double energy_tilde_small_amplitude(double Q_max_tilde);
 /// Energy per cycle for a displacement amplitude delta~max >= 0 in partial or gross
 /// slip: B.19 for delta~max <= 1, 1/6 + 5/6 (delta~max - 1) beyond.
