@@ -58,6 +58,7 @@ struct PlotTrace {
   std::string label;
   surface::Profile raw, levelled, filtered;
   std::vector<double> heights;  // filtered heights of every scan of the surface
+  std::string heights_from;     // what `heights` holds, for the legend
 };
 
 struct AnalysedSurface {
@@ -188,12 +189,23 @@ AnalysedSurface analyse_files(const std::string& list, std::size_t index, const 
     out.Sq = map.rms_height_about_plane();
     out.invalid_points = map.invalid_count();
     if (s.plot) {
-      const auto rows = map.rows(s.filter.is_none() ? 3 : s.filter.min_points(map.dx));
-      for (const auto& row : rows) {
-        const auto p = surface::process_profile(row, s.level, s.filter);
-        if (!out.trace) out.trace = PlotTrace{row.source, row, p.levelled, p.filtered, {}};
-        out.trace->heights.insert(out.trace->heights.end(), p.filtered.z.begin(),
-                                  p.filtered.z.end());
+      // The first row is drawn; the histogram holds the filtered heights of every row and
+      // column used for the moments (the rows and columns share points, so each point
+      // counts about twice).
+      const std::size_t min_x = s.filter.is_none() ? 3 : s.filter.min_points(map.dx);
+      const std::size_t min_y = s.filter.is_none() ? 3 : s.filter.min_points(map.dy);
+      for (const auto& [profiles, min_pts] :
+           {std::pair{map.rows(min_x), min_x}, std::pair{map.columns(min_y), min_y}}) {
+        for (const auto& prof : profiles) {
+          if (prof.z.size() < min_pts) continue;
+          const auto p = surface::process_profile(prof, s.level, s.filter);
+          if (!out.trace) {
+            out.trace = PlotTrace{prof.source, prof, p.levelled,
+                                  p.filtered,  {},   "filtered rows and columns"};
+          }
+          out.trace->heights.insert(out.trace->heights.end(), p.filtered.z.begin(),
+                                    p.filtered.z.end());
+        }
       }
     }
     HeightMap meta = map;
@@ -210,7 +222,14 @@ AnalysedSurface analyse_files(const std::string& list, std::size_t index, const 
     auto p = surface::process_profile(profile, s.level, s.filter);
     Scan scan{profile.source, "isotropic",      p.filtered.z.size(), 1,
               profile.dx,     profile.length(), p.filtered.length(), p.moments};
-    if (!out.trace) out.trace = PlotTrace{profile.source, profile, p.levelled, p.filtered, {}};
+    if (!out.trace) {
+      out.trace = PlotTrace{profile.source,
+                            profile,
+                            p.levelled,
+                            p.filtered,
+                            {},
+                            maps.size() > 1 ? "filtered heights, all scans" : "filtered heights"};
+    }
     out.trace->heights.insert(out.trace->heights.end(), p.filtered.z.begin(), p.filtered.z.end());
     out.scans.push_back(scan);
     processed.push_back(std::move(p));
@@ -325,53 +344,135 @@ std::optional<contact::ContactPair> material_pair(const RoughnessOptions& o) {
   return contact::ContactPair::combine(b1, b2, 1.0);
 }
 
-std::vector<double> decimate_x(const surface::Profile& p, std::size_t stride) {
-  std::vector<double> x;
-  for (std::size_t i = 0; i < p.z.size(); i += stride)
-    x.push_back((p.x0 + static_cast<double>(i) * p.dx) * 1e6);
-  return x;
-}
-std::vector<double> decimate_z(const surface::Profile& p, std::size_t stride) {
-  std::vector<double> z;
-  for (std::size_t i = 0; i < p.z.size(); i += stride) z.push_back(p.z[i] * 1e6);
-  return z;
-}
-
-std::string gp_quote(const std::string& s) {
-  std::string out = "\"";
+// A gnuplot string in single quotes (no escape sequences there; a quote is doubled),
+// for the fixed labels of the extra panels. Control characters are dropped.
+std::string gp_single(const std::string& s) {
+  std::string out = "'";
   for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) continue;
+    if (c == '\'') out += '\'';
     out += c;
   }
-  return out + "\"";
+  return out + "'";
 }
 
-void draw_plot(const std::string& path, const std::vector<AnalysedSurface>& surfaces) {
-  // Top panel: raw, levelled and filtered profile of the first scan of each measured
-  // surface; bottom panel (the PlotSpec itself): histogram of the filtered heights
-  // against the Gaussian of the same rms.
-  std::ostringstream top;
-  top << "set multiplot layout 2,1\n";
-  top << "set title \"Profiles (first scan or row of each surface)\" noenhanced\n";
-  top << "set xlabel \"x [um]\"\nset ylabel \"z [um]\"\nset autoscale xfix\n";
-  std::vector<std::pair<std::string, std::pair<std::vector<double>, std::vector<double>>>> lines;
-  PlotSpec hist{.title = "Height distribution of the filtered profiles",
-                .xlabel = "z [um]",
-                .ylabel = "probability density [1/um]"};
-  std::size_t si = 0;
-  for (const auto& s : surfaces) {
-    ++si;
-    if (!s.trace) continue;
-    const auto& t = *s.trace;
-    const std::size_t stride = std::max<std::size_t>(1, t.raw.z.size() / 4000);
-    const std::string tag = fmt::format("surface {}", si);
-    lines.push_back({tag + " raw", {decimate_x(t.raw, stride), decimate_z(t.raw, stride)}});
-    lines.push_back(
-        {tag + " levelled", {decimate_x(t.levelled, stride), decimate_z(t.levelled, stride)}});
-    lines.push_back(
-        {tag + " filtered", {decimate_x(t.filtered, stride), decimate_z(t.filtered, stride)}});
-    // Histogram of the filtered heights of all scans (all rows of an areal map).
-    const auto& z = t.heights;
+std::string base_name(const std::string& path) {
+  const auto p = path.find_last_of("/\\");
+  return p == std::string::npos ? path : path.substr(p + 1);
+}
+
+// Length and height units of a panel: um or nm for heights (nm when all are below
+// 1 um), mm or um along x (um below 1 mm).
+struct Unit {
+  double factor;
+  const char* name;
+};
+Unit height_unit(double max_abs) {
+  return max_abs < 1e-6 ? Unit{1e9, "nm"} : Unit{1e6, "um"};
+}
+Unit length_unit(double max_x) {
+  return max_x < 1e-3 ? Unit{1e6, "um"} : Unit{1e3, "mm"};
+}
+
+double max_abs(const std::vector<double>& z) {
+  double m = 0;
+  for (double v : z) m = std::max(m, std::abs(v));
+  return m;
+}
+
+// One trace of a profile panel, at most ~6000 points.
+Series profile_series(const surface::Profile& p, Unit ux, Unit uz, std::string title,
+                      std::string style = "lines") {
+  Series s{.title = std::move(title), .style = std::move(style)};
+  const std::size_t stride = std::max<std::size_t>(1, p.z.size() / 6000);
+  for (std::size_t i = 0; i < p.z.size(); i += stride) {
+    s.x.push_back((p.x0 + static_cast<double>(i) * p.dx) * ux.factor);
+    s.y.push_back(p.z[i] * uz.factor);
+  }
+  return s;
+}
+
+// Gnuplot commands drawing one panel of a multiplot with inline data.
+std::string panel(const std::string& title, const std::string& xlabel, const std::string& ylabel,
+                  const std::vector<Series>& series, bool set_labels = true) {
+  std::string gp;
+  if (set_labels) {
+    gp += "set title " + gp_single(title) + " noenhanced\n";
+    gp += "set xlabel " + gp_single(xlabel) + "\nset ylabel " + gp_single(ylabel) + "\n";
+  }
+  gp += "plot ";
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    gp += (i ? ", " : "");
+    gp += "'-' using 1:2 with " + series[i].style + " lw 1.5 title " + gp_single(series[i].title);
+  }
+  gp += "\n";
+  for (const auto& s : series) {
+    for (std::size_t j = 0; j < s.x.size(); ++j)
+      gp += fmt::format("{:.10g} {:.10g}\n", s.x[j], s.y[j]);
+    gp += "e\n";
+  }
+  return gp;
+}
+
+void draw_plot(const std::string& path, const std::vector<AnalysedSurface>& surfaces,
+               const Settings& settings) {
+  // Four panels, each with its own height scale (a 16 um tilt and 8 nm of roughness
+  // cannot share an axis): the raw profile (first scan or row of each measured half),
+  // the levelled profile, the filtered (roughness) profile, and the histogram of the
+  // filtered heights against the Gaussian of the same mean and rms.
+  std::vector<std::pair<std::size_t, const PlotTrace*>> traces;
+  for (std::size_t k = 0; k < surfaces.size(); ++k) {
+    if (surfaces[k].trace) traces.emplace_back(k + 1, &*surfaces[k].trace);
+  }
+  if (traces.empty()) {
+    throw InvalidInput("--plot needs at least one surface given by profile files (not --params)");
+  }
+  double xmax = 0, raw_max = 0, lev_max = 0, fil_max = 0, hist_max = 0;
+  for (const auto& [k, t] : traces) {
+    xmax = std::max({xmax, std::abs(t->raw.x0), std::abs(t->raw.x0 + t->raw.length())});
+    raw_max = std::max(raw_max, max_abs(t->raw.z));
+    lev_max = std::max(lev_max, max_abs(t->levelled.z));
+    fil_max = std::max(fil_max, max_abs(t->filtered.z));
+    hist_max = std::max(hist_max, max_abs(t->heights));
+  }
+  const Unit ux = length_unit(xmax);
+  const Unit u_raw = height_unit(raw_max), u_lev = height_unit(lev_max),
+             u_fil = height_unit(fil_max), u_hist = height_unit(hist_max);
+  const std::string xlabel = fmt::format("x [{}]", ux.name);
+  // One colour per surface in every panel; the Gaussian dashed.
+  auto colour = [](std::size_t k) {
+    return std::string(k == 1 ? "lc rgb '#1f5fbf'" : "lc rgb '#d9530f'");
+  };
+
+  std::vector<Series> raw, levelled, filtered;
+  std::string files;
+  for (const auto& [k, t] : traces) {
+    const std::string tag = fmt::format("surface {}", k);
+    const std::string style = "lines " + colour(k);
+    raw.push_back(profile_series(t->raw, ux, u_raw, tag, style));
+    levelled.push_back(profile_series(t->levelled, ux, u_lev, tag, style));
+    filtered.push_back(profile_series(t->filtered, ux, u_fil, tag, style));
+    files += fmt::format("{}{}: {}", files.empty() ? "" : ", ", tag, base_name(t->label));
+  }
+  const std::string level_name = settings.level == Levelling::line   ? "least-squares line removed"
+                                 : settings.level == Levelling::mean ? "mean removed"
+                                                                     : "not levelled";
+  const std::string filter_name =
+      settings.filter.is_none()
+          ? std::string("no filter")
+          : fmt::format("Gaussian, lc = {}, ls = {}",
+                        settings.filter.lc > 0 ? fmt::format("{:.4g} mm", settings.filter.lc * 1e3)
+                                               : "none",
+                        settings.filter.ls > 0 ? fmt::format("{:.4g} um", settings.filter.ls * 1e6)
+                                               : "none");
+
+  // Histogram panel: the PlotSpec's own series.
+  PlotSpec hist{.title = "Raw profile (" + files + ")",  // title of the first panel
+                .xlabel = xlabel,
+                .ylabel = fmt::format("z [{}]", u_raw.name)};
+  for (const auto& [k, t] : traces) {
+    const auto& z = t->heights;
+    if (z.size() < 2) continue;
     double mean = 0, ms = 0, lo = z.front(), hi = z.front();
     for (double v : z) {
       mean += v;
@@ -381,48 +482,56 @@ void draw_plot(const std::string& path, const std::vector<AnalysedSurface>& surf
     mean /= static_cast<double>(z.size());
     for (double v : z) ms += (v - mean) * (v - mean);
     const double sd = std::sqrt(ms / static_cast<double>(z.size()));
-    const std::size_t bins = std::clamp<std::size_t>(z.size() / 50, 10, 60);
+    if (!(hi > lo) || !(sd > 0.0)) continue;
+    // Bins of about sd/5 (fine enough to show the shape near the mean even when a few
+    // spikes stretch the range), at least 10 and at most 200, and about 20 points a bin.
+    const auto bins = static_cast<std::size_t>(std::clamp(
+        std::min((hi - lo) / (0.2 * sd), static_cast<double>(z.size()) / 20.0), 10.0, 200.0));
     const double w = (hi - lo) / static_cast<double>(bins);
-    if (!(w > 0.0)) continue;
     std::vector<double> count(bins, 0.0);
     for (double v : z) {
       auto b = static_cast<std::size_t>((v - lo) / w);
       count[std::min(b, bins - 1)] += 1.0;
     }
-    Series h{.title = tag + " filtered heights", .style = "steps"};
-    Series g{.title = tag + " Gaussian, same rms"};
+    const double f = u_hist.factor;
+    Series h{.title = fmt::format("surface {}: {} ({} points)", k, t->heights_from, z.size()),
+             .style = "steps " + colour(k)};
+    Series g{.title = fmt::format("surface {}: Gaussian, same mean and rms", k),
+             .style = "lines dt 2 " + colour(k)};
     for (std::size_t b = 0; b < bins; ++b) {
-      h.x.push_back((lo + w * static_cast<double>(b)) * 1e6);
-      h.y.push_back(count[b] / (static_cast<double>(z.size()) * w * 1e6));
+      h.x.push_back((lo + w * static_cast<double>(b)) * f);
+      h.y.push_back(count[b] / (static_cast<double>(z.size()) * w * f));
     }
-    h.x.push_back(hi * 1e6);
+    h.x.push_back(hi * f);
     h.y.push_back(h.y.back());
-    for (int k = 0; k <= 100; ++k) {
-      const double v = lo + (hi - lo) * k / 100.0;
+    for (int j = 0; j <= 200; ++j) {
+      const double v = lo + (hi - lo) * j / 200.0;
       const double u = (v - mean) / sd;
-      g.x.push_back(v * 1e6);
-      g.y.push_back(std::exp(-0.5 * u * u) / (sd * 1e6 * std::sqrt(2 * std::numbers::pi)));
+      g.x.push_back(v * f);
+      g.y.push_back(std::exp(-0.5 * u * u) / (sd * f * std::sqrt(2 * std::numbers::pi)));
     }
     hist.series.push_back(std::move(h));
     hist.series.push_back(std::move(g));
   }
-  if (lines.empty()) {
-    throw InvalidInput("--plot needs at least one surface given by profile files (not --params)");
+  if (hist.series.empty()) {
+    throw InvalidInput("--plot: the filtered heights have no spread to draw a histogram of");
   }
-  top << "plot ";
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    top << (i ? ", " : "") << "'-' using 1:2 with lines lw 1.5 title " << gp_quote(lines[i].first);
-  }
-  top << "\n";
-  for (const auto& l : lines) {
-    for (std::size_t j = 0; j < l.second.first.size(); ++j) {
-      top << fmt::format("{:.10g} {:.10g}\n", l.second.first[j], l.second.second[j]);
-    }
-    top << "e\n";
-  }
-  top << "set autoscale x\nset title " << gp_quote(hist.title) << " noenhanced\n";
-  top << "set xlabel " << gp_quote(hist.xlabel) << "\nset ylabel " << gp_quote(hist.ylabel) << "\n";
-  hist.extra = top.str();
+  std::string gp;
+  gp += "set terminal pngcairo size 1400,1000 enhanced font 'DejaVu Sans,11'\n";
+  gp += "set multiplot layout 2,2\nset key inside top left horizontal noenhanced box opaque\n";
+  // Head room above the traces for the key.
+  gp +=
+      "set autoscale xfix\nset format x '%g'\nset format y '%g'\nset offsets 0, 0, graph 0.15, 0\n";
+  gp += panel("", "", "", raw, false);  // title and labels from the PlotSpec
+  gp += panel("Levelled profile (" + level_name + ")", xlabel, fmt::format("z [{}]", u_lev.name),
+              levelled);
+  gp += panel("Roughness profile (" + filter_name + ")", xlabel, fmt::format("z [{}]", u_fil.name),
+              filtered);
+  gp += "set autoscale x\nset key inside top left vertical\nset offsets 0, 0, graph 0.45, 0\n";
+  gp += "set title " + gp_single("Height distribution of the filtered profiles") + " noenhanced\n";
+  gp += "set xlabel " + gp_single(fmt::format("z [{}]", u_hist.name)) + "\n";
+  gp += "set ylabel " + gp_single(fmt::format("probability density [1/{}]", u_hist.name)) + "\n";
+  hist.extra = gp;
   plot_png(path, hist);
 }
 
@@ -569,7 +678,7 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
       }
     }
   }
-  if (o.plot) draw_plot(*o.plot, surfaces);
+  if (o.plot) draw_plot(*o.plot, surfaces, s);
 }
 
 }  // namespace
@@ -622,8 +731,9 @@ void add_roughness_command(CLI::App& app, std::function<int()>& action) {
                 "print JSON (SI units): surfaces[] and combined, each with sigma, eta, R, beta, "
                 "alpha, m0, m2, m4, sigma_a (psi with a material), filter {lc, ls}");
   cmd->add_option("--plot", o->plot,
-                  "draw the raw, levelled and filtered profiles and the height histogram against "
-                  "the Gaussian into this PNG file");
+                  "draw into this PNG file four panels: the raw, levelled and filtered profile "
+                  "(first scan of each half, each panel with its own height scale) and the "
+                  "histogram of the filtered heights against the Gaussian");
   cmd->callback([o, cmd, surf, par, &action] {
     o->order.clear();
     for (const auto* opt : cmd->parse_order()) {

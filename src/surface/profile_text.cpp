@@ -6,7 +6,10 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/units.hpp"
@@ -192,6 +195,48 @@ bool starts_with_any(const std::string& s, std::initializer_list<const char*> pr
   return false;
 }
 
+// Role of a header column: 'x', 'z' or 0 when the name does not say.
+char column_role(const std::string& name) {
+  if (starts_with_any(name, {"x", "lateral", "position", "distance"})) return 'x';
+  if (starts_with_any(name, {"z", "height", "raw", "profile"})) return 'z';
+  return 0;
+}
+
+// Number of fields of a numeric line, 0 for any other line.
+std::size_t numeric_columns(std::string_view text) {
+  const auto fields = split_fields(text);
+  for (auto f : fields) {
+    double v = 0;
+    if (!parse_number(f, v)) return 0;
+  }
+  return fields.size();
+}
+
+// `v * 10^e10` as the decimal literal would read: the shortest digits of v with the
+// exponent shifted, so that 0.001 (mm) becomes the double nearest 1e-6 (m) rather
+// than 0.001 * 1e-3 = 1.0000000000000002e-06.
+double decimal_shift(double v, int e10) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::scientific);
+  const std::string_view s(buf, static_cast<std::size_t>(r.ptr - buf));
+  const auto epos = s.find('e');
+  std::string_view exp_text = s.substr(epos + 1);
+  if (!exp_text.empty() && exp_text.front() == '+') exp_text.remove_prefix(1);
+  int ex = 0;
+  std::from_chars(exp_text.data(), exp_text.data() + exp_text.size(), ex);
+  const std::string shifted = fmt::format("{}e{}", s.substr(0, epos), ex + e10);
+  double out = v * std::pow(10.0, e10);
+  std::from_chars(shifted.data(), shifted.data() + shifted.size(), out);
+  return out;
+}
+
+// The power of ten of a unit factor (1e-3 for mm -> -3), or nullopt if it is none.
+std::optional<int> power_of_ten(double factor) {
+  const double e = std::round(std::log10(factor));
+  if (std::abs(factor - std::pow(10.0, e)) > 1e-12 * factor) return std::nullopt;
+  return static_cast<int>(e);
+}
+
 }  // namespace
 
 Profile parse_profile_text(std::string_view content, std::string_view source,
@@ -202,24 +247,67 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
         fmt::format("{}: this is not a text profile (it contains NUL bytes)", source));
   }
   const auto lines = split_lines(content);
-  // The data block: the longest run of consecutive numeric lines.
-  std::size_t best_start = 0, best_len = 0;
+  std::vector<std::size_t> ncols(lines.size());
+  for (std::size_t i = 0; i < lines.size(); ++i) ncols[i] = numeric_columns(lines[i].text);
+  // Runs of consecutive numeric lines; the data block is the longest.
+  struct Run {
+    std::size_t start, end, ncol;  // lines [start, end), columns of the first line
+  };
+  std::vector<Run> runs;
   for (std::size_t i = 0; i < lines.size();) {
-    if (!numeric_line(lines[i].text)) {
+    if (ncols[i] == 0) {
       ++i;
       continue;
     }
     std::size_t j = i;
-    while (j < lines.size() && numeric_line(lines[j].text)) ++j;
-    if (j - i > best_len) {
-      best_len = j - i;
-      best_start = i;
-    }
+    while (j < lines.size() && ncols[j] > 0) ++j;
+    runs.push_back({i, j, ncols[i]});
     i = j;
   }
-  if (best_len == 0) {
+  if (runs.empty()) {
     throw InvalidInput(
         fmt::format("{}: no data: expected lines of numbers (x and z, or z)", source));
+  }
+  std::size_t best = 0;
+  for (std::size_t r = 1; r < runs.size(); ++r) {
+    if (runs[r].end - runs[r].start > runs[best].end - runs[best].start) best = r;
+  }
+  const std::size_t best_start = runs[best].start;
+  const std::size_t best_len = runs[best].end - runs[best].start;
+  const std::size_t ncol = runs[best].ncol;
+  // A line between the data block and another run of numbers with as many columns is
+  // a break inside the data (an instrument message, a repeated header, an empty line):
+  // refuse it rather than silently drop the other run. A preamble or footer with
+  // numbers in another layout (a vendor's "Length,1500" is not numeric; a lone point
+  // count has one column) is accepted.
+  auto same_layout = [&](const Run& r) { return r.ncol == ncol; };
+  const Run* other = nullptr;
+  for (std::size_t r = best + 1; r < runs.size() && !other; ++r) {
+    if (same_layout(runs[r])) other = &runs[r];
+  }
+  for (std::size_t r = best; r-- > 0 && !other;) {
+    if (same_layout(runs[r])) other = &runs[r];
+  }
+  if (other) {
+    const bool after = other->start > best_start;
+    const std::size_t k = after ? runs[best].end : other->end;  // first line between them
+    const auto text = trim(lines[k].text);
+    const auto fields = split_fields(lines[k].text);
+    double v = 0;
+    const std::string what =
+        text.empty() ? std::string("an empty line")
+        : !fields.empty() && parse_number(fields.front(), v)
+            ? fmt::format("expected only numbers, got \"{}\"", text.substr(0, 60))
+            : fmt::format("\"{}\"", text.substr(0, 60));
+    const std::size_t other_len = other->end - other->start;
+    const std::string block =
+        fmt::format("{} lines of {} number{} at lines {}-{}", other_len, ncol, ncol == 1 ? "" : "s",
+                    lines[other->start].number, lines[other->end - 1].number);
+    throw InvalidInput(fmt::format(
+        "{}: line {}: not a number inside the data ({}): the data at lines {}-{} {} {}; the file "
+        "must hold one block of data (remove the line, or split the file)",
+        source, lines[k].number, what, lines[best_start].number,
+        lines[best_start + best_len - 1].number, after ? "continue with" : "follow", block));
   }
   // A line after the block that starts with a number is a malformed data line.
   for (std::size_t k = best_start + best_len; k < lines.size(); ++k) {
@@ -233,8 +321,6 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
     break;
   }
   std::vector<double> values;
-  numeric_line(lines[best_start].text, &values);
-  const std::size_t ncol = values.size();
 
   // Columns from the header line just above the block.
   std::vector<Column> columns(ncol);
@@ -257,13 +343,26 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
   if (ncol == 1) {
     zcol = 0;
   } else if (ncol == 2) {
+    // x then z, unless the header's names say otherwise ("z[um],x[um]").
     xcol = 0;
     zcol = 1;
+    if (have_header) {
+      const char r0 = column_role(columns[0].name), r1 = column_role(columns[1].name);
+      if (r0 != 0 && r0 == r1) {
+        throw InvalidInput(fmt::format(
+            "{}: line {}: both columns (\"{}\", \"{}\") look like {}: name one x and one z", source,
+            header_line, columns[0].name, columns[1].name, r0));
+      }
+      if (r0 == 'z' || r1 == 'x') {
+        xcol = 1;
+        zcol = 0;
+      }
+    }
   } else {
     for (std::size_t c = 0; c < ncol; ++c) {
-      const auto& n = columns[c].name;
-      if (starts_with_any(n, {"x", "lateral", "position", "distance"}) && xcol == ncol) xcol = c;
-      if (starts_with_any(n, {"z", "height", "raw", "profile"}) && zcol == ncol) zcol = c;
+      const char role = column_role(columns[c].name);
+      if (role == 'x' && xcol == ncol) xcol = c;
+      if (role == 'z' && zcol == ncol) zcol = c;
     }
     if (!have_header || xcol == ncol || zcol == ncol) {
       throw InvalidInput(fmt::format(
@@ -293,7 +392,7 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
   Profile p;
   p.source = std::string(source);
   p.z.reserve(best_len);
-  std::vector<double> x;
+  std::vector<double> x;  // in the file's unit
   if (xcol < ncol) x.reserve(best_len);
   for (std::size_t k = best_start; k < best_start + best_len; ++k) {
     numeric_line(lines[k].text, &values);
@@ -308,7 +407,7 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
       }
     }
     p.z.push_back(values[zcol] * zf);
-    if (xcol < ncol) x.push_back(values[xcol] * xf);
+    if (xcol < ncol) x.push_back(values[xcol]);
   }
   if (p.z.size() < 2) {
     throw InvalidInput(
@@ -320,8 +419,67 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
           fmt::format("{}: the file has an x column, so --dx must not be given", source));
     }
     const std::size_t n = x.size();
+    auto line_of = [&](std::size_t i) { return lines[best_start + i].number; };
+    for (std::size_t i = 1; i < n; ++i) {
+      if (!(x[i] > x[i - 1])) {
+        throw InvalidInput(
+            fmt::format("{}: line {}: x = {:.9g} m does not increase (previous {:.9g} m): "
+                        "x must increase with a uniform step",
+                        source, line_of(i), x[i] * xf, x[i - 1] * xf));
+      }
+    }
+    // A change of spacing, reported where it happens: each x against the least-squares
+    // line through it and the points above it (updated point by point); its residual
+    // must stay within half the fitted step. A rounded export passes (Dektak: 0.1 um
+    // print resolution for a 0.156 um step gives residuals up to 0.31 steps from the
+    // 8th point on); a missing sample or a change of spacing shows at once.
+    {
+      double k = 0, mean_i = 0, mean_u = 0, cii = 0, ciu = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double fi = static_cast<double>(i), u = x[i] - x[0];
+        k += 1;
+        const double di = fi - mean_i;
+        mean_i += di / k;
+        mean_u += (u - mean_u) / k;
+        cii += di * (fi - mean_i);
+        ciu += di * (u - mean_u);
+        if (i < 8) continue;  // the first points are covered by the step check below
+        const double slope = ciu / cii;
+        const double expected = mean_u + slope * (fi - mean_i);
+        if (std::abs(u - expected) > 0.5 * slope) {
+          throw InvalidInput(fmt::format(
+              "{}: line {}: x is not uniformly spaced: x = {:.9g} m, the least-squares grid of "
+              "the x up to here (dx = {:.6g} m) expects {:.9g} m (the step from the previous "
+              "x is {:.6g} m): a missing sample or a change of spacing",
+              source, line_of(i), x[i] * xf, slope * xf, (x[0] + expected) * xf,
+              (x[i] - x[i - 1]) * xf));
+        }
+      }
+    }
+    // Each step against the median step. The median is taken of the mean step over K
+    // consecutive steps: an export that rounds x (Dektak prints 0.1 um for a 0.15625 um
+    // step) has single steps of 0.1 and 0.2 whose plain median is 0.2, while the K-step
+    // means are within 0.1/K of the true step. A break in the spacing moves at most K
+    // of the n - K means, so the median ignores it.
+    const std::size_t K = std::min<std::size_t>(16, n - 1);
+    std::vector<double> means(n - K);
+    for (std::size_t i = 0; i + K < n; ++i) means[i] = (x[i + K] - x[i]) / static_cast<double>(K);
+    std::nth_element(means.begin(), means.begin() + static_cast<std::ptrdiff_t>(means.size() / 2),
+                     means.end());
+    const double median_step = means[means.size() / 2];
+    for (std::size_t i = 1; i < n; ++i) {
+      const double step = x[i] - x[i - 1];
+      if (std::abs(step - median_step) > 0.5 * median_step) {
+        throw InvalidInput(fmt::format(
+            "{}: line {}: x is not uniformly spaced: the step from x = {:.9g} m to {:.9g} m is "
+            "{:.6g} m, the median step is {:.6g} m (allowed: within half of it; a missing "
+            "sample or a change of spacing is refused)",
+            source, line_of(i), x[i - 1] * xf, x[i] * xf, step * xf, median_step * xf));
+      }
+    }
     // The uniform grid x = x0 + i dx by least squares (robust to the rounding of the
-    // first and last x in exports that print few decimals).
+    // first and last x in exports that print few decimals); every x within dx/2 of it
+    // (catches a slow drift of the spacing that no single step shows).
     double a = 0, b = 0;
     {
       const double c = 0.5 * static_cast<double>(n - 1);
@@ -336,27 +494,28 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
       b = sxy / sxx;
       a = my - b * c;
     }
-    const double dx = b;
-    for (std::size_t i = 1; i < n; ++i) {
-      if (!(x[i] > x[i - 1])) {
-        throw InvalidInput(
-            fmt::format("{}: line {}: x = {:.9g} m does not increase (previous {:.9g} m): "
-                        "x must increase with a uniform step",
-                        source, lines[best_start + i].number, x[i], x[i - 1]));
-      }
-    }
     for (std::size_t i = 0; i < n; ++i) {
-      const double expected = a + dx * static_cast<double>(i);
-      const double step = i > 0 ? x[i] - x[i - 1] : 0.0;
-      if (std::abs(x[i] - expected) > 0.5 * dx || step > 1.5 * dx) {
+      const double expected = a + b * static_cast<double>(i);
+      if (std::abs(x[i] - expected) > 0.5 * b) {
         throw InvalidInput(fmt::format(
             "{}: line {}: x is not uniformly spaced: x = {:.9g} m, the uniform grid (dx = {:.6g} "
-            "m fitted to all points) expects {:.9g} m",
-            source, lines[best_start + i].number, x[i], dx, expected));
+            "m fitted to all points) expects {:.9g} m; the spacing drifts",
+            source, line_of(i), x[i] * xf, b * xf, expected * xf));
       }
     }
-    p.dx = dx;
-    p.x0 = a;
+    // To SI. When the file's unit is a power of ten and the fitted step is a short
+    // decimal to 1e-12 (0.0010 mm), report that decimal: dx = 1e-6 m rather than
+    // 1.0000000000000008e-06 m from the rounding of the fit; likewise x0 when the fit
+    // passes through the first printed x.
+    p.dx = b * xf;
+    p.x0 = a * xf;
+    if (const auto e10 = power_of_ten(xf)) {
+      double rounded = b;
+      const std::string digits = fmt::format("{:.11e}", b);
+      std::from_chars(digits.data(), digits.data() + digits.size(), rounded);
+      if (std::abs(rounded - b) <= 1e-12 * b) p.dx = decimal_shift(rounded, *e10);
+      if (std::abs(a - x.front()) <= 1e-9 * b) p.x0 = decimal_shift(x.front(), *e10);
+    }
   } else {
     if (!options.dx) {
       throw InvalidInput(fmt::format(

@@ -8,11 +8,15 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <pugixml.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
 
+#include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/surface/profile_io.hpp"
 #include "detail/md5.hpp"
@@ -20,10 +24,37 @@
 namespace asperity::surface {
 namespace {
 
-// Upper bounds that keep a hostile header from making us allocate: point count and
-// any single archive entry.
-constexpr std::uint64_t kMaxPoints = std::uint64_t{1} << 28;      // 268 M points
-constexpr std::uint64_t kMaxEntryBytes = std::uint64_t{1} << 31;  // 2 GiB
+// Upper bounds that keep a hostile header from making us allocate: point count, any
+// single archive entry, main.xml (64 MiB: an inline DataList of a few million points),
+// the part of main.xml outside the DataList that is parsed into a DOM (metadata of a
+// few KB in practice; a DOM node costs ~64 bytes, so 1 MiB bounds the tree at ~16 MB),
+// the bytes per inline point, and md5checksum.hex (32 hex digits and a file name).
+constexpr std::uint64_t kMaxPoints = std::uint64_t{1} << 28;         // 268 M points
+constexpr std::uint64_t kMaxEntryBytes = std::uint64_t{1} << 31;     // 2 GiB
+constexpr std::uint64_t kMaxMainXmlBytes = std::uint64_t{1} << 26;   // 64 MiB
+constexpr std::uint64_t kMaxMetadataBytes = std::uint64_t{1} << 20;  // 1 MiB
+constexpr std::uint64_t kMaxBytesPerDatum = 128;
+constexpr std::uint64_t kMaxChecksumFileBytes = 512;
+
+std::string byte_size(std::uint64_t b) {
+  if (b >= (std::uint64_t{1} << 20))
+    return fmt::format("{:.4g} MiB", static_cast<double>(b) / 1048576.0);
+  return fmt::format("{} bytes", b);
+}
+
+// At most `max` characters of `s` for a one-line message: white space as blanks, other
+// control characters as '?'.
+std::string excerpt(std::string_view s, std::size_t max = 40) {
+  std::string out(s.substr(0, max));
+  for (char& c : out) {
+    if (c == '\n' || c == '\r' || c == '\t') {
+      c = ' ';
+    } else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      c = '?';
+    }
+  }
+  return out;
+}
 
 struct ZipCloser {
   void operator()(zip_t* z) const { zip_discard(z); }
@@ -93,9 +124,10 @@ class Reader {
     throw InvalidInput(fmt::format("{}: {}: {}", source_, where, what));
   }
 
-  // Size of an entry after checking it exists and that the archive's claim is
-  // plausible for its compressed size.
-  std::uint64_t entry_size(const std::string& name, zip_int64_t* index_out) const {
+  // Size of an entry after checking it exists, that it is at most `max_bytes` and that
+  // the archive's claim is plausible for its compressed size; nothing is allocated.
+  std::uint64_t entry_size(const std::string& name, std::uint64_t max_bytes,
+                           zip_int64_t* index_out) const {
     const zip_int64_t index = zip_name_locate(zip_.get(), name.c_str(), 0);
     if (index < 0) fail(name, "missing from the archive");
     zip_stat_t st;
@@ -103,6 +135,11 @@ class Reader {
     if (zip_stat_index(zip_.get(), static_cast<zip_uint64_t>(index), 0, &st) != 0 ||
         !(st.valid & ZIP_STAT_SIZE) || !(st.valid & ZIP_STAT_COMP_SIZE)) {
       fail(name, "cannot read the archive entry's header");
+    }
+    if (st.size > max_bytes) {
+      fail(name, fmt::format("the archive says this entry holds {} uncompressed, more than the "
+                             "{} allowed for it: refused",
+                             byte_size(st.size), byte_size(max_bytes)));
     }
     // Deflate cannot compress better than about 1032:1.
     if (st.size > kMaxEntryBytes || st.size > st.comp_size * 1100 + 65536) {
@@ -113,13 +150,15 @@ class Reader {
     return st.size;
   }
 
-  std::string read_entry(const std::string& name) const {
+  std::string read_entry(const std::string& name, std::uint64_t max_bytes) const {
     zip_int64_t index = 0;
-    const std::uint64_t size = entry_size(name, &index);
+    const std::uint64_t size = entry_size(name, max_bytes, &index);
     ZipFilePtr f(zip_fopen_index(zip_.get(), static_cast<zip_uint64_t>(index), 0));
     if (!f) fail(name, "cannot open the archive entry (unsupported compression or encryption?)");
     std::string out;
-    out.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(size, 1 << 24)));
+    // The size is bounded by max_bytes and the compression ratio; reserve it (up to
+    // 64 MiB, all of main.xml) so that growth does not double the peak.
+    out.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(size, kMaxMainXmlBytes)));
     char buf[65536];
     while (true) {
       const zip_int64_t got = zip_fread(f.get(), buf, sizeof buf);
@@ -206,7 +245,7 @@ class MainXml {
     if (*first == '+') ++first;
     const auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), v);
     if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(v)) {
-      r_.fail("main.xml", fmt::format("{} = \"{}\" is not a finite number", path, s));
+      r_.fail("main.xml", fmt::format("{} = \"{}\" is not a finite number", path, excerpt(s)));
     }
     return v;
   }
@@ -216,8 +255,8 @@ class MainXml {
     std::uint64_t v = 0;
     const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
     if (ec != std::errc() || ptr != s.data() + s.size() || v == 0 || v > kMaxPoints) {
-      r_.fail("main.xml",
-              fmt::format("{} = \"{}\" is not a size between 1 and {}", path, s, kMaxPoints));
+      r_.fail("main.xml", fmt::format("{} = \"{}\" is not a size between 1 and {}", path,
+                                      excerpt(s), kMaxPoints));
     }
     return v;
   }
@@ -228,7 +267,8 @@ class MainXml {
     Axis a;
     const auto type = text(node, "AxisType", path + "/AxisType");
     if (type != "I" && type != "A") {
-      r_.fail("main.xml", fmt::format("{}/AxisType = \"{}\": expected I or A", path, type));
+      r_.fail("main.xml",
+              fmt::format("{}/AxisType = \"{}\": expected I or A", path, excerpt(type)));
     }
     a.axis_type = type[0];
     if (child(node, "DataType")) {
@@ -242,7 +282,8 @@ class MainXml {
       else if (dt == "D")
         a.data_type = X3pDataType::float64;
       else
-        r_.fail("main.xml", fmt::format("{}/DataType = \"{}\": expected I, L, F or D", path, dt));
+        r_.fail("main.xml",
+                fmt::format("{}/DataType = \"{}\": expected I, L, F or D", path, excerpt(dt)));
     }
     if (child(node, "Increment")) a.increment = number(node, "Increment", path + "/Increment");
     if (child(node, "Offset")) a.offset = number(node, "Offset", path + "/Offset");
@@ -291,24 +332,217 @@ double decode(const unsigned char* p, X3pDataType t) {
   return 0.0;
 }
 
+const char* type_name(X3pDataType t) {
+  switch (t) {
+    case X3pDataType::int16:
+      return "I (int16)";
+    case X3pDataType::int32:
+      return "L (int32)";
+    case X3pDataType::float32:
+      return "F (float32)";
+    case X3pDataType::float64:
+      return "D (float64)";
+  }
+  return "D (float64)";
+}
+
+bool is_xml_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
+bool is_name_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.' ||
+         static_cast<unsigned char>(c) >= 0x80;
+}
+
+// Where the inline point data sit in main.xml's text: the element's name (after '<')
+// and its content. The content is scanned by scan_datums() instead of being parsed
+// into a DOM, which would cost ~64 bytes a point.
+struct DataListText {
+  std::size_t name = 0;           // offset of "[prefix:]DataList" in the start tag
+  std::size_t content_begin = 0;  // just after the start tag
+  std::size_t content_end = 0;    // at "</" of the end tag (= content_begin when empty)
+};
+
+// The first <[prefix:]DataList> start tag and its end tag, or nullopt when there is
+// none. Fails when the element is not closed.
+std::optional<DataListText> find_data_list(std::string_view xml, const auto& fail) {
+  for (std::size_t pos = 0;;) {
+    const std::size_t p = xml.find("DataList", pos);
+    if (p == std::string_view::npos) return std::nullopt;
+    pos = p + 1;
+    const std::size_t after = p + 8;
+    if (after >= xml.size() ||
+        !(xml[after] == '>' || xml[after] == '/' || is_xml_space(xml[after])))
+      continue;
+    std::size_t q = p;  // back over an optional "prefix:"
+    if (q > 0 && xml[q - 1] == ':') {
+      --q;
+      while (q > 0 && is_name_char(xml[q - 1])) --q;
+    }
+    if (q == 0 || xml[q - 1] != '<') continue;
+    const std::string_view qname = xml.substr(q, after - q);
+    const std::size_t gt = xml.find('>', after);
+    if (gt == std::string_view::npos) fail("the DataList start tag is not closed");
+    DataListText t;
+    t.name = q;
+    t.content_begin = gt + 1;
+    if (xml[gt - 1] == '/') {
+      t.content_end = t.content_begin;
+      return t;
+    }
+    const std::string close = "</" + std::string(qname);
+    std::size_t c = t.content_begin;
+    while (true) {
+      c = xml.find(close, c);
+      if (c == std::string_view::npos) fail("the DataList element has no end tag");
+      std::size_t e = c + close.size();
+      while (e < xml.size() && is_xml_space(xml[e])) ++e;
+      if (e < xml.size() && xml[e] == '>') break;
+      c += close.size();
+    }
+    t.content_end = c;
+    return t;
+  }
+}
+
+// Scans the content of a DataList: only <Datum>number</Datum>, empty <Datum/> (an
+// invalid point; what the openGPS reference writer produces for one) and comments,
+// separated by white space. Calls on_datum(index, text) with the trimmed text (empty
+// for an empty Datum). Fails naming the byte offset in main.xml otherwise.
+template <class Fail, class OnDatum>
+std::uint64_t scan_datums(std::string_view xml, const DataListText& t, const Fail& fail,
+                          const OnDatum& on_datum) {
+  std::size_t i = t.content_begin;
+  const std::size_t end = t.content_end;
+  std::uint64_t k = 0;
+  auto unexpected = [&](std::size_t at, std::string_view what) {
+    fail(
+        fmt::format("Record3/DataList: {} at byte {} of main.xml (\"{}\"): expected only "
+                    "<Datum>value</Datum> or <Datum/> elements",
+                    what, at, excerpt(xml.substr(at, std::min<std::size_t>(30, end - at)))));
+  };
+  while (true) {
+    while (i < end && is_xml_space(xml[i])) ++i;
+    if (i >= end) break;
+    if (xml[i] != '<') unexpected(i, "text outside a Datum element");
+    if (xml.substr(i, 4) == "<!--") {
+      const std::size_t c = xml.find("-->", i + 4);
+      if (c == std::string_view::npos || c + 3 > end) unexpected(i, "an unclosed comment");
+      i = c + 3;
+      continue;
+    }
+    std::size_t j = i + 1;
+    while (j < end && (is_name_char(xml[j]) || xml[j] == ':')) ++j;
+    std::string_view qname = xml.substr(i + 1, j - i - 1);
+    const auto colon = qname.rfind(':');
+    if ((colon == std::string_view::npos ? qname : qname.substr(colon + 1)) != "Datum") {
+      unexpected(i, "an element other than Datum");
+    }
+    while (j < end && is_xml_space(xml[j])) ++j;
+    if (j + 1 < end && xml[j] == '/' && xml[j + 1] == '>') {  // <Datum/>
+      on_datum(k++, std::string_view());
+      i = j + 2;
+      continue;
+    }
+    if (j >= end || xml[j] != '>') unexpected(i, "a Datum start tag with attributes");
+    const std::size_t text_begin = j + 1;
+    const std::size_t lt = xml.find('<', text_begin);
+    if (lt == std::string_view::npos || lt >= end) unexpected(i, "an unclosed Datum element");
+    if (xml.substr(lt, 2 + qname.size()) != fmt::format("</{}", qname)) {
+      unexpected(lt, "markup inside a Datum element");
+    }
+    std::size_t e = lt + 2 + qname.size();
+    while (e < end && is_xml_space(xml[e])) ++e;
+    if (e >= end || xml[e] != '>') unexpected(lt, "a malformed Datum end tag");
+    std::string_view text = xml.substr(text_begin, lt - text_begin);
+    while (!text.empty() && is_xml_space(text.front())) text.remove_prefix(1);
+    while (!text.empty() && is_xml_space(text.back())) text.remove_suffix(1);
+    on_datum(k++, text);
+    i = e + 1;
+  }
+  return k;
+}
+
+// The raw value of inline Datum `k` (1-based in messages) of type `type`: I and L
+// must be integers in range, F and D finite numbers (F within the float32 range).
+double datum_value(std::string_view s, std::uint64_t k, X3pDataType type, const auto& fail) {
+  const std::string shown = excerpt(s);
+  const char* first = s.data();
+  const char* last = s.data() + s.size();
+  if (first != last && *first == '+') ++first;
+  if (first != last && (*first == '+' || (*first == '-' && s.front() == '+'))) first = last;
+  if (is_integer_type(type)) {
+    std::int64_t v = 0;
+    const auto [ptr, ec] = std::from_chars(first, last, v);
+    const std::int64_t lo = type == X3pDataType::int16 ? -32768 : -2147483648LL;
+    const std::int64_t hi = type == X3pDataType::int16 ? 32767 : 2147483647LL;
+    if (ec == std::errc() && ptr == last) {
+      if (v < lo || v > hi) {
+        fail(
+            fmt::format("Record3/DataList Datum {} = {} is outside the range [{}, {}] of data "
+                        "type {}",
+                        k + 1, v, lo, hi, type_name(type)));
+      }
+      return static_cast<double>(v);
+    }
+    fail(
+        fmt::format("Record3/DataList Datum {} = \"{}\" is not an integer: data type {} holds "
+                    "integers in [{}, {}]",
+                    k + 1, shown, type_name(type), lo, hi));
+  }
+  double v = 0;
+  const auto [ptr, ec] = std::from_chars(first, last, v);
+  if (first == last || ptr != last || (ec != std::errc() && ec != std::errc::result_out_of_range)) {
+    fail(fmt::format("Record3/DataList Datum {} = \"{}\" is not a number", k + 1, shown));
+  }
+  const double limit = type == X3pDataType::float32
+                           ? static_cast<double>(std::numeric_limits<float>::max())
+                           : std::numeric_limits<double>::max();
+  if (ec == std::errc::result_out_of_range || !std::isfinite(v) || std::abs(v) > limit) {
+    fail(
+        fmt::format("Record3/DataList Datum {} = \"{}\" is not a finite number in the range of "
+                    "data type {} (an invalid point is an empty <Datum/>)",
+                    k + 1, shown, type_name(type)));
+  }
+  return v;
+}
+
 }  // namespace
 
 HeightMap parse_x3p(std::string_view bytes, std::string_view source) {
   Reader reader(bytes, source);
-  const std::string xml = reader.read_entry("main.xml");
-  MainXml doc(reader, xml);
+  const std::string xml = reader.read_entry("main.xml", kMaxMainXmlBytes);
+  auto fail_xml = [&](const std::string& what) { reader.fail("main.xml", what); };
+  // The inline point data are scanned in place; the rest is parsed into a DOM.
+  const auto data_list_text = find_data_list(xml, fail_xml);
+  const std::size_t inline_bytes =
+      data_list_text ? data_list_text->content_end - data_list_text->content_begin : 0;
+  if (xml.size() - inline_bytes > kMaxMetadataBytes) {
+    fail_xml(
+        fmt::format("{} of XML outside Record3/DataList, more than the {} allowed (the "
+                    "metadata of an X3P file take a few KB)",
+                    byte_size(xml.size() - inline_bytes), byte_size(kMaxMetadataBytes)));
+  }
+  std::string metadata;
+  if (data_list_text) {
+    metadata.reserve(xml.size() - inline_bytes);
+    metadata.append(xml, 0, data_list_text->content_begin);
+    metadata.append(xml, data_list_text->content_end);
+  }
+  const std::string& dom_text = data_list_text ? metadata : xml;
+  MainXml doc(reader, dom_text);
   const auto root = doc.root();
 
   // Record4: checksum of main.xml.
   const auto rec4 = doc.require(root, "Record4", "Record4");
   const std::string checksum_file(doc.text(rec4, "ChecksumFile", "Record4/ChecksumFile"));
-  const std::string checksum_text = reader.read_entry(checksum_file);
+  const std::string checksum_text = reader.read_entry(checksum_file, kMaxChecksumFileBytes);
   if (checksum_text.size() < 32) reader.fail(checksum_file, "expected a 32-digit MD5 of main.xml");
   const std::string actual_xml_md5 = detail::md5_hex(xml);
   if (!same_hex(std::string_view(checksum_text).substr(0, 32), actual_xml_md5)) {
     reader.fail(checksum_file,
                 fmt::format("MD5 checksum mismatch: main.xml has {}, the file says {}",
-                            actual_xml_md5, std::string_view(checksum_text).substr(0, 32)));
+                            actual_xml_md5, excerpt(checksum_text, 32)));
   }
 
   // Record1: feature type and axes.
@@ -317,7 +551,7 @@ HeightMap parse_x3p(std::string_view bytes, std::string_view source) {
   if (feature != "PRF" && feature != "SUR") {
     reader.fail("main.xml", fmt::format("Record1/FeatureType = \"{}\": only PRF (profile) and SUR "
                                         "(areal) are supported, not point clouds (PCL)",
-                                        feature));
+                                        excerpt(feature)));
   }
   const auto axes = doc.require(rec1, "Axes", "Record1/Axes");
   const Axis cx = doc.axis(axes, "CX");
@@ -379,12 +613,12 @@ HeightMap parse_x3p(std::string_view bytes, std::string_view source) {
     const std::uint64_t want = n * type_size(type);
     // Check the size the archive claims before reading (and allocating) anything.
     zip_int64_t index = 0;
-    const std::uint64_t claimed = reader.entry_size(link, &index);
+    const std::uint64_t claimed = reader.entry_size(link, kMaxEntryBytes, &index);
     if (claimed != want) {
       reader.fail(link, fmt::format("{} bytes, but {} x {} points of type {} need {}", claimed, sx,
                                     sy, type_letter(type), want));
     }
-    const std::string data = reader.read_entry(link);
+    const std::string data = reader.read_entry(link, want);
     if (data.size() != want) {
       reader.fail(link, fmt::format("{} bytes, but {} x {} points of type {} need {}", data.size(),
                                     sx, sy, type_letter(type), want));
@@ -392,36 +626,37 @@ HeightMap parse_x3p(std::string_view bytes, std::string_view source) {
     const auto md5 = detail::md5_hex(data);
     if (!same_hex(md5, expected_md5)) {
       reader.fail(link, fmt::format("MD5 checksum mismatch: the data has {}, main.xml says {}", md5,
-                                    expected_md5));
+                                    excerpt(expected_md5)));
     }
     map.z.resize(static_cast<std::size_t>(n));
     const auto* p = reinterpret_cast<const unsigned char*>(data.data());
     const std::size_t ts = type_size(type);
     for (std::size_t k = 0; k < map.z.size(); ++k) {
       const double raw = decode(p + k * ts, type);
-      map.z[k] = cz.offset + cz.increment * raw;
+      map.z[k] = cz.offset + cz.increment * raw;  // non-finite raw (NaN): an invalid point
+      if (std::isfinite(raw) && !std::isfinite(map.z[k])) {
+        reader.fail(link,
+                    fmt::format("point {}: CZ Offset + Increment x {} overflows", k + 1, raw));
+      }
     }
     if (child(data_link, "ValidPointsLink")) {
       const std::string vlink(
           doc.text(data_link, "ValidPointsLink", "Record3/DataLink/ValidPointsLink"));
       const std::uint64_t want_mask = (n + 7) / 8;
       zip_int64_t mask_index = 0;
-      if (reader.entry_size(vlink, &mask_index) != want_mask) {
+      const std::uint64_t mask_claimed = reader.entry_size(vlink, kMaxEntryBytes, &mask_index);
+      if (mask_claimed != want_mask) {
         reader.fail(vlink, fmt::format("{} bytes, but {} points need {} bytes of validity bits",
-                                       reader.entry_size(vlink, &mask_index), n, want_mask));
+                                       mask_claimed, n, want_mask));
       }
-      const std::string mask = reader.read_entry(vlink);
-      if (mask.size() != want_mask) {
-        reader.fail(vlink, fmt::format("{} bytes, but {} points need {} bytes of validity bits",
-                                       mask.size(), n, want_mask));
-      }
+      const std::string mask = reader.read_entry(vlink, want_mask);
       if (child(data_link, "MD5ChecksumValidPoints")) {
         const auto vmd5 = doc.text(data_link, "MD5ChecksumValidPoints",
                                    "Record3/DataLink/MD5ChecksumValidPoints");
         const auto got = detail::md5_hex(mask);
         if (!same_hex(got, vmd5)) {
           reader.fail(vlink, fmt::format("MD5 checksum mismatch: the mask has {}, main.xml says {}",
-                                         got, vmd5));
+                                         got, excerpt(vmd5)));
         }
       }
       valid.assign(static_cast<std::size_t>(n), 1);
@@ -433,37 +668,44 @@ HeightMap parse_x3p(std::string_view bytes, std::string_view source) {
       }
     }
   } else if (data_list) {
-    std::uint64_t count = 0;
-    for (auto d : data_list.children()) {
-      if (d.type() == pugi::node_element && local_name(d.name()) == "Datum") ++count;
+    // The DOM holds the DataList without its content (see find_data_list); make sure it
+    // is the element whose text was set aside.
+    if (!data_list_text ||
+        static_cast<std::size_t>(data_list.offset_debug()) != data_list_text->name) {
+      fail_xml(
+          "Record3/DataList: the inline data must be the first DataList element of a UTF-8 "
+          "main.xml");
     }
+    const std::uint64_t text_bytes = data_list_text->content_end - data_list_text->content_begin;
+    if (text_bytes > kMaxBytesPerDatum * n + 65536) {
+      fail_xml(
+          fmt::format("Record3/DataList holds {} of text for SizeX x SizeY = {} points, more "
+                      "than {} bytes a point: refused",
+                      byte_size(text_bytes), n, kMaxBytesPerDatum));
+    }
+    // Count first, allocate after.
+    const std::uint64_t count =
+        scan_datums(xml, *data_list_text, fail_xml, [](std::uint64_t, std::string_view) {});
     if (count != n) {
-      reader.fail(
-          "main.xml",
+      fail_xml(
           fmt::format("Record3/DataList has {} Datum elements, but SizeX x SizeY = {}", count, n));
     }
     map.z.resize(static_cast<std::size_t>(n));
     valid.assign(static_cast<std::size_t>(n), 1);
-    std::size_t k = 0;
-    for (auto d : data_list.children()) {
-      if (d.type() != pugi::node_element || local_name(d.name()) != "Datum") continue;
-      const auto s = trimmed_text(d);
-      if (s.empty()) {
+    scan_datums(xml, *data_list_text, fail_xml, [&](std::uint64_t k, std::string_view text) {
+      if (text.empty()) {  // <Datum/>: an invalid point
         valid[k] = 0;
         any_invalid = true;
-        map.z[k++] = std::numeric_limits<double>::quiet_NaN();
-        continue;
+        map.z[k] = std::numeric_limits<double>::quiet_NaN();
+        return;
       }
-      double v = 0;
-      const char* first = s.data();
-      if (*first == '+') ++first;
-      const auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), v);
-      if (ec != std::errc() || ptr != s.data() + s.size()) {
-        reader.fail("main.xml", fmt::format("Record3/DataList/Datum {} = \"{}\" is not a number",
-                                            k + 1, s.substr(0, 40)));
+      const double raw = datum_value(text, k, type, fail_xml);
+      map.z[k] = cz.offset + cz.increment * raw;
+      if (!std::isfinite(map.z[k])) {
+        fail_xml(fmt::format("Record3/DataList Datum {}: CZ Offset + Increment x {} overflows",
+                             k + 1, raw));
       }
-      map.z[k++] = cz.offset + cz.increment * v;
-    }
+    });
   } else {
     reader.fail("main.xml", "Record3 has neither DataLink nor DataList: no point data");
   }
@@ -703,11 +945,8 @@ std::string zip_x3p_package(const X3pPackage& package) {
 }
 
 void write_x3p(const std::string& path, const HeightMap& map, const X3pWriteOptions& options) {
-  const std::string bytes = zip_x3p_package(make_x3p_package(map, options));
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw InvalidInput(fmt::format("cannot write \"{}\"", path));
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw InvalidInput(fmt::format("writing \"{}\" failed", path));
+  // Whole or not at all: a temporary file renamed over `path`.
+  core::write_file_atomically(path, zip_x3p_package(make_x3p_package(map, options)));
 }
 
 }  // namespace asperity::surface

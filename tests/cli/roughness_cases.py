@@ -1,12 +1,15 @@
 #!/usr/bin/env python3
 """Behaviour of `asperity roughness`: the shipped example (Table 5.4 from synthetic scans
-of the two milled halves) and bad input (exit 2, a message naming the file or flag,
-nothing on stdout).
+of the two milled halves), the README command, --plot, ls = 5 dx, and bad input (exit
+2, a message naming the file and the problem, nothing on stdout).
 
 Usage: roughness_cases.py ASPERITY_EXE SOURCE_DIR CASE. Standard library only.
 """
 import json
 import os
+import random
+import struct
+import zipfile
 import subprocess
 import sys
 import tempfile
@@ -22,25 +25,37 @@ def fail(msg):
 
 
 def bad(exe, argv, must_contain):
+    """Exit 2, nothing on stdout, and a message naming every fragment (the file and
+    the problem)."""
     r = run(exe, argv)
     if r.returncode != 2:
         return fail(f"expected exit 2, got {r.returncode}: {r.stderr}")
     if r.stdout:
         return fail(f"stdout not empty: {r.stdout!r}")
-    if must_contain.lower() not in r.stderr.lower():
-        return fail(f"message does not mention {must_contain!r}: {r.stderr}")
+    for text in ([must_contain] if isinstance(must_contain, str) else must_contain):
+        if text.lower() not in r.stderr.lower():
+            return fail(f"message does not mention {text!r}: {r.stderr}")
     return 0
 
 
 def main():
-    exe, src, case = sys.argv[1], sys.argv[2], sys.argv[3]
+    with tempfile.TemporaryDirectory() as tmp:
+        return check(sys.argv[1], sys.argv[2], sys.argv[3], tmp)
+
+
+def check(exe, src, case, tmp):
     ex = os.path.join(src, "examples", "roughness")
-    tmp = tempfile.mkdtemp()
 
     def write(name, text):
         p = os.path.join(tmp, name)
         with open(p, "w") as f:
             f.write(text)
+        return p
+
+    def write_bytes(name, data):
+        p = os.path.join(tmp, name)
+        with open(p, "wb") as f:
+            f.write(data)
         return p
 
     if case == "table_5_4_example":
@@ -63,18 +78,86 @@ def main():
             if key not in c:
                 return fail(f"combined lacks {key}")
         return 0
+    x3p = os.path.join(src, "tests", "data", "x3p")
+    sys.path.insert(0, x3p)
+    import make_fixtures as fx  # builds X3P files with zipfile, struct, hashlib
+
+    def x3p_file(name, members):
+        p = os.path.join(tmp, name)
+        fx.write_archive(p, members, zipfile.ZIP_DEFLATED)
+        return p
+
+    def tampered(name, change):
+        members = dict(fx.prf_int16_offset())
+        change(members)
+        return x3p_file(name, list(members.items()))
+
+    def grid(n, first=0):
+        return "".join(f"{i},{0.1 * (i % 7):.1f}\n" for i in range(first, first + n))
+
+    # case: (file, fragments the message must name besides the file)
     cases = {
-        "empty_file": (write("empty.csv", ""), "empty"),
-        "single_point": (write("one.csv", "x[um],z[um]\n0,1\n"), "one.csv"),
-        "nan_height": (write("nan.csv", "x[um],z[um]\n" + "".join(f"{i},{'nan' if i == 5 else 0.1}\n" for i in range(3000))), "nan.csv"),
-        "unknown_unit": (write("unit.csv", "x[um],z[furlong]\n" + "".join(f"{i},0.1\n" for i in range(3000))), "no known length unit"),
-        "decreasing_x": (write("dec.csv", "x[um],z[um]\n" + "".join(f"{3000 - i},0.1\n" for i in range(3000))), "dec.csv"),
-        "too_short_for_filter": (write("short.csv", "x[um],z[um]\n" + "".join(f"{i},{(i % 7) * 0.1}\n" for i in range(200))), "short.csv"),
-        "corrupt_x3p": (write("bad.x3p", "PK\x03\x04 not really a zip"), "bad.x3p"),
+        "empty_file": (lambda: write("empty.csv", ""), ["empty"]),
+        "single_point": (lambda: write("one.csv", "x[um],z[um]\n0,1\n"), ["only 1 data point", "at least 2"]),
+        "nan_height": (lambda: write("nan.csv", "x[um],z[um]\n" + "".join(f"{i},{'nan' if i == 5 else 0.1}\n" for i in range(3000))), ["line 7", "not a finite number"]),
+        "unknown_unit": (lambda: write("unit.csv", "x[um],z[furlong]\n" + "".join(f"{i},0.1\n" for i in range(3000))), ["no known length unit"]),
+        "decreasing_x": (lambda: write("dec.csv", "x[um],z[um]\n" + "".join(f"{3000 - i},0.1\n" for i in range(3000))), ["line 3", "does not increase"]),
+        # 1500 points at 1 um, then 2 um: the first x off the grid is on line 1503.
+        "non_uniform_x": (lambda: write("nonuni.csv", "x[um],z[um]\n" + "".join(f"{i if i < 1500 else 1500 + 2 * (i - 1500)},{0.1 * (i % 7):.1f}\n" for i in range(3000))), ["line 1503", "not uniformly spaced"]),
+        # An instrument message between two blocks: refused, not half the data dropped.
+        "data_break": (lambda: write("lifted.csv", "x[um],z[um]\n" + grid(5000) + "ERROR: stylus lifted\n" + grid(1000, 5000)), ["line 5002", "not a number inside the data", "stylus lifted"]),
+        "too_short_for_filter": (lambda: write("short.csv", "x[um],z[um]\n" + "".join(f"{i},{(i % 7) * 0.1}\n" for i in range(200))), ["shorter than the filter needs"]),
+        "corrupt_x3p": (lambda: write("bad.x3p", "PK\x03\x04 not really a zip"), ["zip"]),
+        "wrong_md5": (lambda: tampered("md5.x3p", lambda m: m.update({"bindata/data.bin": b"\x01" + m["bindata/data.bin"][1:]})), ["bindata/data.bin", "MD5 checksum mismatch"]),
+        "missing_entry": (lambda: tampered("missing.x3p", lambda m: m.pop("bindata/data.bin")), ["bindata/data.bin", "missing from the archive"]),
+        "absurd_size": (lambda: tampered("absurd.x3p", lambda m: m.update({"main.xml": m["main.xml"].replace(b"<SizeX>7</SizeX>", b"<SizeX>1000000000</SizeX>")})), ["SizeX", "1000000000", "is not a size between 1 and"]),
+        "huge_main_xml": (lambda: tampered("huge.x3p", lambda m: m.update({"main.xml": m["main.xml"] + b" " * (65 << 20)})), ["main.xml", "more than the 64 MiB allowed"]),
+        "inline_not_integer": (lambda: x3p_file("inline.x3p", [("main.xml", fx.prf_datalist_empty()[0][1].replace(b"<DataType>D</DataType><Increment>1</Increment>", b"<DataType>L</DataType><Increment>1</Increment>"))]), ["DataList Datum 1", "is not an integer"]),
+        "random_bytes": (lambda: write_bytes("random.dat", random.Random(7).randbytes(4096)), ["not a text profile"]),
+        "random_zip_bytes": (lambda: write_bytes("random.x3p", b"PK\x03\x04" + random.Random(8).randbytes(4096)), ["zip archive"]),
     }
     if case in cases:
-        path, text = cases[case]
-        return bad(exe, ["--surface", path], text)
+        make, fragments = cases[case]
+        path = make()
+        return bad(exe, ["--surface", path], [path] + fragments)
+    if case == "ls_5um":
+        # ls = 5 dx exactly on the shipped 1 um scan: accepted, dx reported as 1e-06.
+        r = run(exe, ["--surface", f"{ex}/pzt_min.csv", "--ls", "5um", "--json"])
+        if r.returncode != 0:
+            return fail(r.stderr)
+        scan = json.loads(r.stdout)["surfaces"][0]["scans"][0]
+        if scan["dx"] != 1e-6:
+            return fail(f"dx = {scan['dx']!r}, expected 1e-06")
+        return 0
+    if case in ("plot_dektak", "plot_example"):
+        png = os.path.join(tmp, "out.png")
+        argv = (["--surface", os.path.join(src, "tests", "data", "dektak-1.csv"), "--lc", "0.25mm", "--ls", "2.5um"]
+                if case == "plot_dektak" else
+                ["--surface", f"{ex}/pzt_max.csv,{ex}/pzt_min.csv", "--surface", f"{ex}/lc_max.csv,{ex}/lc_min.csv"])
+        r = run(exe, argv + ["--plot", png])
+        if r.returncode != 0:
+            return fail(r.stderr)
+        with open(png, "rb") as f:
+            head = f.read(24)
+        # PNG signature, then the IHDR chunk: width and height (the four panels).
+        if head[:8] != b"\x89PNG\r\n\x1a\n" or head[12:16] != b"IHDR":
+            return fail("not a PNG")
+        if struct.unpack(">II", head[16:24]) != (1400, 1000):
+            return fail(f"size {struct.unpack('>II', head[16:24])}")
+        return 0
+    if case == "readme_command":
+        # The roughness command of README.md, run as written (from the source tree).
+        r = subprocess.run([exe, "roughness", "--surface", "examples/roughness/pzt_max.csv,examples/roughness/pzt_min.csv",
+                            "--surface", "examples/roughness/lc_max.csv,examples/roughness/lc_min.csv", "--json"],
+                           capture_output=True, text=True, timeout=120, cwd=src)
+        if r.returncode != 0:
+            return fail(r.stderr)
+        c = json.loads(r.stdout)["combined"]
+        # Table 5.4 combined sigma and R (printed to 4 digits: 0.5 %).
+        for got, want in ((c["sigma"], 2.677e-6), (c["R"], 30.14e-6)):
+            if abs(got - want) / want > 5e-3:
+                return fail(f"{got} vs {want}")
+        return 0
     if case == "bad_params":
         return bad(exe, ["--params", "sigma=1um,eta=abc,R=40um"], "eta")
     return fail(f"unknown case {case}")

@@ -1,6 +1,8 @@
 """surface/ from Python: roughness parameters on numpy arrays (thesis ch. 5-6)."""
+import importlib.util
 import math
 import pathlib
+import zipfile
 
 import numpy as np
 import pytest
@@ -84,3 +86,47 @@ def test_shipped_example_reproduces_table_5_4():
     pzt, lc = half("pzt"), half("lc")
     assert (pzt.sigma / um, pzt.eta * um**2, pzt.R / um) == pytest.approx((1.763, 3.34e-4, 40.76), rel=1e-4)
     assert (lc.sigma / um, lc.eta * um**2, lc.R / um) == pytest.approx((2.015, 2.51e-4, 44.77), rel=1e-4)
+
+
+def test_x3p_fixtures_built_independently(tmp_path):
+    # tests/data/x3p/make_fixtures.py writes the archives with zipfile/struct/hashlib (not
+    # our writer); regenerating them gives the committed members byte for byte.
+    spec = importlib.util.spec_from_file_location("make_fixtures", DATA / "x3p" / "make_fixtures.py")
+    fx = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(fx)
+    for name, build in fx.FIXTURES.items():
+        fx.write_archive(tmp_path / name, build())
+        with zipfile.ZipFile(DATA / "x3p" / name) as a, zipfile.ZipFile(tmp_path / name) as b:
+            assert a.namelist() == b.namelist()
+            for member in a.namelist():
+                assert a.read(member) == b.read(member), (name, member)
+    # z = CZ Offset + CZ Increment x value (ISO 5436-2); the values are fx's.
+    p = asperity.read_x3p(str(DATA / "x3p" / "prf_int16_offset.x3p"))
+    assert p["z"].shape == (1, 7)
+    assert p["z"][0] == pytest.approx([2.5e-6 + 1e-9 * v for v in fx.PRF_INT16_VALUES], rel=1e-14)
+    assert (p["dx"], p["x0"]) == (0.5e-6, 1e-3)
+    # The mask: bit k % 8 of byte k // 8, least significant first, 1 = valid (openGPS
+    # ISO5436_2_XML valid_buffer.cxx, ValidBuffer::IsValid).
+    s = asperity.read_x3p(str(DATA / "x3p" / "sur_int32_mask.x3p"))
+    assert s["z"].shape == (3, 5)
+    flat = s["z"].ravel()
+    assert sorted(np.flatnonzero(np.isnan(flat))) == sorted(fx.SUR_INVALID)
+    valid = [k for k in range(15) if k not in fx.SUR_INVALID]
+    assert flat[valid] == pytest.approx([1e-10 * fx.SUR_INT32_VALUES[k] for k in valid], rel=1e-14)
+    d = asperity.read_x3p(str(DATA / "x3p" / "prf_datalist_empty.x3p"))
+    assert d["invalid_points"] == 1
+    np.testing.assert_array_equal(d["z"][0], [1.5e-6, -2.25e-6, np.nan, 3.0e-6, 4e-7, 0.0])
+
+
+def test_text_reader_refuses_a_break_inside_the_data(tmp_path):
+    rows = [f"{i},{0.1 * (i % 7):.1f}" for i in range(6000)]
+    path = tmp_path / "lifted.csv"
+    path.write_text("\n".join(["x[um],z[um]"] + rows[:5000] + ["ERROR: stylus lifted"] + rows[5000:]) + "\n")
+    with pytest.raises(asperity.InvalidInput, match="line 5002: not a number inside the data"):
+        asperity.read_profile(str(path))
+    # The header's names decide the column order.
+    swapped = tmp_path / "zx.csv"
+    swapped.write_text("z[um],x[mm]\n5,0\n6,0.001\n7,0.002\n")
+    p = asperity.read_profile(str(swapped))
+    assert p["dx"] == 1e-6
+    np.testing.assert_allclose(p["z"], [5e-6, 6e-6, 7e-6], rtol=1e-15)

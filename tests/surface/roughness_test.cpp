@@ -117,18 +117,17 @@ TEST(RoughnessTable, Table62CombinedColumnsFollowFromTheHalves) {
        0.0005},
   };
   for (const auto& c : cols) expect_combination(c);
-  // Rough steel: the R row of this block is cut off in the seed's text; sigma and eta
-  // are checked.
-  for (const auto& [a, b, s, e] :
-       {std::tuple{Half{1.848, 3.23e-4, 40.0}, Half{1.863, 3.05e-4, 40.0}, 2.624, 3.14e-4},
-        std::tuple{Half{1.608, 3.55e-4, 40.0}, Half{1.714, 3.51e-4, 40.0}, 2.351, 3.53e-4}}) {
+  // Rough steel: the seed's text of Table 6.2 gives no R for this block, so neither m2
+  // nor m4 of the halves is known and the combined eta and R cannot be checked (an R
+  // assumed for both halves would make the combined eta the harmonic mean of the
+  // halves' eta, which lies between them whatever the table says). sigma depends on
+  // m0 alone: sigma = sqrt(sigma_a^2 + sigma_b^2), checked to the printed digit. The
+  // R = 40 um below only satisfies from_parameters() and does not enter sigma.
+  for (const auto& [a, b, s] :
+       {std::tuple{Half{1.848, 3.23e-4, 40.0}, Half{1.863, 3.05e-4, 40.0}, 2.624},
+        std::tuple{Half{1.608, 3.55e-4, 40.0}, Half{1.714, 3.51e-4, 40.0}, 2.351}}) {
     const auto m = combine(moments_of(a), moments_of(b));
     EXPECT_NEAR(m.sigma() / um, s, 0.001);
-    // eta of the combination weights each half by m2, which needs R; with equal R
-    // it is the harmonic-like mean of the halves' eta: check it lies between them.
-    EXPECT_GT(m.eta() * um * um, std::min(a.eta_um2, b.eta_um2) - 1e-9);
-    EXPECT_LT(m.eta() * um * um, std::max(a.eta_um2, b.eta_um2) + 1e-9);
-    (void)e;
   }
 }
 
@@ -147,6 +146,8 @@ TEST(RoughnessTable, Table54PlasticityIndexWithinOnePercent) {
       {{1.763, 3.34e-4, 40.76}, 3.374, 0.024}, {{2.015, 2.51e-4, 44.77}, 3.230, 0.023},
       {{2.677, 2.91e-4, 30.14}, 4.725, 0.023}, {{1.859, 2.87e-4, 44.75}, 3.284, 0.024},
       {{1.847, 2.68e-4, 47.37}, 3.122, 0.023}, {{2.620, 2.77e-4, 32.53}, 4.534, 0.024}};
+  // The criterion is 1 %; measured, the six columns come out 0.30, 0.29, 0.47,
+  // 0.50, 0.61 and 0.26 % above the printed psi (docs/roughness.md quotes these).
   for (const auto& c : cols) {
     const auto m = moments_of(c.h);
     SCOPED_TRACE(c.h.sigma_um);
@@ -374,31 +375,50 @@ TEST(RoughnessMoments, LevellingRemovesMeanAndTilt) {
   EXPECT_THROW((void)parse_levelling("plane"), InvalidInput);
 }
 
-TEST(RoughnessMoments, ArealMapGivesBothDirections) {
+HeightMap two_cosines(std::size_t nx, std::size_t ny) {
   HeightMap map;
-  map.nx = 400;
-  map.ny = 300;
+  map.nx = nx;
+  map.ny = ny;
   map.dx = 0.5 * um;
   map.dy = 0.5 * um;
   map.source = "synthetic map";
   map.z.resize(map.nx * map.ny);
-  const double lx = 20 * um, ly = 50 * um;
   for (std::size_t iy = 0; iy < map.ny; ++iy) {
     for (std::size_t ix = 0; ix < map.nx; ++ix) {
       const double x = static_cast<double>(ix) * map.dx, y = static_cast<double>(iy) * map.dy;
       map.z[ix + map.nx * iy] =
-          1e-6 * std::cos(2 * kPi * x / lx) + 2e-6 * std::cos(2 * kPi * y / ly);
+          1e-6 * std::cos(2 * kPi * x / (20 * um)) + 2e-6 * std::cos(2 * kPi * y / (50 * um));
     }
   }
+  return map;
+}
+
+TEST(RoughnessMoments, ArealMapGivesBothDirections) {
+  // 401 x 301 points: the 400 (300) forward differences span exactly 10 (3) periods of
+  // the 20 um (50 um) cosine, 40 (100) samples each, so their mean square is exactly
+  // half the squared amplitude of the difference.
+  const auto map = two_cosines(401, 301);
   const auto d = areal_moments(map, Levelling::line, GaussianFilter::none());
   EXPECT_EQ(d.x_profiles, map.ny);
   EXPECT_EQ(d.y_profiles, map.nx);
-  // Along x only the x sinusoid varies; its slope dominates.
-  const double kx = 2 * kPi / lx, ky = 2 * kPi / ly;
-  EXPECT_NEAR(d.x.m2 / (0.5e-12 * kx * kx), 1.0, 0.02);
-  EXPECT_NEAR(d.y.m2 / (0.5 * 4e-12 * ky * ky), 1.0, 0.02);
-  // Whole periods of cosines: no correlation with the plane.
-  EXPECT_NEAR(map.rms_height_about_plane(), std::sqrt(0.5e-12 + 2e-12), 1e-9);
+  // Along x only the x cosine varies. A forward difference of A cos(k x) has mean
+  // square 2 A^2 sin^2(k dx/2), so m2 = (A^2/2) k^2 (sin(k dx/2)/(k dx/2))^2: the
+  // scheme's bias, 0.21 % (x) and 0.033 % (y) here, is part of the expected value.
+  // What remains is the levelling line (the sampled cosines' correlation with x over
+  // whole periods is nil up to the one extra end point; numpy gives 1e-16 relative)
+  // and rounding: 1e-12 relative.
+  auto m2_forward = [](double A, double lambda, double dx) {
+    const double k = 2 * kPi / lambda, h = 0.5 * k * dx;
+    const double sinc = std::sin(h) / h;
+    return 0.5 * A * A * k * k * sinc * sinc;
+  };
+  EXPECT_NEAR(d.x.m2 / m2_forward(1e-6, 20 * um, map.dx), 1.0, 1e-12);
+  EXPECT_NEAR(d.y.m2 / m2_forward(2e-6, 50 * um, map.dy), 1.0, 1e-12);
+  // Sq about the least-squares plane, as numpy's lstsq gives it for the 400 x 300 map
+  // (whole periods without the end points: 3.04e-5 below sqrt(0.5 + 2) um, the plane
+  // taking up the cosines' small correlation with x and y).
+  EXPECT_NEAR(two_cosines(400, 300).rms_height_about_plane(), 1.5810907358744405e-06,
+              1e-12 * 1.58e-6);
 }
 
 }  // namespace

@@ -28,14 +28,25 @@ struct TextReadOptions {
 /// `x (mm); z (nm)`, `Lateral um,Raw Micrometer`; units are SI length units (m, mm,
 /// um, nm, ..., the micro sign in UTF-8 or Latin-1, or the words Micrometer,
 /// Millimeter, Nanometer, Angstrom). Anything above the header (a vendor preamble)
-/// is skipped. Delimiters: comma, semicolon, tab or blanks; CR, LF or CRLF line
-/// ends; a UTF-8 byte-order mark is skipped.
+/// and below the block (a footer) is skipped, unless it holds another run of numeric
+/// lines with as many columns as the data: then the line that breaks the data (an
+/// instrument message, a repeated header, an empty line) is refused by its number
+/// ("line N: not a number inside the data") instead of dropping the other run.
+/// Delimiters: comma, semicolon, tab or blanks; CR, LF or CRLF line ends; a UTF-8
+/// byte-order mark is skipped.
 ///
-/// Two columns are x and z; a single column is z, and then `options.dx` is
-/// required. x must increase strictly with a uniform step: dx and x0 are the
-/// least-squares line through all x; each x may deviate from that grid by at most
-/// dx/2 (rounding in the export) and no step may exceed 1.5 dx (a missing
-/// sample), else the file is refused as non-uniform.
+/// Two columns are x and z, in the order the header names them (`z[um],x[um]`
+/// works), else x first; a single column is z, and then `options.dx` is required. x
+/// must increase strictly with a uniform step, checked three ways, each refusal
+/// naming the first offending line: every x within dx/2 of the least-squares grid
+/// of the x up to it (a missing sample or a change of spacing shows where it
+/// happens), every step within half of the median step (the median of the mean
+/// steps over 16 samples, insensitive to the rounding of exports that print few
+/// decimals), and every x within dx/2 of the least-squares grid of all points (a
+/// slow drift). dx and x0 are that last grid's; when the unit is a power of ten and
+/// the fitted step is a decimal of at most 12 digits to 1e-12 relative (0.0010 mm),
+/// dx is that decimal in metres (1e-6, not 1.0000000000000008e-06), and x0 is the
+/// first x when the grid passes through it.
 [[nodiscard]] Profile parse_profile_text(std::string_view content, std::string_view source,
                                          const TextReadOptions& options = {});
 /// Reads a file with parse_profile_text().
@@ -48,13 +59,19 @@ enum class X3pDataType { int16, int32, float32, float64 };
 /// Parses an X3P file held in memory (the zip archive's bytes).
 ///
 /// Supports feature types PRF (profile) and SUR (areal), incremental x and y axes,
-/// z data types I, L, F and D, inline `DataList` and binary `DataLink` point data
-/// (little-endian, x fastest), the invalid-point mask (`ValidPointsLink`, one bit
-/// per point, least significant bit first; NaN heights and empty `Datum` elements
-/// are invalid points too), and checks the MD5 of the point data
-/// (`MD5ChecksumPointData`, of the valid-points file when given) and of main.xml
-/// (`md5checksum.hex`). Refused: point clouds (PCL), absolute x/y axes, SizeZ != 1,
-/// sizes that disagree with the data, checksum mismatches, missing entries.
+/// z data types I, L, F and D (z = CZ Offset + CZ Increment x value), inline
+/// `DataList` and binary `DataLink` point data (little-endian, x fastest), the
+/// invalid-point mask (`ValidPointsLink`: bit k % 8 of byte k / 8, least significant
+/// bit first, 1 = valid, as the openGPS ISO 5436-2 reference library reads it; NaN
+/// heights and empty `<Datum/>` elements are invalid points too), and checks the MD5
+/// of the point data (`MD5ChecksumPointData`, of the valid-points file when given)
+/// and of main.xml (`md5checksum.hex`). Inline values must fit the data type:
+/// integers in range for I and L, finite numbers for F (in float32 range) and D.
+/// Refused: point clouds (PCL), absolute x/y axes, SizeZ != 1, sizes that disagree
+/// with the data, checksum mismatches, missing entries, and entries larger than
+/// allowed before anything is read: main.xml over 64 MiB, more than 1 MiB of it
+/// outside the DataList (the rest is parsed into a DOM), a DataList over 128 bytes a
+/// point, md5checksum.hex over 512 bytes, point data other than SizeX x SizeY values.
 [[nodiscard]] HeightMap parse_x3p(std::string_view bytes, std::string_view source);
 /// Reads a file with parse_x3p().
 [[nodiscard]] HeightMap read_x3p(const std::string& path);
