@@ -39,6 +39,7 @@ nb::dict cycle_dict(const CycleMetrics& c) {
   d["Q_max"] = c.Q_max;
   d["delta_max"] = c.delta_max;
   d["stiffness"] = c.stiffness;
+  d["stiffness_resolved"] = c.stiffness_resolved;
   d["stiffness_unloading"] = c.stiffness_unloading;
   d["stiffness_reloading"] = c.stiffness_reloading;
   d["sliding"] = c.sliding;
@@ -74,10 +75,12 @@ nb::dict prediction_dict(const JointCase& c, const JointPrediction& p, std::size
     ld["stiffness"] = l.stiffness;
     ld["contact_area_ratio"] = l.contact_area_ratio;
     ld["backbone"] = nb::cast(std::shared_ptr<const hysteresis::Backbone>(l.backbone));
-    std::vector<double> a, q, e;
+    ld["gross_slip_amplitude"] = l.gross_slip_amplitude;
+    std::vector<double> a, q, e, imp;
     nb::list regimes, loops;
     for (const auto& am : l.amplitudes) {
       a.push_back(am.delta_max);
+      imp.push_back(am.imposed);
       q.push_back(am.Q_peak);
       e.push_back(am.energy);
       regimes.append(am.regime);
@@ -88,6 +91,7 @@ nb::dict prediction_dict(const JointCase& c, const JointPrediction& p, std::size
       loops.append(lp);
     }
     ld["delta_max"] = array_of(a);
+    ld["imposed"] = array_of(imp);
     ld["Q_peak"] = array_of(q);
     ld["energy"] = array_of(e);
     ld["regime"] = regimes;
@@ -136,7 +140,8 @@ void bind_joint(nb::module_& m) {
   m.def(
       "analyze_fretting",
       [](const Array1& t, const Array1& delta, const Array1& Q, double P,
-         std::optional<Array1> Delta, double stiffness_window, bool stiffness_from_imposed) {
+         std::optional<Array1> Delta, double stiffness_window, int stiffness_degree,
+         bool stiffness_from_imposed) {
         FrettingData d;
         d.source = "data";
         d.t = vec(t);
@@ -145,6 +150,7 @@ void bind_joint(nb::module_& m) {
         if (Delta) d.Delta = vec(*Delta);
         const auto a = joint::analyze_fretting(d, P,
                                                {.stiffness_window = stiffness_window,
+                                                .stiffness_degree = stiffness_degree,
                                                 .stiffness_from_imposed = stiffness_from_imposed});
         nb::dict out;
         out["P"] = a.P;
@@ -154,6 +160,19 @@ void bind_joint(nb::module_& m) {
         out["per_cycle"] = pc;
         out["mean"] = cycle_dict(a.mean);
         out["mu"] = a.mu;
+        nb::dict se;
+        se["energy"] = a.energy_standard_error;
+        se["stiffness"] = a.stiffness_standard_error;
+        out["standard_error"] = se;
+        out["noise_delta"] = a.noise_delta;
+        out["noise_Q"] = a.noise_Q;
+        out["energy_noise_floor"] = a.energy_noise_floor;
+        out["energy_resolved"] = a.energy_resolved;
+        out["stiffness_window_motion"] = a.stiffness_window_motion;
+        out["stiffness_noise"] = a.stiffness_noise;
+        nb::list warnings;
+        for (const auto& w : a.warnings) warnings.append(w);
+        out["warnings"] = warnings;
         out["loop_delta"] = array_of(a.loop_delta);
         out["loop_Q"] = array_of(a.loop_Q);
         out["loop_energy"] = a.loop_energy;
@@ -164,14 +183,34 @@ void bind_joint(nb::module_& m) {
         }
         return out;
       },
-      "t"_a, "delta"_a, "Q"_a, "P"_a, "Delta"_a = nb::none(), "stiffness_window"_a = 0.3,
-      "stiffness_from_imposed"_a = true,
+      "t"_a, "delta"_a, "Q"_a, "P"_a, "Delta"_a = nb::none(),
+      "stiffness_window"_a = AnalysisOptions{}.stiffness_window,
+      "stiffness_degree"_a = AnalysisOptions{}.stiffness_degree, "stiffness_from_imposed"_a = true,
       "Fretting-data analysis (time [s], joint displacement [m], force [N], optional imposed "
       "displacement [m]): cycles, per_cycle and mean metrics (energy, Q_max, delta_max, "
-      "stiffness, sliding, partial_slip), mu = Q_max/P (Eq. 6.1), the averaged loop. With "
-      "Delta the stiffness comes from Q(Delta) and the fitted apparatus compliance "
-      "(apparatus_compliance [m/N], apparatus_residual_rms [m]) unless "
-      "stiffness_from_imposed=False.");
+      "stiffness, stiffness_resolved, sliding, partial_slip), mu = Q_max/P (Eq. 6.1), "
+      "standard_error {energy, stiffness}, the estimated noise (noise_delta, noise_Q), "
+      "energy_noise_floor and energy_resolved, warnings, the averaged loop. The stiffness is "
+      "a pooled fit after each reversal (window: fraction of the peak-to-peak force; degree "
+      "of the common polynomial), its mean 1/mean(1/k_i). With Delta it comes from Q(Delta) "
+      "and the fitted apparatus compliance (apparatus_compliance [m/N], "
+      "apparatus_residual_rms [m]) unless stiffness_from_imposed=False.");
+  m.def(
+      "power_law_exponent",
+      [](const Array1& Q_max, const Array1& energy) {
+        const auto f = fit_power_law(vec(Q_max), vec(energy));
+        nb::dict out;
+        out["exponent"] = f.exponent;
+        out["standard_error"] = f.standard_error;
+        out["ci95"] = nb::make_tuple(f.ci_low, f.ci_high);
+        out["runs"] = f.runs;
+        return out;
+      },
+      "Q_max"_a, "energy"_a,
+      "Exponent n of energy = c Q_max^n over runs (least squares in log-log; Fig. 6.12-6.14): "
+      "a dict with exponent, standard_error and ci95 (95 % Student-t interval; NaN with two "
+      "runs) and runs. Leave out runs whose energy is not resolved (analyze_fretting's "
+      "energy_resolved).");
   m.def(
       "read_fretting_csv",
       [](const std::string& path) {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <iostream>
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
@@ -24,11 +25,17 @@ namespace {
 struct AnalyzeOptions {
   std::vector<std::string> files;
   std::optional<std::string> P, model, out;
-  double window = 0.3;
+  double window = joint::AnalysisOptions{}.stiffness_window;
+  int degree = joint::AnalysisOptions{}.stiffness_degree;
   bool stiffness_from_delta = false;
   bool json = false;
   bool no_plots = false;
 };
+
+// NaN is not JSON: null.
+Json number(double v) {
+  return std::isfinite(v) ? Json(v) : Json(nullptr);
+}
 
 Json cycle_json(const joint::CycleMetrics& c) {
   return Json{{"t_start", c.t_start},
@@ -36,9 +43,10 @@ Json cycle_json(const joint::CycleMetrics& c) {
               {"energy", c.energy},
               {"Q_max", c.Q_max},
               {"delta_max", c.delta_max},
-              {"stiffness", c.stiffness},
-              {"stiffness_unloading", c.stiffness_unloading},
-              {"stiffness_reloading", c.stiffness_reloading},
+              {"stiffness", number(c.stiffness)},
+              {"stiffness_resolved", c.stiffness_resolved},
+              {"stiffness_unloading", number(c.stiffness_unloading)},
+              {"stiffness_reloading", number(c.stiffness_reloading)},
               {"sliding", c.sliding},
               {"partial_slip", c.partial_slip},
               {"Q_center", c.Q_center},
@@ -56,7 +64,27 @@ struct Run {
   std::optional<joint::LoadPrediction> model;
 };
 
-Json run_json(const Run& r, double window) {
+std::string stiffness_method(const joint::FrettingAnalysis& a, double window, int degree) {
+  const std::string pooled = fmt::format(
+      "over the samples after each reversal until |Q - Q_r| (smoothed) = {} x the cycle's "
+      "peak-to-peak force; every branch has the same Masing shape, so the fit is pooled: an "
+      "intercept per reversal, a slope per cycle, common coefficients of degree 2..{}",
+      window, degree);
+  return a.stiffness_from_imposed
+             ? fmt::format(
+                   "apparatus compliance c from Delta - delta = c Q + const over all samples "
+                   "(Fig. 5.7); least-squares Q(Delta) {}; per-cycle joint compliance C_i = "
+                   "dDelta/dQ - c at the reversals, k_i = 1/C_i; mean k = 1/mean(C_i) (harmonic "
+                   "mean of the k_i) with the standard error from the spread of the C_i",
+                   pooled)
+             : fmt::format(
+                   "least-squares delta(Q) {}; per-cycle joint compliance C_i = d delta/dQ at "
+                   "the reversals, k_i = 1/C_i; mean k = 1/mean(C_i) (harmonic mean of the k_i) "
+                   "with the standard error from the spread of the C_i",
+                   pooled);
+}
+
+Json run_json(const Run& r, double window, int degree) {
   Json j;
   j["file"] = r.file;
   j["P"] = r.a.P;
@@ -65,37 +93,35 @@ Json run_json(const Run& r, double window) {
   for (const auto& c : r.a.cycles) pc.push_back(cycle_json(c));
   j["per_cycle"] = pc;
   j["mean"] = cycle_json(r.a.mean);
+  j["standard_error"] =
+      Json{{"energy", r.a.energy_standard_error}, {"stiffness", r.a.stiffness_standard_error}};
   j["mu"] = r.a.mu;
+  j["noise"] = Json{{"delta", r.a.noise_delta}, {"Q", r.a.noise_Q}};
+  j["energy_noise_floor"] = r.a.energy_noise_floor;
+  j["energy_resolved"] = r.a.energy_resolved;
+  j["stiffness_window_motion"] = r.a.stiffness_window_motion;
+  j["stiffness_noise"] = r.a.stiffness_noise;
+  j["warnings"] = r.a.warnings;
   j["averaged_loop"] = Json{{"energy", r.a.loop_energy}, {"points", r.a.loop_delta.size()}};
   if (r.a.stiffness_from_imposed) {
     j["apparatus"] = Json{{"compliance", r.a.apparatus_compliance},
                           {"residual_rms", r.a.apparatus_residual_rms}};
   }
-  j["method"] = Json{
-      {"cycles",
-       "maximum -> minimum -> maximum of the displacement (moving average over 1/50 cycle); "
-       "ramps of Eq. 5.3 left out"},
-      {"energy", "trapezoidal loop area of the cycle (smoothed signals), closed"},
-      {"stiffness",
-       r.a.stiffness_from_imposed
-           ? fmt::format(
-                 "apparatus compliance c from Delta - delta = c Q + const over all samples; "
-                 "least-squares Q(Delta) over the samples after each reversal until |Q - Q_r| "
-                 "= {} x the cycle's peak-to-peak force (per cycle: quadratic; mean: cubic "
-                 "pooled over all reversals, one intercept each); stiffness = 1/(dDelta/dQ - c) "
-                 "at the reversal",
-                 window)
-           : fmt::format(
-                 "least-squares delta(Q) over the samples after each reversal until |Q - Q_r| "
-                 "= {} x the cycle's peak-to-peak force (per cycle: quadratic; mean: cubic "
-                 "pooled over all reversals, one intercept each); slope dQ/ddelta at the "
-                 "reversal",
-                 window)},
-      {"Q_max", "half the peak-to-peak force (smoothed)"},
-      {"mu", "mean Q_max / P (Eq. 6.1)"},
-      {"sliding",
-       "half the loop opening at Q = Q_center (delta_s of Fig. 6.1); partial_slip = "
-       "delta_max - sliding"}};
+  j["method"] =
+      Json{{"cycles",
+            "maximum -> minimum -> maximum of the displacement (moving average over 1/50 cycle); "
+            "ramps of Eq. 5.3 left out"},
+           {"energy",
+            "closed integral of Q d delta over the cycle (trapezoidal rule, smoothed signals), "
+            "signed; mean over cycles; standard error from their spread; noise floor = sqrt(s_d^2 "
+            "Sum dQ^2 + s_Q^2 Sum d delta^2)/sqrt(cycles) with the noise s_d, s_Q estimated from "
+            "second differences; resolved when the mean exceeds 3 floors"},
+           {"stiffness", stiffness_method(r.a, window, degree)},
+           {"Q_max", "half the peak-to-peak force (smoothed)"},
+           {"mu", "mean Q_max / P (Eq. 6.1)"},
+           {"sliding",
+            "half the loop opening at Q = Q_center (delta_s of Fig. 6.1); partial_slip = "
+            "delta_max - sliding"}};
   if (r.model) {
     const auto& m = *r.model;
     const auto& amp = m.amplitudes.front();
@@ -106,6 +132,7 @@ Json run_json(const Run& r, double window) {
              {"stiffness", m.stiffness},
              {"mu_static", m.mu},
              {"mu", amp.Q_peak / m.preload},
+             {"regime", amp.regime},
              {"relative_difference", Json{{"Q_max", rel_diff(r.a.mean.Q_max, amp.Q_peak)},
                                           {"energy", rel_diff(r.a.mean.energy, amp.energy)},
                                           {"stiffness", rel_diff(r.a.mean.stiffness, m.stiffness)},
@@ -119,23 +146,37 @@ std::string run_text(const Run& r) {
   std::string s = fmt::format("{}: P = {:.4g} N, {} cycles\n", r.file, a.P, a.cycles.size());
   s += fmt::format("{:>6} {:>12} {:>10} {:>14} {:>12} {:>12} {:>12}\n", "cycle", "energy[uJ]",
                    "Q_max[N]", "delta_max[um]", "k[N/um]", "sliding[um]", "partial[um]");
+  bool flagged = false;
   for (std::size_t i = 0; i < a.cycles.size(); ++i) {
     const auto& c = a.cycles[i];
-    s += fmt::format("{:>6} {:>12.5g} {:>10.4g} {:>14.4g} {:>12.4g} {:>12.4g} {:>12.4g}\n", i + 1,
-                     c.energy * 1e6, c.Q_max, c.delta_max * 1e6, c.stiffness * 1e-6,
-                     c.sliding * 1e6, c.partial_slip * 1e6);
+    const std::string k = c.stiffness_resolved ? fmt::format("{:.4g}", c.stiffness * 1e-6)
+                                               : fmt::format("{:.4g}*", c.stiffness * 1e-6);
+    flagged |= !c.stiffness_resolved;
+    s += fmt::format("{:>6} {:>12.5g} {:>10.4g} {:>14.4g} {:>12} {:>12.4g} {:>12.4g}\n", i + 1,
+                     c.energy * 1e6, c.Q_max, c.delta_max * 1e6, k, c.sliding * 1e6,
+                     c.partial_slip * 1e6);
   }
   const auto& c = a.mean;
   s += fmt::format("{:>6} {:>12.5g} {:>10.4g} {:>14.4g} {:>12.4g} {:>12.4g} {:>12.4g}\n", "mean",
                    c.energy * 1e6, c.Q_max, c.delta_max * 1e6, c.stiffness * 1e-6, c.sliding * 1e6,
                    c.partial_slip * 1e6);
-  s += fmt::format("mu = Q_max/P = {:.4f} (Eq. 6.1); averaged loop energy {:.5g} uJ\n", a.mu,
-                   a.loop_energy * 1e6);
+  s += fmt::format("{:>6} {:>12.3g} {:>10} {:>14} {:>12.3g}\n", "+-", a.energy_standard_error * 1e6,
+                   "", "", a.stiffness_standard_error * 1e-6);
+  if (flagged) s += "  * not resolved: noise exceeds the joint's compliance in this cycle\n";
+  s += fmt::format(
+      "energy per cycle {:.5g} +- {:.3g} uJ (noise floor {:.3g} uJ{}); averaged loop {:.5g} uJ\n",
+      c.energy * 1e6, a.energy_standard_error * 1e6, a.energy_noise_floor * 1e6,
+      a.energy_resolved ? "" : ": NOT resolved", a.loop_energy * 1e6);
+  s += fmt::format(
+      "stiffness {:.4g} +- {:.3g} N/um (harmonic mean over cycles; standard error from their "
+      "spread and the fit's shared shape)\n",
+      c.stiffness * 1e-6, a.stiffness_standard_error * 1e-6);
+  s += fmt::format("mu = Q_max/P = {:.4f} (Eq. 6.1); estimated noise {:.3g} um, {:.3g} N\n", a.mu,
+                   a.noise_delta * 1e6, a.noise_Q);
   if (a.stiffness_from_imposed) {
     s += fmt::format(
         "stiffness from Q(Delta) and the apparatus compliance {:.5g} um/N ({:.4g} N/um; fit "
-        "residual "
-        "{:.3g} um rms)\n",
+        "residual {:.3g} um rms)\n",
         a.apparatus_compliance * 1e6, 1e-6 / a.apparatus_compliance,
         a.apparatus_residual_rms * 1e6);
   }
@@ -143,15 +184,124 @@ std::string run_text(const Run& r) {
     const auto& m = *r.model;
     const auto& amp = m.amplitudes.front();
     s += fmt::format(
-        "model at delta_max = {:.4g} um: Q_peak {:.4g} N ({:+.1f} %), energy {:.5g} uJ ({:+.1f} "
-        "%), "
-        "stiffness {:.4g} N/um ({:+.1f} %), mu {:.4f} ({:+.1f} %)\n",
-        amp.delta_max * 1e6, amp.Q_peak, 100 * rel_diff(a.mean.Q_max, amp.Q_peak), amp.energy * 1e6,
-        100 * rel_diff(a.mean.energy, amp.energy), m.stiffness * 1e-6,
+        "model at delta_max = {:.4g} um ({}): Q_peak {:.4g} N ({:+.1f} %), energy {:.5g} uJ "
+        "({:+.1f} %), stiffness {:.4g} N/um ({:+.1f} %), mu {:.4f} ({:+.1f} %)\n",
+        amp.delta_max * 1e6, amp.regime, amp.Q_peak, 100 * rel_diff(a.mean.Q_max, amp.Q_peak),
+        amp.energy * 1e6, 100 * rel_diff(a.mean.energy, amp.energy), m.stiffness * 1e-6,
         100 * rel_diff(a.mean.stiffness, m.stiffness), amp.Q_peak / m.preload,
         100 * rel_diff(a.mu, amp.Q_peak / m.preload));
   }
+  for (const auto& w : a.warnings) s += "warning: " + w + "\n";
   return s;
+}
+
+// The energy-force power law over the runs whose energy is resolved (the others would
+// put the noise floor's slope into the exponent).
+struct PowerLaw {
+  std::optional<joint::PowerLawFit> fit;
+  std::vector<std::size_t> used, excluded;
+  std::vector<std::string> warnings;
+};
+
+PowerLaw power_law(const std::vector<Run>& runs) {
+  PowerLaw p;
+  std::vector<double> q, e;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const auto& a = runs[k].a;
+    if (a.energy_resolved && a.mean.energy > 0.0) {
+      p.used.push_back(k);
+      q.push_back(a.mean.Q_max);
+      e.push_back(a.mean.energy);
+    } else {
+      p.excluded.push_back(k);
+    }
+  }
+  if (!p.excluded.empty()) {
+    std::string list;
+    for (auto k : p.excluded) list += (list.empty() ? "" : ", ") + runs[k].file;
+    p.warnings.push_back(fmt::format(
+        "power law: {} left out (energy per cycle below 3 times its noise floor)", list));
+  }
+  if (q.size() >= 2) {
+    try {
+      p.fit = joint::fit_power_law(q, e);
+      if (p.fit->exponent > 3.5) {
+        p.warnings.push_back(fmt::format(
+            "power law: n = {:.3g} is above the partial-slip range 2-3 (Fig. 6.12-6.14): the "
+            "force saturates, so some runs are at or near gross slip",
+            p.fit->exponent));
+      }
+    } catch (const InvalidInput& ex) {
+      p.warnings.push_back(ex.what());
+    }
+  } else {
+    p.warnings.push_back(fmt::format(
+        "power law: {} run(s) with a resolved energy; at least two are needed for the exponent",
+        q.size()));
+  }
+  return p;
+}
+
+// energy_vs_force.png of several runs: the runs (left-out ones marked), the fitted power
+// law and the slope-2 and slope-3 guides of Fig. 6.12-6.14.
+PlotSpec energy_plot(const std::vector<Run>& runs, const PowerLaw& law) {
+  PlotSpec e{"Energy per cycle against peak force",
+             "peak force [N]",
+             "energy per cycle [J]",
+             true,
+             true,
+             {},
+             "set key inside left top box opaque"};
+  Series used{"runs", {}, {}, "points pt 7 ps 1.5 lc rgb '#1f4e9a'"};
+  Series excl{
+      "runs below the noise floor (left out)", {}, {}, "points pt 6 ps 1.5 lc rgb '#c0392b'"};
+  double qmin = 1e300, qmax = 0.0, lq = 0.0, le = 0.0;
+  std::size_t nlog = 0;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const auto& a = runs[k].a;
+    const bool in = std::find(law.used.begin(), law.used.end(), k) != law.used.end();
+    // A non-positive energy has no place on a log axis: it is noise, drawn at the floor.
+    const double energy = a.mean.energy > 0.0 ? a.mean.energy : a.energy_noise_floor;
+    auto& sr = in ? used : excl;
+    sr.x.push_back(a.mean.Q_max);
+    sr.y.push_back(energy);
+    qmin = std::min(qmin, a.mean.Q_max);
+    qmax = std::max(qmax, a.mean.Q_max);
+    if (in || law.used.empty()) {
+      lq += std::log(a.mean.Q_max);
+      le += std::log(energy);
+      ++nlog;
+    }
+  }
+  if (!used.x.empty()) e.series.push_back(used);
+  if (!excl.x.empty()) e.series.push_back(excl);
+  const double q0 = std::exp(lq / static_cast<double>(nlog));
+  const double e0 = std::exp(le / static_cast<double>(nlog));
+  if (law.fit) {
+    const auto& f = *law.fit;
+    Series fit{std::isfinite(f.ci_low) ? fmt::format("fit: n = {:.2f} (95 %: {:.2f} to {:.2f})",
+                                                     f.exponent, f.ci_low, f.ci_high)
+                                       : fmt::format("fit: n = {:.2f}", f.exponent),
+               {},
+               {},
+               "lines lc rgb '#1f4e9a'"};
+    double lqu = 0.0, leu = 0.0, qlo = 1e300, qhi = 0.0;
+    for (auto k : law.used) {
+      lqu += std::log(runs[k].a.mean.Q_max);
+      leu += std::log(runs[k].a.mean.energy);
+      qlo = std::min(qlo, runs[k].a.mean.Q_max);
+      qhi = std::max(qhi, runs[k].a.mean.Q_max);
+    }
+    const double nu = static_cast<double>(law.used.size());
+    for (int i = 0; i <= 20; ++i) {  // over the runs it was fitted to
+      const double q = qlo * std::pow(qhi / qlo, i / 20.0);
+      fit.x.push_back(q);
+      fit.y.push_back(std::exp(leu / nu + f.exponent * (std::log(q) - lqu / nu)));
+    }
+    e.series.push_back(fit);
+  }
+  add_power_guides(e, q0, e0, qmin, qmax);
+  return e;
 }
 
 }  // namespace
@@ -162,15 +312,20 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
       "analyze",
       "Measured fretting data (CSV columns t, delta, Q with units in the header, optionally the "
       "imposed Delta): cycles, energy per cycle, stiffness at reversals, peak force, mu = Q_max/P "
-      "(Eq. 6.1), slip displacements (Fig. 6.1); several files give the energy-force power law.");
+      "(Eq. 6.1), slip displacements (Fig. 6.1), standard errors and noise checks; several files "
+      "give the energy-force power law.");
   cmd->add_option("data", o->files, "fretting data files (CSV)")->required();
   cmd->add_option("--P", o->P, "normal load (preload) of the runs, e.g. 526N")->required();
   cmd->add_option("--model", o->model,
                   "a case file: overlay its prediction and quantify the differences");
   cmd->add_option("--out", o->out,
-                  "write analysis.json, cycles.csv, averaged_loop.csv and plots into DIR");
-  cmd->add_option("--window", o->window,
-                  "stiffness fit window, fraction of the peak-to-peak force (0.3)");
+                  "write analysis.json, cycles.csv, cycle_traces.csv, averaged_loop.csv and plots "
+                  "into DIR (a new directory, or one asperity wrote before)");
+  cmd->add_option(
+      "--window", o->window,
+      fmt::format("stiffness fit window, fraction of the peak-to-peak force ({})", o->window));
+  cmd->add_option("--degree", o->degree,
+                  fmt::format("polynomial degree of the stiffness fit, 1-4 ({})", o->degree));
   cmd->add_flag("--stiffness-from-delta", o->stiffness_from_delta,
                 "fit the stiffness on the measured delta even when the imposed Delta is given "
                 "(default with Delta: Q(Delta) and the fitted apparatus compliance)");
@@ -184,6 +339,11 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
         if (!(o->window > 0.0 && o->window <= 0.5)) {
           throw InvalidInput(fmt::format("--window = {}: must be in (0, 0.5]", o->window));
         }
+        if (o->degree < 1 || o->degree > 4) {
+          throw InvalidInput(fmt::format("--degree = {}: must be 1, 2, 3 or 4", o->degree));
+        }
+        // Refuse a foreign --out directory before the work.
+        if (o->out) joint::require_replaceable_output(*o->out, *o->out);
         std::optional<surface::RoughFlat> flat;
         if (o->model) flat = joint::read_case_file(*o->model).rough_flat();
         std::vector<Run> runs;
@@ -191,47 +351,70 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
           Run r;
           r.file = f;
           r.data = joint::read_fretting_csv(f);
-          r.a = joint::analyze_fretting(
-              r.data, P,
-              {.stiffness_window = o->window, .stiffness_from_imposed = !o->stiffness_from_delta});
+          r.a = joint::analyze_fretting(r.data, P,
+                                        {.stiffness_window = o->window,
+                                         .stiffness_degree = o->degree,
+                                         .stiffness_from_imposed = !o->stiffness_from_delta});
           if (flat) r.model = joint::predict_load(*flat, P, {r.a.mean.delta_max});
           runs.push_back(std::move(r));
         }
-        std::optional<double> exponent;
-        if (runs.size() >= 2) {
-          std::vector<double> q, e;
-          for (const auto& r : runs) {
-            q.push_back(r.a.mean.Q_max);
-            e.push_back(r.a.mean.energy);
-          }
-          exponent = joint::power_law_exponent(q, e);
-        }
+        std::optional<PowerLaw> law;
+        if (runs.size() >= 2) law = power_law(runs);
         Json j;
         if (runs.size() == 1) {
-          j = run_json(runs.front(), o->window);
+          j = run_json(runs.front(), o->window, o->degree);
         } else {
           Json rs = Json::array();
-          for (const auto& r : runs) rs.push_back(run_json(r, o->window));
+          for (const auto& r : runs) rs.push_back(run_json(r, o->window, o->degree));
           j["runs"] = rs;
-          j["power_law_exponent"] = *exponent;
+          const auto& f = law->fit;
+          j["power_law_exponent"] = f ? Json(f->exponent) : Json(nullptr);
+          Json used = Json::array(), excl = Json::array();
+          for (auto k : law->used) used.push_back(runs[k].file);
+          for (auto k : law->excluded) excl.push_back(runs[k].file);
+          j["power_law"] =
+              Json{{"exponent", f ? Json(f->exponent) : Json(nullptr)},
+                   {"standard_error", f ? number(f->standard_error) : Json(nullptr)},
+                   {"ci95", f && std::isfinite(f->ci_low) ? Json::array({f->ci_low, f->ci_high})
+                                                          : Json(nullptr)},
+                   {"runs_used", used},
+                   {"runs_excluded", excl},
+                   {"method",
+                    "least squares of log(energy) on log(Q_max) over the runs whose energy per "
+                    "cycle exceeds 3 times its noise floor; 95 % interval from Student's t"}};
+          j["warnings"] = law->warnings;
+        }
+        // Warnings go to stderr (and into the JSON).
+        for (const auto& r : runs) {
+          for (const auto& w : r.a.warnings)
+            std::cerr << fmt::format("asperity: warning: {}: {}\n", r.file, w);
+        }
+        if (law) {
+          for (const auto& w : law->warnings) std::cerr << "asperity: warning: " << w << "\n";
         }
         if (o->out) {
-          joint::StagedDirectory dir(*o->out);
+          joint::StagedDirectory dir(*o->out, "asperity analyze");
           write_file_atomically(dir.file("analysis.json"), j.dump(2) + "\n");
-          std::vector<std::vector<double>> cc(8), lc(4);
+          std::vector<std::vector<double>> cc(9), lc(4), tc(6);
           for (std::size_t k = 0; k < runs.size(); ++k) {
+            const auto& d = runs[k].data;
             for (std::size_t i = 0; i < runs[k].a.cycles.size(); ++i) {
               const auto& c = runs[k].a.cycles[i];
-              for (auto [col, v] :
-                   std::vector<std::pair<std::size_t, double>>{{0, double(k + 1)},
-                                                               {1, double(i + 1)},
-                                                               {2, c.energy},
-                                                               {3, c.Q_max},
-                                                               {4, c.delta_max * 1e6},
-                                                               {5, c.stiffness * 1e-6},
-                                                               {6, c.sliding * 1e6},
-                                                               {7, c.partial_slip * 1e6}}) {
-                cc[col].push_back(v);
+              const double row[] = {double(k + 1),
+                                    double(i + 1),
+                                    c.energy,
+                                    c.Q_max,
+                                    c.delta_max * 1e6,
+                                    c.stiffness * 1e-6,
+                                    c.stiffness_resolved ? 1.0 : 0.0,
+                                    c.sliding * 1e6,
+                                    c.partial_slip * 1e6};
+              for (std::size_t col = 0; col < cc.size(); ++col) cc[col].push_back(row[col]);
+              for (std::size_t s = c.first_sample; s <= c.last_sample; ++s) {
+                const double tr[] = {double(k + 1), double(i + 1),
+                                     d.t[s],        d.delta[s] * 1e6,
+                                     d.Q[s],        d.Delta.empty() ? 0.0 : d.Delta[s] * 1e6};
+                for (std::size_t col = 0; col < tc.size(); ++col) tc[col].push_back(tr[col]);
               }
             }
             const auto& a = runs[k].a;
@@ -242,10 +425,21 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
               lc[3].push_back(a.loop_Q[i]);
             }
           }
-          core::write_csv_table(dir.file("cycles.csv"),
-                                {"run", "cycle", "energy[J]", "Q_max[N]", "delta_max[um]",
-                                 "stiffness[N/um]", "sliding[um]", "partial_slip[um]"},
-                                cc);
+          // Non-finite per-cycle stiffness: the CSV writer wants numbers; 0 with the flag.
+          for (double& v : cc[5]) {
+            if (!std::isfinite(v)) v = 0.0;
+          }
+          core::write_csv_table(
+              dir.file("cycles.csv"),
+              {"run", "cycle", "energy[J]", "Q_max[N]", "delta_max[um]", "stiffness[N/um]",
+               "stiffness_resolved", "sliding[um]", "partial_slip[um]"},
+              cc);
+          bool all_imposed = true;
+          for (const auto& r : runs) all_imposed &= !r.data.Delta.empty();
+          if (!all_imposed) tc.pop_back();
+          std::vector<std::string> th{"run", "cycle", "t[s]", "delta[um]", "Q[N]"};
+          if (all_imposed) th.emplace_back("Delta[um]");
+          core::write_csv_table(dir.file("cycle_traces.csv"), th, tc);
           core::write_csv_table(dir.file("averaged_loop.csv"),
                                 {"run", "index", "delta[um]", "Q[N]"}, lc);
           if (!o->no_plots) {
@@ -267,21 +461,8 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
               }
             }
             plot_png(dir.file("loops.png"), loops);
-            if (runs.size() >= 2) {
-              Series pts{
-                  fmt::format("runs (exponent {:.2f})", *exponent), {}, {}, "points pt 7 ps 1.5"};
-              for (const auto& r : runs) {
-                pts.x.push_back(r.a.mean.Q_max);
-                pts.y.push_back(r.a.mean.energy);
-              }
-              plot_png(dir.file("energy_vs_force.png"), {"Energy per cycle against peak force",
-                                                         "Q_max [N]",
-                                                         "energy per cycle [J]",
-                                                         true,
-                                                         true,
-                                                         {pts},
-                                                         ""});
-            }
+            if (runs.size() >= 2)
+              plot_png(dir.file("energy_vs_force.png"), energy_plot(runs, *law));
           }
           dir.commit();
         }
@@ -289,9 +470,18 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
           out = j.dump(2) + "\n";
         } else {
           for (const auto& r : runs) out += run_text(r) + "\n";
-          if (exponent)
-            out +=
-                fmt::format("energy ~ Q_max^n over {} runs: n = {:.3f}\n", runs.size(), *exponent);
+          if (law) {
+            if (law->fit) {
+              const auto& f = *law->fit;
+              out += fmt::format(
+                  "energy ~ Q_max^n over {} of {} runs: n = {:.3f}{}\n", f.runs, runs.size(),
+                  f.exponent,
+                  std::isfinite(f.ci_low)
+                      ? fmt::format(" (95 % interval {:.3f} to {:.3f})", f.ci_low, f.ci_high)
+                      : std::string(" (two runs: no interval)"));
+            }
+            for (const auto& w : law->warnings) out += "warning: " + w + "\n";
+          }
         }
       });
     };

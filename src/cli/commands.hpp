@@ -3,6 +3,8 @@
 // `app` and, when it is chosen, sets `action` to the function that runs it.
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace asperity::cli {
 
@@ -25,10 +27,18 @@ class StagedDirectory;
 
 namespace asperity::cli {
 
+struct PlotSpec;
+
+/// Adds the slope-2 and slope-3 guides of Fig. 6.12-6.14 (energy ~ Q^2, Q^3) through
+/// (q0, e0) over [qmin, qmax] to a log-log energy-force plot (predict, analyze, validate).
+void add_power_guides(PlotSpec& spec, double q0, double e0, double qmin, double qmax);
+
 /// predict's output files (summary.json, loops.csv, energy.csv with `data`; the PNG plots
-/// with `plots`), each name prefixed with `prefix`; shared with validate.
-void write_prediction_files(const joint::JointCase& c, const joint::JointPrediction& p,
-                            joint::StagedDirectory& dir, bool plots, bool data,
-                            const std::string& prefix);
+/// with `plots`), each name prefixed with `prefix`; shared with validate. Returns the
+/// names of the files written (no loops or energies without amplitudes).
+std::vector<std::string> write_prediction_files(const joint::JointCase& c,
+                                                const joint::JointPrediction& p,
+                                                joint::StagedDirectory& dir, bool plots, bool data,
+                                                const std::string& prefix);
 
 }  // namespace asperity::cli

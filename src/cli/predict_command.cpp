@@ -27,11 +27,13 @@ struct PredictOptions {
 };
 
 Json amplitude_json(const joint::AmplitudePrediction& a) {
-  return Json{{"delta_max", a.delta_max},
-              {"Q_peak", a.Q_peak},
-              {"energy", a.energy},
-              {"Q_peak_over_Q_max", a.Q_ratio},
-              {"regime", a.regime}};
+  Json j{{"delta_max", a.delta_max},
+         {"Q_peak", a.Q_peak},
+         {"energy", a.energy},
+         {"Q_peak_over_Q_max", a.Q_ratio},
+         {"regime", a.regime}};
+  if (a.imposed > 0.0) j["imposed"] = a.imposed;
+  return j;
 }
 
 Json load_json(const joint::LoadPrediction& l) {
@@ -45,6 +47,7 @@ Json load_json(const joint::LoadPrediction& l) {
   j["Q_max"] = l.Q_max;
   j["stiffness"] = l.stiffness;
   j["contact_area_ratio"] = l.contact_area_ratio;
+  j["gross_slip_amplitude"] = l.gross_slip_amplitude;
   Json amps = Json::array();
   for (const auto& a : l.amplitudes) amps.push_back(amplitude_json(a));
   j["amplitudes"] = amps;
@@ -64,6 +67,11 @@ Json prediction_json(const joint::JointCase& c, const joint::JointPrediction& p)
                         {"beta", p.beta},      {"psi", p.psi},       {"m0", p.combined.m0},
                         {"m2", p.combined.m2}, {"m4", p.combined.m4}};
   j["force_scale_KHA0"] = p.force_scale;
+  if (!c.imposed.empty()) {
+    j["apparatus"] = Json{{"pzt_stiffness", c.apparatus.pzt_stiffness},
+                          {"load_cell_stiffness", c.apparatus.load_cell_stiffness},
+                          {"imposed", c.imposed}};
+  }
   if (p.loads.size() == 1) {  // the single-preload keys at the top level
     const Json first = load_json(p.loads.front());
     for (auto it = first.begin(); it != first.end(); ++it) j[it.key()] = *it;
@@ -92,25 +100,89 @@ std::string prediction_summary(const joint::JointCase& c, const joint::JointPred
                      l.mean_pressure * 1e-6, l.separation * 1e6, l.mu, l.Q_max, l.stiffness * 1e-6,
                      l.contact_area_ratio);
   }
+  if (c.amplitudes.empty() && c.imposed.empty()) {
+    s += "\nno [excitation] in the case: no fretting loops or energies (give amplitudes = "
+         "[...] or imposed = [...])\n";
+  }
   for (const auto& l : p.loads) {
     if (l.amplitudes.empty()) continue;
-    s += fmt::format("\nP = {:.4g} N: {:>14} {:>10} {:>14} {:>8}  {}\n", l.preload, "delta_max[um]",
+    const bool imposed = std::any_of(l.amplitudes.begin(), l.amplitudes.end(),
+                                     [](const auto& a) { return a.imposed > 0.0; });
+    s += fmt::format("\nP = {:.4g} N (gross slip from delta_max = {:.3g} um):\n", l.preload,
+                     l.gross_slip_amplitude * 1e6);
+    s += fmt::format("{:>14}{}{:>14} {:>10} {:>14} {:>9}  {}\n", "",
+                     imposed ? fmt::format("{:>13} ", "imposed[um]") : "", "delta_max[um]",
                      "Q_peak[N]", "energy[uJ]", "Q/Q_max", "regime");
     for (const auto& a : l.amplitudes) {
-      s += fmt::format("{:>14}{:>14.4g} {:>10.4g} {:>14.5g} {:>8.4f}  {}\n", "", a.delta_max * 1e6,
-                       a.Q_peak, a.energy * 1e6, a.Q_ratio, a.regime);
+      s += fmt::format("{:>14}{}{:>14.4g} {:>10.4g} {:>14.5g} {:>9.5f}  {}\n", "",
+                       imposed ? (a.imposed > 0.0 ? fmt::format("{:>13.4g} ", a.imposed * 1e6)
+                                                  : fmt::format("{:>13} ", "-"))
+                               : "",
+                       a.delta_max * 1e6, a.Q_peak, a.energy * 1e6, a.Q_ratio, a.regime);
     }
   }
   return s;
 }
 
-void write_prediction_files(const joint::JointCase& c, const joint::JointPrediction& p,
-                            joint::StagedDirectory& dir, bool plots, bool data,
-                            const std::string& prefix) {
-  const auto file = [&](const std::string& name) { return dir.file(prefix + name); };
+void add_power_guides(PlotSpec& spec, double q0, double e0, double qmin, double qmax) {
+  // Dark, distinct dash patterns: the guides must read on white and in grey print.
+  const std::pair<int, const char*> guides[] = {{2, "lines dt 2 lc rgb '#555555'"},
+                                                {3, "lines dt 4 lc rgb '#000000'"}};
+  for (const auto& [n, style] : guides) {
+    Series g{fmt::format("slope {} (energy ~ Q^{})", n, n), {}, {}, style};
+    for (int i = 0; i <= 20; ++i) {
+      const double q = qmin * std::pow(qmax / qmin, i / 20.0);
+      g.x.push_back(q);
+      g.y.push_back(e0 * std::pow(q / q0, n));
+    }
+    spec.series.push_back(g);
+  }
+}
+
+namespace {
+
+// More load cases than this: colour by preload (a colour scale) instead of a legend entry
+// per preload.
+constexpr std::size_t kMaxLegendLoads = 8;
+
+// Style and title of the series of load case `l` in a plot with `n` load cases.
+void load_series_style(Series& s, const joint::LoadPrediction& l, std::size_t n,
+                       const std::string& base) {
+  if (n > kMaxLegendLoads) {
+    s.style = fmt::format("{} lc palette cb {:.10g}", base, l.preload);
+    s.title = "";  // no key entry: the colour box names the preload
+  } else {
+    s.style = base;
+  }
+}
+
+std::string palette_commands(const joint::JointPrediction& p) {
+  if (p.loads.size() <= kMaxLegendLoads) return "";
+  double lo = 1e300, hi = 0.0;
+  for (const auto& l : p.loads) {
+    lo = std::min(lo, l.preload);
+    hi = std::max(hi, l.preload);
+  }
+  return fmt::format(
+      "set palette defined (0 '#1f4e9a', 1 '#2ca02c', 2 '#e6a100', 3 '#c0392b')\n"
+      "set cbrange [{:.10g}:{:.10g}]\nset cblabel 'preload [N]'\nset colorbox\n",
+      lo, hi > lo ? hi : lo * 1.001);
+}
+
+}  // namespace
+
+std::vector<std::string> write_prediction_files(const joint::JointCase& c,
+                                                const joint::JointPrediction& p,
+                                                joint::StagedDirectory& dir, bool plots, bool data,
+                                                const std::string& prefix) {
+  std::vector<std::string> written;
+  const auto file = [&](const std::string& name) {
+    written.push_back(prefix + name);
+    return dir.file(prefix + name);
+  };
   if (data) write_file_atomically(file("summary.json"), prediction_json(c, p).dump(2) + "\n");
   // loops.csv: steady loops for every preload and amplitude (long format).
-  std::vector<std::vector<double>> lc(4), ec(5);
+  std::vector<std::vector<double>> lc(4), ec(7);
   for (const auto& l : p.loads) {
     for (const auto& a : l.amplitudes) {
       const auto [x, Q] = joint::steady_loop(*l.backbone, a.delta_max, 100);
@@ -125,42 +197,57 @@ void write_prediction_files(const joint::JointCase& c, const joint::JointPredict
       ec[2].push_back(a.Q_peak);
       ec[3].push_back(a.energy);
       ec[4].push_back(a.Q_ratio);
+      ec[5].push_back(a.regime == "gross slip" ? 1.0 : 0.0);
+      ec[6].push_back(a.imposed * 1e6);
     }
   }
-  if (data && !lc[0].empty()) {
+  const bool amplitudes = !lc[0].empty();
+  if (data && amplitudes) {
     core::write_csv_table(file("loops.csv"), {"preload[N]", "delta_max[um]", "delta[um]", "Q[N]"},
                           lc);
-    core::write_csv_table(
-        file("energy.csv"),
-        {"preload[N]", "delta_max[um]", "Q_peak[N]", "energy[J]", "Q_peak_over_Q_max"}, ec);
+    core::write_csv_table(file("energy.csv"),
+                          {"preload[N]", "delta_max[um]", "Q_peak[N]", "energy[J]",
+                           "Q_peak_over_Q_max", "gross_slip", "imposed[um]"},
+                          ec);
   }
-  if (!plots) return;
+  if (!plots) return written;
   const bool sweep = p.loads.size() > 1;
-  if (!lc[0].empty()) {
-    PlotSpec loops{
-        fmt::format("Fretting loops: {}", c.name), "delta [um]", "Q [N]", false, false, {}, ""};
+  const std::size_t nl = p.loads.size();
+  if (amplitudes) {
+    PlotSpec loops{sweep ? fmt::format("Fretting loops at the largest amplitude: {}", c.name)
+                         : fmt::format("Fretting loops: {}", c.name),
+                   "delta [um]",
+                   "Q [N]",
+                   false,
+                   false,
+                   {},
+                   palette_commands(p)};
     for (const auto& l : p.loads) {
       for (std::size_t k = 0; k < l.amplitudes.size(); ++k) {
         if (sweep && k + 1 != l.amplitudes.size())
           continue;  // sweeps: the largest amplitude per preload
         const auto& a = l.amplitudes[k];
-        auto [x, Q] = joint::steady_loop(*l.backbone, a.delta_max, 100);
+        auto [x, Q] = joint::steady_loop(*l.backbone, a.delta_max, 400);
         for (double& v : x) v *= 1e6;
-        loops.series.push_back(
-            {fmt::format("P = {:.0f} N, {:.3g} um", l.preload, a.delta_max * 1e6), x, Q});
+        Series sr{sweep ? fmt::format("P = {:.0f} N", l.preload)
+                        : fmt::format("{:.3g} um", a.delta_max * 1e6),
+                  x, Q};
+        load_series_style(sr, l, nl, "lines");
+        loops.series.push_back(sr);
       }
     }
     plot_png(file("loops.png"), loops);
-    PlotSpec e{"Energy per cycle against peak force (guides: slope 2 and 3)",
+    PlotSpec e{"Energy per cycle against peak force",
                "peak force [N]",
                "energy per cycle [J]",
                true,
                true,
                {},
-               ""};
+               palette_commands(p) + "set key inside left top box opaque\n"};
     double qmin = 1e300, qmax = 0.0;
     for (const auto& l : p.loads) {
-      Series sr{fmt::format("P = {:.0f} N", l.preload), {}, {}, "linespoints"};
+      Series sr{fmt::format("P = {:.0f} N", l.preload), {}, {}, ""};
+      load_series_style(sr, l, nl, nl > kMaxLegendLoads ? "lines" : "linespoints pt 7");
       for (const auto& a : l.amplitudes) {
         sr.x.push_back(a.Q_peak);
         sr.y.push_back(a.energy);
@@ -171,19 +258,12 @@ void write_prediction_files(const joint::JointCase& c, const joint::JointPredict
     }
     // Guides through the smallest-force point of the first preload.
     const auto& a0 = p.loads.front().amplitudes.front();
-    for (int n : {2, 3}) {
-      Series g{fmt::format("slope {}", n), {}, {}, "lines dt 2"};
-      for (int i = 0; i <= 20; ++i) {
-        const double q = qmin * std::pow(qmax / qmin, i / 20.0);
-        g.x.push_back(q);
-        g.y.push_back(a0.energy * std::pow(q / a0.Q_peak, n));
-      }
-      e.series.push_back(g);
-    }
+    add_power_guides(e, a0.Q_peak, a0.energy, qmin, qmax);
     plot_png(file("energy_vs_force.png"), e);
   }
   if (sweep) {
-    Series mu{"mu = Q_max/P", {}, {}, "linespoints"}, k{"stiffness", {}, {}, "linespoints"};
+    Series mu{"mu = Q_max/P", {}, {}, "linespoints pt 7"},
+        k{"stiffness", {}, {}, "linespoints pt 7"};
     for (const auto& l : p.loads) {
       mu.x.push_back(l.preload);
       mu.y.push_back(l.mu);
@@ -192,19 +272,20 @@ void write_prediction_files(const joint::JointCase& c, const joint::JointPredict
     }
     plot_png(file("mu_vs_preload.png"), {"Friction coefficient against preload",
                                          "preload [N]",
-                                         "mu",
+                                         "friction coefficient",
                                          false,
                                          false,
                                          {mu},
-                                         "set yrange [0:*]"});
+                                         "set yrange [0:*]\nset key off"});
     plot_png(file("stiffness_vs_preload.png"), {"Tangential stiffness against preload",
                                                 "preload [N]",
                                                 "stiffness [N/um]",
                                                 false,
                                                 false,
                                                 {k},
-                                                "set yrange [0:*]"});
+                                                "set yrange [0:*]\nset key off"});
   }
+  return written;
 }
 
 void add_predict_command(CLI::App& app, std::function<int()>& action) {
@@ -214,13 +295,19 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
       "Friction coefficient, tangential stiffness, fretting loops and energy per cycle of a joint "
       "described by a TOML case file (thesis ch. 5-6; see docs/joints.md and examples/joints).");
   cmd->add_option("case", o->case_file, "the case file (TOML)")->required();
-  cmd->add_option("--out", o->out, "write summary.json, loops.csv, energy.csv and plots into DIR");
+  cmd->add_option(
+      "--out", o->out,
+      "write summary.json, loops.csv, energy.csv and plots into DIR (a new directory, or "
+      "one asperity wrote before)");
   cmd->add_flag("--json", o->json, "print summary.json instead of the table");
   cmd->add_flag("--no-plots", o->no_plots, "do not draw PNG plots (no gnuplot needed)");
   cmd->callback([o, &action] {
     action = [o] {
       return run_guarded([o](std::string& out) {
+        // Refuse a foreign --out directory before the work.
+        if (o->out) joint::require_replaceable_output(*o->out, *o->out);
         const auto c = joint::read_case_file(o->case_file);
+        std::vector<std::string> written;
         const bool bar = c.preloads.size() > 1 && isatty(STDERR_FILENO);
         const auto progress = [&](std::size_t i, std::size_t n) {
           if (!bar) return;
@@ -231,14 +318,16 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
         };
         const auto p = joint::predict(c, progress);
         if (o->out) {
-          joint::StagedDirectory dir(*o->out);
-          write_prediction_files(c, p, dir, !o->no_plots, true, "");
+          joint::StagedDirectory dir(*o->out, "asperity predict");
+          written = write_prediction_files(c, p, dir, !o->no_plots, true, "");
           dir.commit();
         }
         out = o->json ? prediction_json(c, p).dump(2) + "\n" : prediction_summary(c, p);
-        if (o->out && !o->json)
-          out += fmt::format("\nwrote {}/ (summary.json, loops.csv, energy.csv{})\n", *o->out,
-                             o->no_plots ? "" : ", plots");
+        if (o->out && !o->json) {
+          std::string list;
+          for (const auto& f : written) list += (list.empty() ? "" : ", ") + f;
+          out += fmt::format("\nwrote {}/ ({})\n", *o->out, list);
+        }
       });
     };
   });

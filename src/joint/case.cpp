@@ -80,8 +80,18 @@ surface::SpectralMoments JointCase::combined_roughness() const {
 
 surface::RoughFlat JointCase::rough_flat() const {
   const auto c = combined_roughness();
-  return surface::RoughFlat::from_dimensional(halves[0].material, halves[1].material, c.sigma(),
-                                              c.eta(), c.R(), area, model, friction, slip_scaling);
+  try {
+    return surface::RoughFlat::from_dimensional(halves[0].material, halves[1].material, c.sigma(),
+                                                c.eta(), c.R(), area, model, friction,
+                                                slip_scaling);
+  } catch (const InvalidInput& e) {
+    // The combined roughness (or the materials) of both halves: name where they are.
+    if (roughness_origin.empty()) throw;
+    throw InvalidInput(
+        fmt::format("{} (combined: sigma = {:.4g} um, eta = {:.4g} um^-2, R = "
+                    "{:.4g} um): {}",
+                    roughness_origin, c.sigma() * 1e6, c.eta() * 1e-12, c.R() * 1e6, e.what()));
+  }
 }
 
 void JointCase::validate() const {
@@ -96,8 +106,17 @@ void JointCase::validate() const {
   }
   for (double a : amplitudes) {
     if (!(a > 0.0) || !std::isfinite(a)) {
-      throw InvalidInput(fmt::format("{}: amplitude = {} m must be > 0", source, a));
+      throw InvalidInput(fmt::format("{}: amplitude = {:.6g} m must be > 0", source, a));
     }
+  }
+  for (double a : imposed) {
+    if (!(a > 0.0) || !std::isfinite(a)) {
+      throw InvalidInput(fmt::format("{}: imposed amplitude = {:.6g} m must be > 0", source, a));
+    }
+  }
+  if (!(apparatus.pzt_stiffness > 0.0) || !(apparatus.load_cell_stiffness > 0.0) ||
+      !std::isfinite(apparatus.compliance())) {
+    throw InvalidInput(fmt::format("{}: the apparatus stiffnesses must be > 0", source));
   }
   for (std::size_t i = 0; i < 2; ++i) {
     halves[i].material.validate(fmt::format("joint.half[{}].material", i + 1));
@@ -121,6 +140,27 @@ class Reader {
     const auto line = n ? n->source().begin.line : 0U;
     if (line > 0) throw InvalidInput(fmt::format("{}:{}: {}: {}", source_, line, key, what));
     throw InvalidInput(fmt::format("{}: {}: {}", source_, key, what));
+  }
+
+  // "FILE:LINE: key" of a node.
+  [[nodiscard]] std::string origin(const toml::node* n, const std::string& key) const {
+    const auto line = n ? n->source().begin.line : 0U;
+    if (line > 0) return fmt::format("{}:{}: {}", source_, line, key);
+    return fmt::format("{}: {}", source_, key);
+  }
+
+  // The value as the user wrote it: "\"-1.2 lbf*in\"" or "0.24".
+  static std::string text_of(const toml::node* n) {
+    if (!n) return "";
+    if (const auto s = n->value<std::string>()) return fmt::format("\"{}\"", *s);
+    if (const auto v = n->value<double>()) return fmt::format("{}", *v);
+    return "(a table or array)";
+  }
+
+  // "FILE:LINE: key = TEXT: what".
+  [[noreturn]] void fail_value(const toml::node* n, const std::string& key,
+                               const std::string& what) const {
+    throw InvalidInput(fmt::format("{} = {}: {}", origin(n, key), text_of(n), what));
   }
 
   void check_keys(const toml::table& t, const std::string& where,
@@ -151,6 +191,12 @@ class Reader {
 
   // A quantity: a string with units, or a bare number for dimensionless ones.
   double quantity(const toml::node& n, core::Dimension d, const std::string& key) const {
+    if (const auto s = n.value<std::string>(); s && d == dim::dimensionless) {
+      // One spelling for dimensionless values: a bare number (nu = 0.24).
+      fail_value(&n, key,
+                 fmt::format("a dimensionless value is a bare number, not a string: write {} = {}",
+                             key.substr(key.rfind('.') + 1), *s));
+    }
     try {
       if (n.is_floating_point() || n.is_integer()) {
         const double x = *n.value<double>();
@@ -189,8 +235,7 @@ class Reader {
   double positive(const toml::table& t, const std::string& key, core::Dimension d,
                   const std::string& where) const {
     const double v = required(t, key, d, where);
-    if (!(v > 0.0) || !std::isfinite(v))
-      fail(t.get(key), where + "." + key, fmt::format("= {} must be > 0", v));
+    if (!(v > 0.0) || !std::isfinite(v)) fail_value(t.get(key), where + "." + key, "must be > 0");
     return v;
   }
 
@@ -204,7 +249,7 @@ class Reader {
       const std::string k = fmt::format("{}[{}]", key, i + 1);
       const double v = quantity(*a->get(i), d, k);
       if (must_be_positive && (!(v > 0.0) || !std::isfinite(v))) {
-        fail(a->get(i), k, fmt::format("= {} must be > 0", v));
+        fail_value(a->get(i), k, "must be > 0");
       }
       out.push_back(v);
     }
@@ -234,6 +279,7 @@ class Reader {
     if (d == dim::pressure) return "200 GPa";
     if (d == dim::force) return "526 N";
     if (d == dim::energy) return "0.305 N*m";
+    if (d == dim::stiffness) return "38 N/um";
     if (d == dim::inverse_area) return "3.34e-4 um^-2";
     return "1";
   }
@@ -251,11 +297,11 @@ contact::Material parse_material(const Reader& r, const toml::node& n, const std
   m.E = r.positive(*t, "E", dim::pressure, where);
   m.nu = r.required(*t, "nu", dim::dimensionless, where);
   if (!(m.nu >= 0.0 && m.nu < 0.5))
-    r.fail(t->get("nu"), where + ".nu", fmt::format("= {} must be in [0, 0.5)", m.nu));
+    r.fail_value(t->get("nu"), where + ".nu", "must be in [0, 0.5)");
   m.G = r.optional_quantity(*t, "G", dim::pressure, where).value_or(0.0);
-  if (t->get("G") && !(m.G > 0.0)) r.fail(t->get("G"), where + ".G", "must be > 0");
+  if (t->get("G") && !(m.G > 0.0)) r.fail_value(t->get("G"), where + ".G", "must be > 0");
   m.H = r.optional_quantity(*t, "H", dim::pressure, where).value_or(0.0);
-  if (t->get("H") && !(m.H > 0.0)) r.fail(t->get("H"), where + ".H", "must be > 0");
+  if (t->get("H") && !(m.H > 0.0)) r.fail_value(t->get("H"), where + ".H", "must be > 0");
   return m;
 }
 
@@ -328,7 +374,7 @@ JointCase parse_case(std::string_view text, const std::string& source,
     }
   }
   if (const auto mu = r.optional_quantity(joint, "mu_cfc", dim::dimensionless, "joint")) {
-    if (!(*mu > 0.0)) r.fail(joint.get("mu_cfc"), "joint.mu_cfc", "must be > 0");
+    if (!(*mu > 0.0)) r.fail_value(joint.get("mu_cfc"), "joint.mu_cfc", "must be > 0");
     c.friction.mu_cfc = *mu;
   } else if (c.model == contact::ModelName::cfc) {
     r.fail(&joint, "joint.mu_cfc",
@@ -387,8 +433,10 @@ JointCase parse_case(std::string_view text, const std::string& source,
     r.fail(halves, "joint.half", "must be [[joint.half]] tables");
   if (arr->size() != 2) {
     r.fail(halves, "joint.half",
-           fmt::format("{} half given; a joint has two [[joint.half]] tables", arr->size()));
+           fmt::format("found {} [[joint.half]] table{}; a joint has two (one per half)",
+                       arr->size(), arr->size() == 1 ? "" : "s"));
   }
+  c.roughness_origin = r.origin(arr->get(0), "joint.half[1-2].roughness");
   for (std::size_t i = 0; i < 2; ++i) {
     const std::string w = fmt::format("joint.half[{}]", i + 1);
     const auto& h = *arr->get(i)->as_table();
@@ -413,10 +461,16 @@ JointCase parse_case(std::string_view text, const std::string& source,
   }
   if (const auto* n = load.get("preload")) {
     const double P = r.quantity(*n, dim::force, "load.preload");
-    if (!(P > 0.0)) r.fail(n, "load.preload", fmt::format("= {} N must be > 0", P));
+    if (!(P > 0.0) || !std::isfinite(P)) r.fail_value(n, "load.preload", "must be > 0");
     c.preloads = {P};
+    c.preload_origin = {r.origin(n, "load.preload = " + Reader::text_of(n))};
   } else if (const auto* n2 = load.get("preloads")) {
     c.preloads = r.quantity_list(*n2, dim::force, "load.preloads", true);
+    for (std::size_t i = 0; i < c.preloads.size(); ++i) {
+      const auto* e = n2->as_array()->get(i);
+      c.preload_origin.push_back(
+          r.origin(e, fmt::format("load.preloads[{}] = {}", i + 1, Reader::text_of(e))));
+    }
   } else {
     const auto* bn = load.get("bolts");
     const auto* b = bn->as_table();
@@ -437,8 +491,8 @@ JointCase parse_case(std::string_view text, const std::string& source,
     bolts.nut_factor =
         r.optional_quantity(*b, "nut_factor", dim::dimensionless, "load.bolts").value_or(0.2);
     if (!(bolts.nut_factor > 0.0))
-      r.fail(b->get("nut_factor"), "load.bolts.nut_factor",
-             "must be > 0 (0.2 for steel bolts, Eq. 5.2)");
+      r.fail_value(b->get("nut_factor"), "load.bolts.nut_factor",
+                   "must be > 0 (0.2 for steel bolts, Eq. 5.2)");
     bolts.diameter = r.positive(*b, "diameter", dim::length, "load.bolts");
     const int nt = (b->get("torque") ? 1 : 0) + (b->get("torques") ? 1 : 0) +
                    (b->get("total_torque") ? 1 : 0) + (b->get("total_torques") ? 1 : 0);
@@ -451,14 +505,22 @@ JointCase parse_case(std::string_view text, const std::string& source,
     for (const char* key : {"torque", "total_torque"}) {
       if (const auto* tn = b->get(key)) {
         const double T = r.quantity(*tn, dim::energy, std::string("load.bolts.") + key);
-        if (!(T > 0.0))
-          r.fail(tn, std::string("load.bolts.") + key, fmt::format("= {} N*m must be > 0", T));
+        if (!(T > 0.0) || !std::isfinite(T))
+          r.fail_value(tn, std::string("load.bolts.") + key, "must be > 0");
         bolts.torques = {T};
+        c.preload_origin = {
+            r.origin(tn, fmt::format("load.bolts.{} = {}", key, Reader::text_of(tn)))};
       }
     }
     for (const char* key : {"torques", "total_torques"}) {
-      if (const auto* tn = b->get(key))
+      if (const auto* tn = b->get(key)) {
         bolts.torques = r.quantity_list(*tn, dim::energy, std::string("load.bolts.") + key, true);
+        for (std::size_t i = 0; i < bolts.torques.size(); ++i) {
+          const auto* e = tn->as_array()->get(i);
+          c.preload_origin.push_back(
+              r.origin(e, fmt::format("load.bolts.{}[{}] = {}", key, i + 1, Reader::text_of(e))));
+        }
+      }
     }
     if (total) {
       for (double& T : bolts.torques) T /= static_cast<double>(bolts.count);
@@ -470,11 +532,36 @@ JointCase parse_case(std::string_view text, const std::string& source,
   if (const auto* en = root.get("excitation")) {
     const auto* e = en->as_table();
     if (!e) r.fail(en, "excitation", "must be a table");
-    r.check_keys(*e, "excitation", {"amplitudes"});
+    r.check_keys(*e, "excitation", {"amplitudes", "imposed", "apparatus"});
     if (const auto* a = e->get("amplitudes"))
       c.amplitudes = r.quantity_list(*a, dim::length, "excitation.amplitudes", true);
+    if (const auto* a = e->get("imposed"))
+      c.imposed = r.quantity_list(*a, dim::length, "excitation.imposed", true);
+    if (!e->get("amplitudes") && !e->get("imposed")) {
+      r.fail(en, "excitation",
+             "give amplitudes = [\"0.5 um\", ...] (of the joint) and/or imposed = [\"6.75 um\", "
+             "...] (at the PZT tip, through the apparatus); or leave out [excitation]");
+    }
+    if (const auto* ap = e->get("apparatus")) {
+      const auto* t = ap->as_table();
+      if (!t)
+        r.fail(ap, "excitation.apparatus",
+               "must be a table { pzt_stiffness = \"38 N/um\", load_cell_stiffness = \"1462 "
+               "N/um\" }");
+      r.check_keys(*t, "excitation.apparatus", {"pzt_stiffness", "load_cell_stiffness"});
+      if (t->get("pzt_stiffness"))
+        c.apparatus.pzt_stiffness =
+            r.positive(*t, "pzt_stiffness", dim::stiffness, "excitation.apparatus");
+      if (t->get("load_cell_stiffness"))
+        c.apparatus.load_cell_stiffness =
+            r.positive(*t, "load_cell_stiffness", dim::stiffness, "excitation.apparatus");
+      if (!e->get("imposed"))
+        r.fail(ap, "excitation.apparatus",
+               "is used only with imposed amplitudes (imposed = [...])");
+    }
   }
   std::sort(c.amplitudes.begin(), c.amplitudes.end());
+  std::sort(c.imposed.begin(), c.imposed.end());
   c.validate();
   return c;
 }

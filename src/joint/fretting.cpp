@@ -6,10 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <numbers>
 #include <numeric>
 #include <random>
+
+#include <boost/math/distributions/students_t.hpp>
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
@@ -73,118 +76,268 @@ std::vector<std::pair<std::size_t, int>> turning_points(const std::vector<double
   return out;
 }
 
-double trapezoid_loop_area(const std::vector<double>& x, const std::vector<double>& y,
-                           std::size_t a, std::size_t b) {
+// Energy dissipated over the closed loop [a, b]: the closed integral of y dx by the
+// trapezoidal rule. Signed: the loops run maximum -> minimum -> maximum of x, and a
+// dissipative loop's unloading branch (leftwards) lies below its reloading branch
+// (Masing: Q_m - 2 Q_l((x_m - x)/2) <= -Q_m + 2 Q_l((x + x_m)/2)), so it is positive.
+double loop_energy(const std::vector<double>& x, const std::vector<double>& y, std::size_t a,
+                   std::size_t b) {
   double A = 0.0;
   for (std::size_t i = a; i < b; ++i) A += 0.5 * (y[i] + y[i + 1]) * (x[i + 1] - x[i]);
   A += 0.5 * (y[b] + y[a]) * (x[a] - x[b]);  // close the loop
-  return std::abs(A);
+  return A;
 }
 
-// Slope dy/dx at the reversal at index r of a least-squares quadratic y(x - x0[r]) over
-// the samples from r, moving towards `end`, until the smoothed force Qs leaves
-// |Qs - Qs[r]| <= span. x is the regressor: Q with y = delta, or the imposed Delta with
-// y = Q; x0 is x's reference at r (the smoothed Qs, or Delta itself).
-double slope_at_reversal(const std::vector<double>& x, const std::vector<double>& y,
-                         const std::vector<double>& x0, const std::vector<double>& Qs,
-                         std::size_t r, std::size_t end, double span) {
-  const double xr = x0[r];
-  // Normal equations of y = a + b q + c q^2, q = x - xr.
-  double S[5] = {0, 0, 0, 0, 0}, T[3] = {0, 0, 0};
-  std::size_t n = 0;
-  for (std::size_t i = r; i <= end; ++i) {
-    if (std::abs(Qs[i] - Qs[r]) > span) break;
-    const double q = x[i] - xr;
-    double p = 1.0;
-    for (double& sv : S) {
-      sv += p;
-      p *= q;
+// Solves the n x n system A z = b (row-major, small n) by Gaussian elimination with
+// partial pivoting; NaN when singular.
+std::vector<double> solve_small(std::vector<double> A, std::vector<double> b) {
+  const std::size_t n = b.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    std::size_t piv = k;
+    for (std::size_t i = k + 1; i < n; ++i) {
+      if (std::abs(A[i * n + k]) > std::abs(A[piv * n + k])) piv = i;
     }
-    T[0] += y[i];
-    T[1] += y[i] * q;
-    T[2] += y[i] * q * q;
-    ++n;
+    if (!(std::abs(A[piv * n + k]) > 0.0))
+      return std::vector<double>(n, std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t l = 0; l < n; ++l) std::swap(A[k * n + l], A[piv * n + l]);
+    std::swap(b[k], b[piv]);
+    for (std::size_t i = k + 1; i < n; ++i) {
+      const double f = A[i * n + k] / A[k * n + k];
+      for (std::size_t l = k; l < n; ++l) A[i * n + l] -= f * A[k * n + l];
+      b[i] -= f * b[k];
+    }
   }
-  if (n < 6) return std::numeric_limits<double>::quiet_NaN();
-  // Solve the 3x3 system [[S0 S1 S2][S1 S2 S3][S2 S3 S4]] (a b c) = T by Cramer's rule.
-  const double a11 = S[0], a12 = S[1], a13 = S[2], a22 = S[2], a23 = S[3], a33 = S[4];
-  const double det =
-      a11 * (a22 * a33 - a23 * a23) - a12 * (a12 * a33 - a23 * a13) + a13 * (a12 * a23 - a22 * a13);
-  const double db = a11 * (T[1] * a33 - a23 * T[2]) - T[0] * (a12 * a33 - a23 * a13) +
-                    a13 * (a12 * T[2] - T[1] * a13);
-  return db / det;
+  std::vector<double> z(n);
+  for (std::size_t k = n; k-- > 0;) {
+    double v = b[k];
+    for (std::size_t l = k + 1; l < n; ++l) v -= A[k * n + l] * z[l];
+    z[k] = v / A[k * n + k];
+  }
+  return z;
+}
+
+// Inverse of a small symmetric positive matrix (column by column).
+std::vector<double> inverse_small(const std::vector<double>& A, std::size_t n) {
+  std::vector<double> inv(n * n);
+  for (std::size_t j = 0; j < n; ++j) {
+    std::vector<double> e(n, 0.0);
+    e[j] = 1.0;
+    const auto z = solve_small(A, e);
+    for (std::size_t i = 0; i < n; ++i) inv[i * n + j] = z[i];
+  }
+  return inv;
 }
 
 struct Reversal {
   std::size_t r, end;
   int dir;  // -1: Q decreases after the reversal (unloading), +1: reloading
   double span;
+  std::size_t cycle;
 };
 
-// Slope at the reversals pooled over all of them: y' = s y, q = s (x - x0[r]) (s = +-1
-// the direction), y' = a_r + b q + c q^2 + d q^3 with one intercept a_r per reversal and
-// common b, c, d (least squares after removing each reversal's means); returns b.
-// Pooling is what makes the slope usable when the noise is comparable with the motion
-// over the fit window.
-double pooled_slope(const std::vector<double>& x, const std::vector<double>& y,
-                    const std::vector<double>& x0, const std::vector<double>& Qs,
-                    const std::vector<Reversal>& revs) {
-  constexpr int P = 3;
-  double A[P][P] = {}, B[P] = {};
-  for (const auto& rv : revs) {
+// The fit window of a reversal: samples r.. while |Qs - Qs[r]| <= span (not past end).
+struct Window {
+  std::vector<double> u, v;  // u = s (x - x0[r]) scaled, v = s y
+};
+
+struct StiffnessFit {
+  std::vector<double> cycle_slope, cycle_slope_var;  // dv/du at u = 0 per cycle (NaN: no fit)
+  std::vector<double> reversal_slope;                // per reversal
+  /// Variance that the common shape coefficients' uncertainty gives the mean of the
+  /// cycle slopes (shared by every cycle, so the cycles' spread does not show it):
+  /// g' Cov(c) g with g the mean over cycles of d slope/d c.
+  double shape_variance_of_mean = 0.0;
+};
+
+// Pooled fit of every branch after a reversal (AnalysisOptions): v = a_rev + b_cycle u +
+// Sum_{k=2..p} c_k u^k. The per-cycle parameters (two intercepts and the slope) are
+// projected out cycle by cycle (Frisch-Waugh), the common c_k solved from the pooled
+// residual cross products, then each cycle's parameters from its own samples.
+StiffnessFit fit_reversals(const std::vector<double>& x, const std::vector<double>& y,
+                           const std::vector<double>& x0, const std::vector<double>& Qs,
+                           const std::vector<Reversal>& revs, std::size_t ncycles, int degree) {
+  const std::size_t q = static_cast<std::size_t>(std::max(0, degree - 1));  // shape columns
+  std::vector<Window> win(revs.size());
+  double U = 0.0;
+  for (std::size_t k = 0; k < revs.size(); ++k) {
+    const auto& rv = revs[k];
     const double s = rv.dir;
-    const double Qr = Qs[rv.r], xr = x0[rv.r];
-    std::size_t j = rv.r;
-    while (j <= rv.end && std::abs(Qs[j] - Qr) <= rv.span) ++j;
-    const std::size_t n = j - rv.r;
-    if (n < 6) continue;
-    double mx[P] = {}, my = 0.0;
-    for (std::size_t i = rv.r; i < j; ++i) {
-      const double q = s * (x[i] - xr);
-      double p = q;
-      for (double& v : mx) {
-        v += p / static_cast<double>(n);
-        p *= q;
-      }
-      my += s * y[i] / static_cast<double>(n);
+    for (std::size_t i = rv.r; i <= rv.end && std::abs(Qs[i] - Qs[rv.r]) <= rv.span; ++i) {
+      win[k].u.push_back(s * (x[i] - x0[rv.r]));
+      win[k].v.push_back(s * y[i]);
+      U = std::max(U, std::abs(win[k].u.back()));
     }
-    for (std::size_t i = rv.r; i < j; ++i) {
-      const double q = s * (x[i] - xr);
-      double u[P];
-      double p = q;
-      for (int k = 0; k < P; ++k) {
-        u[k] = p - mx[k];
-        p *= q;
+  }
+  StiffnessFit out;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  out.cycle_slope.assign(ncycles, nan);
+  out.cycle_slope_var.assign(ncycles, nan);
+  out.reversal_slope.assign(revs.size(), nan);
+  if (!(U > 0.0)) return out;
+  for (auto& w : win) {
+    for (double& u : w.u) u /= U;  // conditioning: u in [0, 1]
+  }
+  const std::size_t min_samples = static_cast<std::size_t>(degree) + 3;
+  // Reversals of each cycle (two each).
+  std::vector<std::vector<std::size_t>> of_cycle(ncycles);
+  for (std::size_t k = 0; k < revs.size(); ++k) {
+    if (win[k].u.size() >= min_samples) of_cycle[revs[k].cycle].push_back(k);
+  }
+  const auto pw = [](double u, std::size_t k) { return std::pow(u, static_cast<double>(k)); };
+  // Local design of a cycle: one indicator per reversal and u (m = nrev + 1 columns).
+  struct Local {
+    std::vector<double> LL, LS, Lv;  // L'L (m x m), L'S (m x q), L'v (m)
+    std::vector<double> SS, Sv;      // S'S (q x q), S'v (q)
+    std::size_t m = 0;
+  };
+  std::vector<Local> loc(ncycles);
+  std::vector<double> M(q * q, 0.0), mv(q, 0.0);
+  for (std::size_t c = 0; c < ncycles; ++c) {
+    const auto& ks = of_cycle[c];
+    if (ks.size() != 2) continue;
+    auto& L = loc[c];
+    L.m = ks.size() + 1;
+    const std::size_t m = L.m;
+    L.LL.assign(m * m, 0.0);
+    L.LS.assign(m * q, 0.0);
+    L.Lv.assign(m, 0.0);
+    L.SS.assign(q * q, 0.0);
+    L.Sv.assign(q, 0.0);
+    for (std::size_t r = 0; r < ks.size(); ++r) {
+      const auto& w = win[ks[r]];
+      for (std::size_t i = 0; i < w.u.size(); ++i) {
+        std::vector<double> l(m, 0.0), sh(q);
+        l[r] = 1.0;
+        l[m - 1] = w.u[i];
+        for (std::size_t j = 0; j < q; ++j) sh[j] = pw(w.u[i], j + 2);
+        for (std::size_t a = 0; a < m; ++a) {
+          for (std::size_t b = 0; b < m; ++b) L.LL[a * m + b] += l[a] * l[b];
+          for (std::size_t j = 0; j < q; ++j) L.LS[a * q + j] += l[a] * sh[j];
+          L.Lv[a] += l[a] * w.v[i];
+        }
+        for (std::size_t j = 0; j < q; ++j) {
+          for (std::size_t jj = 0; jj < q; ++jj) L.SS[j * q + jj] += sh[j] * sh[jj];
+          L.Sv[j] += sh[j] * w.v[i];
+        }
       }
-      const double v = s * y[i] - my;
-      for (int k = 0; k < P; ++k) {
-        B[k] += u[k] * v;
-        for (int l = 0; l < P; ++l) A[k][l] += u[k] * u[l];
+    }
+    // Residual cross products S~'S~ = S'S - S'L (L'L)^-1 L'S, S~'v~ likewise.
+    const auto inv = inverse_small(L.LL, m);
+    for (std::size_t j = 0; j < q; ++j) {
+      for (std::size_t jj = 0; jj < q; ++jj) {
+        double corr = 0.0;
+        for (std::size_t a = 0; a < m; ++a) {
+          for (std::size_t b = 0; b < m; ++b)
+            corr += L.LS[a * q + j] * inv[a * m + b] * L.LS[b * q + jj];
+        }
+        M[j * q + jj] += L.SS[j * q + jj] - corr;
+      }
+      double corr = 0.0;
+      for (std::size_t a = 0; a < m; ++a) {
+        for (std::size_t b = 0; b < m; ++b) corr += L.LS[a * q + j] * inv[a * m + b] * L.Lv[b];
+      }
+      mv[j] += L.Sv[j] - corr;
+    }
+  }
+  const std::vector<double> shape = q > 0 ? solve_small(M, mv) : std::vector<double>{};
+  for (double cv : shape) {
+    if (!std::isfinite(cv)) return out;
+  }
+  const auto shape_at = [&](double u) {
+    double v = 0.0;
+    for (std::size_t j = 0; j < q; ++j) v += shape[j] * pw(u, j + 2);
+    return v;
+  };
+  // Per cycle: (intercepts, slope) from v - shape; the residual variance for the
+  // covariance of the slope.
+  double rss = 0.0;
+  std::size_t nobs = 0, npar = q;
+  for (std::size_t c = 0; c < ncycles; ++c) {
+    const auto& L = loc[c];
+    if (L.m == 0) continue;
+    const std::size_t m = L.m;
+    std::vector<double> rhs(m);
+    for (std::size_t a = 0; a < m; ++a) {
+      double v = L.Lv[a];
+      for (std::size_t j = 0; j < q; ++j) v -= L.LS[a * q + j] * shape[j];
+      rhs[a] = v;
+    }
+    const auto theta = solve_small(L.LL, rhs);
+    out.cycle_slope[c] = theta[m - 1] / U;
+    out.cycle_slope_var[c] = inverse_small(L.LL, m)[(m - 1) * m + (m - 1)] / (U * U);
+    npar += m;
+    const auto& ks = of_cycle[c];
+    for (std::size_t r = 0; r < ks.size(); ++r) {
+      const auto& w = win[ks[r]];
+      for (std::size_t i = 0; i < w.u.size(); ++i) {
+        const double e = w.v[i] - theta[r] - theta[m - 1] * w.u[i] - shape_at(w.u[i]);
+        rss += e * e;
+        ++nobs;
       }
     }
   }
-  // Gaussian elimination with partial pivoting (3 x 3).
-  for (int k = 0; k < P; ++k) {
-    int piv = k;
-    for (int i = k + 1; i < P; ++i) {
-      if (std::abs(A[i][k]) > std::abs(A[piv][k])) piv = i;
+  const double s2 = nobs > npar ? rss / static_cast<double>(nobs - npar) : nan;
+  for (double& v : out.cycle_slope_var) v *= s2;
+  // b_i = theta_i(v) - g_i' c with g_i = [(L'L)^-1 L'S]_slope; Cov(c) = s2 M^-1.
+  if (q > 0) {
+    std::vector<double> g(q, 0.0);
+    std::size_t nfit = 0;
+    for (std::size_t c = 0; c < ncycles; ++c) {
+      const auto& L = loc[c];
+      if (L.m == 0) continue;
+      const std::size_t m = L.m;
+      const auto inv = inverse_small(L.LL, m);
+      for (std::size_t j = 0; j < q; ++j) {
+        double v = 0.0;
+        for (std::size_t a = 0; a < m; ++a) v += inv[(m - 1) * m + a] * L.LS[a * q + j];
+        g[j] += v;
+      }
+      ++nfit;
     }
-    if (!(std::abs(A[piv][k]) > 0.0)) return std::numeric_limits<double>::quiet_NaN();
-    for (int l = 0; l < P; ++l) std::swap(A[k][l], A[piv][l]);
-    std::swap(B[k], B[piv]);
-    for (int i = k + 1; i < P; ++i) {
-      const double f = A[i][k] / A[k][k];
-      for (int l = k; l < P; ++l) A[i][l] -= f * A[k][l];
-      B[i] -= f * B[k];
+    if (nfit > 0) {
+      for (double& v : g) v /= static_cast<double>(nfit);
+      const auto Minv = inverse_small(M, q);
+      double var = 0.0;
+      for (std::size_t j = 0; j < q; ++j) {
+        for (std::size_t jj = 0; jj < q; ++jj) var += g[j] * Minv[j * q + jj] * g[jj];
+      }
+      out.shape_variance_of_mean = s2 * var / (U * U);
     }
   }
-  double c[P];
-  for (int k = P - 1; k >= 0; --k) {
-    double v = B[k];
-    for (int l = k + 1; l < P; ++l) v -= A[k][l] * c[l];
-    c[k] = v / A[k][k];
+  // Per reversal: intercept and slope of v - shape on its own samples.
+  for (std::size_t k = 0; k < revs.size(); ++k) {
+    const auto& w = win[k];
+    if (w.u.size() < min_samples) continue;
+    double S0 = 0, S1 = 0, S2 = 0, T0 = 0, T1 = 0;
+    for (std::size_t i = 0; i < w.u.size(); ++i) {
+      const double u = w.u[i], v = w.v[i] - shape_at(w.u[i]);
+      S0 += 1;
+      S1 += u;
+      S2 += u * u;
+      T0 += v;
+      T1 += u * v;
+    }
+    const double det = S0 * S2 - S1 * S1;
+    if (std::abs(det) > 0.0) out.reversal_slope[k] = (S0 * T1 - S1 * T0) / det / U;
   }
-  return c[0];
+  return out;
+}
+
+// Noise of a sampled signal: the robust spread of its second differences,
+// 1.4826 MAD / sqrt(6) (white noise: var(x[i+1] - 2 x[i] + x[i-1]) = 6 sigma^2). The
+// signal's own second difference adds to it when it is sampled coarsely, so this is an
+// upper bound on the noise.
+double noise_level(const std::vector<double>& x) {
+  if (x.size() < 5) return 0.0;
+  std::vector<double> d2(x.size() - 2);
+  for (std::size_t i = 1; i + 1 < x.size(); ++i) d2[i - 1] = x[i + 1] - 2.0 * x[i] + x[i - 1];
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const double med = median(d2);
+  for (double& v : d2) v = std::abs(v - med);
+  return 1.4826 * median(d2) / std::sqrt(6.0);
 }
 
 // Value at index i of a least-squares quadratic in time through the samples within
@@ -236,6 +389,11 @@ void resample(const std::vector<double>& v, std::size_t a, std::size_t b, std::s
 
 }  // namespace
 
+std::string FrettingData::where(std::size_t i) const {
+  if (i < lines.size()) return fmt::format("{}:{}", source, lines[i]);
+  return fmt::format("{}: sample {}", source, i + 1);
+}
+
 void FrettingData::validate() const {
   const std::size_t n = t.size();
   if (delta.size() != n || Q.size() != n || (!Delta.empty() && Delta.size() != n)) {
@@ -247,13 +405,13 @@ void FrettingData::validate() const {
   for (std::size_t i = 0; i < n; ++i) {
     if (!std::isfinite(t[i]) || !std::isfinite(delta[i]) || !std::isfinite(Q[i]) ||
         (!Delta.empty() && !std::isfinite(Delta[i]))) {
-      throw InvalidInput(fmt::format("{}: data row {}: value is not finite", source, i + 1));
+      throw InvalidInput(fmt::format("{}: a value is not finite", where(i)));
     }
     if (i > 0 && !(t[i] > t[i - 1])) {
       throw InvalidInput(fmt::format(
-          "{}: data row {}: time t = {} s does not increase (previous {} s): time must be strictly "
+          "{}: time t = {:.6g} s does not increase (previous {:.6g} s): time must be strictly "
           "increasing",
-          source, i + 1, t[i], t[i - 1]));
+          where(i), t[i], t[i - 1]));
     }
   }
   std::vector<double> dt(n - 1);
@@ -265,9 +423,9 @@ void FrettingData::validate() const {
   for (std::size_t i = 0; i < dt.size(); ++i) {
     if (dt[i] > 5.0 * med) {
       throw InvalidInput(fmt::format(
-          "{}: data row {}: a gap in time ({} s to {} s, the median step is {} s): samples are "
-          "missing",
-          source, i + 2, t[i], t[i + 1], med));
+          "{}: a gap in time ({:.6g} s to {:.6g} s, a step of {:.6g} s where the median step is "
+          "{:.6g} s): samples are missing",
+          where(i + 1), t[i], t[i + 1], dt[i], med));
     }
   }
 }
@@ -292,6 +450,26 @@ FrettingData read_fretting_csv(const std::string& path) {
   d.delta = col("delta", core::dim::length, true);
   d.Q = col("Q", core::dim::force, true);
   d.Delta = col("Delta", core::dim::length, false);
+  // Line numbers of the data rows, by the reader's rules (core/csv.hpp): blank lines and
+  // lines starting with '#' are skipped, the first other line is the header.
+  {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    std::size_t no = 0;
+    bool header = false;
+    while (std::getline(in, line)) {
+      ++no;
+      const auto first = line.find_first_not_of(" \t\r");
+      if (first == std::string::npos || line[first] == '#') continue;
+      if (no == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0 && line.size() == 3) continue;
+      if (!header) {
+        header = true;
+        continue;
+      }
+      d.lines.push_back(no);
+    }
+    if (d.lines.size() != d.t.size()) d.lines.clear();  // unexpected: fall back to sample numbers
+  }
   d.validate();
   return d;
 }
@@ -300,7 +478,12 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
   data.validate();
   if (!(P > 0.0) || !std::isfinite(P)) throw InvalidInput(fmt::format("P = {} N must be > 0", P));
   if (!(opt.stiffness_window > 0.0 && opt.stiffness_window <= 0.5)) {
-    throw InvalidInput("stiffness window must be in (0, 0.5]");
+    throw InvalidInput(
+        fmt::format("stiffness window = {} must be in (0, 0.5]", opt.stiffness_window));
+  }
+  if (opt.stiffness_degree < 1 || opt.stiffness_degree > 4) {
+    throw InvalidInput(
+        fmt::format("stiffness fit degree = {} must be 1, 2, 3 or 4", opt.stiffness_degree));
   }
   const std::size_t n = data.t.size();
   const bool imposed = !data.Delta.empty();
@@ -340,9 +523,10 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
 
   FrettingAnalysis out;
   out.P = P;
-  // Stiffness at a reversal from the slope b of the fit (see AnalysisOptions): 1/b for
-  // delta(Q), 1/(1/b - c) for Q(Delta) with the apparatus compliance c.
+  out.noise_delta = noise_level(data.delta);
+  out.noise_Q = noise_level(data.Q);
   out.stiffness_from_imposed = imposed && opt.stiffness_from_imposed;
+  double c_app_variance = 0.0;
   if (out.stiffness_from_imposed) {
     // Delta - delta = c Q + e, least squares over every sample (Fig. 5.7: linear springs).
     double mq = 0.0, mr = 0.0;
@@ -363,17 +547,23 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
     }
     out.apparatus_compliance = c;
     out.apparatus_residual_rms = std::sqrt(ss / static_cast<double>(n));
+    c_app_variance = ss / static_cast<double>(n - 2) / sqq;  // least squares: s^2 / Sxx
   }
   const double c_app = out.apparatus_compliance;
+  // The fit (AnalysisOptions): Q(Delta), compliance C = 1/b - c; or delta(Q), C = b.
   const auto& fit_x = out.stiffness_from_imposed ? data.Delta : data.Q;
   const auto& fit_y = out.stiffness_from_imposed ? data.Q : data.delta;
   const auto& fit_x0 = out.stiffness_from_imposed ? data.Delta : Qs;
-  const auto stiffness_of = [&](double b) {
-    return out.stiffness_from_imposed ? 1.0 / (1.0 / b - c_app) : 1.0 / b;
+  const auto compliance_of = [&](double b) {
+    return out.stiffness_from_imposed ? 1.0 / b - c_app : b;
   };
+  const auto stiffness_of = [&](double b) { return 1.0 / compliance_of(b); };
   const std::size_t m = std::max<std::size_t>(opt.loop_points, 10);
   std::vector<double> acc_d(2 * m, 0.0), acc_Q(2 * m, 0.0);
+  std::vector<double> acc_ds(2 * m, 0.0), acc_Qs(2 * m, 0.0);  // smoothed: for its energy
   std::vector<Reversal> reversals;
+  std::vector<double> floor2;  // per cycle: variance of the energy from sensor noise
+  double window_span = 0.0;
   for (std::size_t k = 0; k + 2 < tp.size(); ++k) {
     if (tp[k].second != 1) continue;
     const std::size_t a = tp[k].first, mid = tp[k + 1].first, b = tp[k + 2].first;
@@ -382,7 +572,9 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
     CycleMetrics c;
     c.t_start = data.t[a];
     c.t_end = data.t[b];
-    c.energy = trapezoid_loop_area(ds, Qs, a, b);
+    c.first_sample = a;
+    c.last_sample = b;
+    c.energy = loop_energy(ds, Qs, a, b);
     const auto [qlo, qhi] = std::minmax_element(Qs.begin() + static_cast<std::ptrdiff_t>(a),
                                                 Qs.begin() + static_cast<std::ptrdiff_t>(b) + 1);
     c.Q_max = 0.5 * (*qhi - *qlo);
@@ -394,20 +586,37 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
     c.delta_max = 0.5 * (dhi - dlo);
     c.delta_center = 0.5 * (dhi + dlo);
     const double span = opt.stiffness_window * 2.0 * c.Q_max;
-    c.stiffness_unloading = stiffness_of(slope_at_reversal(fit_x, fit_y, fit_x0, Qs, a, mid, span));
-    c.stiffness_reloading = stiffness_of(slope_at_reversal(fit_x, fit_y, fit_x0, Qs, mid, b, span));
-    reversals.push_back({a, mid, -1, span});
-    reversals.push_back({mid, b, 1, span});
-    c.stiffness = 0.5 * (c.stiffness_unloading + c.stiffness_reloading);
+    window_span += span;
+    reversals.push_back({a, mid, -1, span, out.cycles.size()});
+    reversals.push_back({mid, b, 1, span, out.cycles.size()});
     const double x_down = crossing(ds, Qs, a, mid, c.Q_center);
     const double x_up = crossing(ds, Qs, mid, b, c.Q_center);
     c.sliding = std::max(0.0, 0.5 * (x_down - x_up));
     c.partial_slip = c.delta_max - c.sliding;
+    // Energy noise (FrettingAnalysis::energy_noise_floor): the area's change by the noise e
+    // of delta is -Sum e dQ, of variance s_d^2 Sum dQ^2 (the moving average does not reduce
+    // it: the weights dQ vary slowly), likewise for Q; the increments of the smoothed
+    // signals carry 2 s^2/w^2 of noise each, removed; the product of the two noises adds
+    // N 2 s_d^2 s_Q^2/w^3.
+    double sq = 0.0, sd = 0.0;
+    for (std::size_t i = a; i < b; ++i) {
+      sq += (Qs[i + 1] - Qs[i]) * (Qs[i + 1] - Qs[i]);
+      sd += (ds[i + 1] - ds[i]) * (ds[i + 1] - ds[i]);
+    }
+    const double N = static_cast<double>(b - a), ww = static_cast<double>(w);
+    const double vd = out.noise_delta * out.noise_delta, vq = out.noise_Q * out.noise_Q;
+    sq = std::max(0.0, sq - N * 2.0 * vq / (ww * ww));
+    sd = std::max(0.0, sd - N * 2.0 * vd / (ww * ww));
+    floor2.push_back(vd * sq + vq * sd + N * 2.0 * vd * vq / (ww * ww * ww));
     out.cycles.push_back(c);
     resample(data.delta, a, mid, m, acc_d, 0);
     resample(data.delta, mid, b, m, acc_d, m);
     resample(data.Q, a, mid, m, acc_Q, 0);
     resample(data.Q, mid, b, m, acc_Q, m);
+    resample(ds, a, mid, m, acc_ds, 0);
+    resample(ds, mid, b, m, acc_ds, m);
+    resample(Qs, a, mid, m, acc_Qs, 0);
+    resample(Qs, mid, b, m, acc_Qs, m);
   }
   if (out.cycles.empty()) {
     throw InvalidInput(fmt::format(
@@ -415,49 +624,156 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
         "displacement) found",
         data.source));
   }
-  const double nc = static_cast<double>(out.cycles.size());
+  const std::size_t ncyc = out.cycles.size();
+  const double nc = static_cast<double>(ncyc);
+  window_span /= nc;
+
+  // Stiffness: pooled fit, per-cycle compliances, their mean and its standard error.
+  const auto fit = fit_reversals(fit_x, fit_y, fit_x0, Qs, reversals, ncyc, opt.stiffness_degree);
+  std::vector<double> C(ncyc);
+  std::size_t nC = 0;
+  double sumC = 0.0;
+  std::vector<std::size_t> unresolved;
+  for (std::size_t i = 0; i < ncyc; ++i) {
+    auto& c = out.cycles[i];
+    C[i] = compliance_of(fit.cycle_slope[i]);
+    c.stiffness = 1.0 / C[i];
+    c.stiffness_unloading = stiffness_of(fit.reversal_slope[2 * i]);
+    c.stiffness_reloading = stiffness_of(fit.reversal_slope[2 * i + 1]);
+    c.stiffness_resolved = std::isfinite(C[i]) && C[i] > 0.0;
+    if (!c.stiffness_resolved) unresolved.push_back(i + 1);
+    if (std::isfinite(C[i])) {
+      sumC += C[i];
+      ++nC;
+    }
+  }
+  if (nC == 0) {
+    throw InvalidInput(fmt::format(
+        "{}: too few samples after the reversals to fit the stiffness (sample faster, or widen "
+        "the stiffness window)",
+        data.source));
+  }
+  const double Cmean = sumC / static_cast<double>(nC);
+  // Standard error of mean(C_i): the cycles' own scatter (spread of the C_i; with fewer
+  // than 3 cycles the fit's covariance), plus what they share: the common shape
+  // coefficients and, with Delta, the apparatus compliance c.
+  double varC = 0.0;
+  double bmean = 0.0;
+  for (std::size_t i = 0; i < ncyc; ++i) {
+    if (std::isfinite(C[i])) bmean += fit.cycle_slope[i] / static_cast<double>(nC);
+  }
+  // dC/db: -1/b^2 for Q(Delta), 1 for delta(Q).
+  const double dCdb2 = out.stiffness_from_imposed ? 1.0 / (bmean * bmean * bmean * bmean) : 1.0;
+  if (nC >= 3) {
+    double ss = 0.0;
+    for (double v : C) {
+      if (std::isfinite(v)) ss += (v - Cmean) * (v - Cmean);
+    }
+    varC = ss / static_cast<double>(nC - 1) / static_cast<double>(nC);
+  } else {
+    for (std::size_t i = 0; i < ncyc; ++i) {
+      if (std::isfinite(C[i])) varC += fit.cycle_slope_var[i] * dCdb2;
+    }
+    varC /= static_cast<double>(nC * nC);
+  }
+  varC += fit.shape_variance_of_mean * dCdb2;
+  if (out.stiffness_from_imposed) varC += c_app_variance;
+  const double seC = std::sqrt(varC);
+  if (!(Cmean > 0.0)) {
+    throw InvalidInput(fmt::format(
+        "{}: the joint's compliance at the reversals is not resolved (mean fitted compliance "
+        "{:.4g} um/N +- {:.2g}): the noise is too large against the joint's motion in the fit "
+        "window (widen the stiffness window, record more cycles or sample faster)",
+        data.source, Cmean * 1e6, seC * 1e6));
+  }
   CycleMetrics& mean = out.mean;
   mean.t_start = out.cycles.front().t_start;
   mean.t_end = out.cycles.back().t_end;
-  for (const auto& c : out.cycles) {
+  mean.first_sample = out.cycles.front().first_sample;
+  mean.last_sample = out.cycles.back().last_sample;
+  double sumW2 = 0.0, sumfloor2 = 0.0;
+  double Cu = 0.0, Cr = 0.0;
+  std::size_t nu = 0, nr = 0;
+  for (std::size_t i = 0; i < ncyc; ++i) {
+    const auto& c = out.cycles[i];
     mean.energy += c.energy / nc;
     mean.Q_max += c.Q_max / nc;
     mean.delta_max += c.delta_max / nc;
     mean.Q_center += c.Q_center / nc;
     mean.delta_center += c.delta_center / nc;
-    mean.stiffness += c.stiffness / nc;
-    mean.stiffness_unloading += c.stiffness_unloading / nc;
-    mean.stiffness_reloading += c.stiffness_reloading / nc;
     mean.sliding += c.sliding / nc;
     mean.partial_slip += c.partial_slip / nc;
+    sumfloor2 += floor2[i];
+    if (std::isfinite(1.0 / c.stiffness_unloading)) {
+      Cu += 1.0 / c.stiffness_unloading;
+      ++nu;
+    }
+    if (std::isfinite(1.0 / c.stiffness_reloading)) {
+      Cr += 1.0 / c.stiffness_reloading;
+      ++nr;
+    }
   }
-  out.mu = mean.Q_max / P;  // Eq. 6.1
-  mean.stiffness = stiffness_of(pooled_slope(fit_x, fit_y, fit_x0, Qs, reversals));
-  mean.stiffness_unloading = mean.stiffness_reloading = mean.stiffness;
+  for (const auto& c : out.cycles) sumW2 += (c.energy - mean.energy) * (c.energy - mean.energy);
+  mean.stiffness = 1.0 / Cmean;
+  mean.stiffness_unloading = nu ? static_cast<double>(nu) / Cu : 0.0;
+  mean.stiffness_reloading = nr ? static_cast<double>(nr) / Cr : 0.0;
+  mean.stiffness_resolved = true;
+  out.stiffness_standard_error = seC / (Cmean * Cmean);  // d(1/C) = dC / C^2
+  out.mu = mean.Q_max / P;                               // Eq. 6.1
+  out.energy_noise_floor = std::sqrt(sumfloor2 / nc) / std::sqrt(nc);
+  out.energy_standard_error =
+      ncyc >= 3 ? std::sqrt(sumW2 / (nc - 1.0) / nc) : out.energy_noise_floor;
+  out.energy_resolved = mean.energy > 3.0 * out.energy_noise_floor;
+  out.stiffness_window_motion = window_span * Cmean;
+  out.stiffness_noise = out.stiffness_from_imposed ? c_app * out.noise_Q : out.noise_delta;
+
   out.loop_delta.resize(2 * m);
   out.loop_Q.resize(2 * m);
   for (std::size_t j = 0; j < 2 * m; ++j) {
     out.loop_delta[j] = acc_d[j] / nc;
     out.loop_Q[j] = acc_Q[j] / nc;
   }
-  out.loop_energy = trapezoid_loop_area(out.loop_delta, out.loop_Q, 0, 2 * m - 1);
-  if (!std::isfinite(mean.stiffness)) {
-    throw InvalidInput(fmt::format(
-        "{}: too few samples after a reversal to fit the stiffness (sample faster, or widen the "
-        "stiffness window)",
-        data.source));
+  // Energy of the averaged loop from the smoothed signals: on raw samples the product of
+  // the two sensors' noises would add a random area of its own.
+  for (std::size_t j = 0; j < 2 * m; ++j) {
+    acc_ds[j] /= nc;
+    acc_Qs[j] /= nc;
   }
-  if (!(mean.stiffness > 0.0)) {
-    throw InvalidInput(fmt::format(
-        "{}: the joint's compliance at the reversals is not resolved (fitted stiffness {:.4g} "
-        "N/um): the noise is too large against the joint's motion in the fit window (widen the "
-        "stiffness window, record more cycles or sample faster)",
-        data.source, mean.stiffness * 1e-6));
+  out.loop_energy = loop_energy(acc_ds, acc_Qs, 0, 2 * m - 1);
+
+  // Warnings: results the noise does not support.
+  const double rel_se = out.stiffness_standard_error / mean.stiffness;
+  const double snr = out.stiffness_noise > 0.0 ? out.stiffness_window_motion / out.stiffness_noise
+                                               : std::numeric_limits<double>::infinity();
+  if (rel_se > 0.05 || snr < 3.0) {
+    out.warnings.push_back(fmt::format(
+        "stiffness {:.4g} N/um has a standard error of {:.1f} %: within the fit window the joint "
+        "moves {:.3g} um against a displacement noise of {:.3g} um ({}); sample faster or record "
+        "more cycles for a tighter value",
+        mean.stiffness * 1e-6, 100.0 * rel_se, out.stiffness_window_motion * 1e6,
+        out.stiffness_noise * 1e6,
+        out.stiffness_from_imposed ? "c times the force noise, the noise of Delta - c Q"
+                                   : "the displacement sensor's"));
+  }
+  if (!unresolved.empty()) {
+    std::string list;
+    for (auto i : unresolved) list += (list.empty() ? "" : ", ") + std::to_string(i);
+    out.warnings.push_back(fmt::format(
+        "per-cycle stiffness not resolved (negative or infinite: noise larger than the joint's "
+        "compliance) in cycle{} {}; the mean uses their compliances, which average out",
+        unresolved.size() > 1 ? "s" : "", list));
+  }
+  if (!out.energy_resolved) {
+    out.warnings.push_back(fmt::format(
+        "energy per cycle {:.4g} uJ is below 3 times the noise floor ({:.3g} uJ, from the "
+        "estimated noise {:.3g} um and {:.3g} N): the loop is too thin for the sensors and the "
+        "value is not resolved",
+        mean.energy * 1e6, out.energy_noise_floor * 1e6, out.noise_delta * 1e6, out.noise_Q));
   }
   return out;
 }
 
-double power_law_exponent(const std::vector<double>& Q_max, const std::vector<double>& energy) {
+PowerLawFit fit_power_law(const std::vector<double>& Q_max, const std::vector<double>& energy) {
   if (Q_max.size() != energy.size() || Q_max.size() < 2) {
     throw InvalidInput("power law: give at least two runs (energy and Q_max each)");
   }
@@ -465,7 +781,10 @@ double power_law_exponent(const std::vector<double>& Q_max, const std::vector<do
   const double n = static_cast<double>(Q_max.size());
   for (std::size_t i = 0; i < Q_max.size(); ++i) {
     if (!(Q_max[i] > 0.0) || !(energy[i] > 0.0))
-      throw InvalidInput("power law: values must be > 0");
+      throw InvalidInput(
+          fmt::format("power law: run {}: Q_max = {:.4g} N and energy = {:.4g} J "
+                      "must be > 0",
+                      i + 1, Q_max[i], energy[i]));
     const double x = std::log(Q_max[i]), y = std::log(energy[i]);
     sx += x;
     sy += y;
@@ -475,7 +794,30 @@ double power_law_exponent(const std::vector<double>& Q_max, const std::vector<do
   const double den = n * sxx - sx * sx;
   if (!(std::abs(den) > 1e-12 * n * sxx))
     throw InvalidInput("power law: the runs have the same Q_max");
-  return (n * sxy - sx * sy) / den;
+  PowerLawFit f;
+  f.runs = Q_max.size();
+  f.exponent = (n * sxy - sx * sy) / den;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  f.standard_error = f.ci_low = f.ci_high = nan;
+  if (Q_max.size() >= 3) {
+    const double a = (sy - f.exponent * sx) / n;
+    double rss = 0.0;
+    for (std::size_t i = 0; i < Q_max.size(); ++i) {
+      const double e = std::log(energy[i]) - a - f.exponent * std::log(Q_max[i]);
+      rss += e * e;
+    }
+    const double sxx_c = sxx - sx * sx / n;
+    f.standard_error = std::sqrt(rss / (n - 2.0) / sxx_c);
+    const boost::math::students_t dist(n - 2.0);
+    const double tq = boost::math::quantile(boost::math::complement(dist, 0.025));
+    f.ci_low = f.exponent - tq * f.standard_error;
+    f.ci_high = f.exponent + tq * f.standard_error;
+  }
+  return f;
+}
+
+double power_law_exponent(const std::vector<double>& Q_max, const std::vector<double>& energy) {
+  return fit_power_law(Q_max, energy).exponent;
 }
 
 double Eq53Excitation::operator()(double t) const {

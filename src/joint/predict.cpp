@@ -3,15 +3,31 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "asperity/core/error.hpp"
+#include "asperity/core/numerics.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 
 namespace asperity::joint {
 
+double joint_amplitude(const hysteresis::Backbone& b, double imposed, double compliance) {
+  if (!(imposed > 0.0) || !std::isfinite(imposed)) {
+    throw InvalidInput(fmt::format("imposed amplitude = {:.6g} m must be > 0", imposed));
+  }
+  if (!(compliance >= 0.0) || !std::isfinite(compliance)) {
+    throw InvalidInput(fmt::format("apparatus compliance = {:.6g} m/N must be >= 0", compliance));
+  }
+  // g(x) = x + c Q_l(x) - imposed rises monotonically from -imposed at 0 to >= 0 at imposed.
+  const auto g = [&](double x) { return x + compliance * b.force(x) - imposed; };
+  if (g(imposed) <= 0.0) return imposed;
+  return core::find_root(g, 0.0, imposed, "joint amplitude under an imposed amplitude");
+}
+
 LoadPrediction predict_load(const surface::RoughFlat& flat, double preload,
-                            const std::vector<double>& amplitudes) {
+                            const std::vector<double>& amplitudes,
+                            const std::vector<double>& imposed, double apparatus_compliance) {
   const auto& s = flat.scales();
   if (!s) throw InvalidInput("predict_load: the rough flat has no dimensional scales");
   LoadPrediction out;
@@ -19,8 +35,8 @@ LoadPrediction predict_load(const surface::RoughFlat& flat, double preload,
   out.P_star = preload / s->force;
   if (out.P_star > flat.max_load_star()) {
     throw InvalidInput(fmt::format(
-        "preload = {:.6g} N is beyond the model's range (P* = {:.3g} > {:.3g}: the contact would "
-        "be nearly complete); lower the preload or enlarge the area",
+        "preload = {:.6g} N is beyond the model's range (P* = P/(K H A0) = {:.3g} > {:.3g}: the "
+        "contact would be nearly complete); lower the preload or enlarge the area",
         preload, out.P_star, flat.max_load_star()));
   }
   out.d_star = flat.separation_star(out.P_star);
@@ -32,15 +48,23 @@ LoadPrediction predict_load(const surface::RoughFlat& flat, double preload,
   out.mean_pressure = preload / s->A0;
   auto table = flat.backbone(out.d_star);
   out.backbone = std::make_shared<hysteresis::ScaledBackbone>(table, s->sigma, s->force);
-  for (double a : amplitudes) {
+  // Gross slip: beyond the table's end every asperity slips (Q_l = Q_max to < 1e-12).
+  out.gross_slip_amplitude = table->table_end() * s->sigma;
+  std::vector<std::pair<double, double>> cases;  // (delta_max, imposed)
+  for (double a : amplitudes) cases.emplace_back(a, 0.0);
+  for (double D : imposed)
+    cases.emplace_back(joint_amplitude(*out.backbone, D, apparatus_compliance), D);
+  std::stable_sort(cases.begin(), cases.end());
+  for (const auto& [a, D] : cases) {
     AmplitudePrediction p;
     p.delta_max = a;
+    p.imposed = D;
     const double x = a / s->sigma;
     p.Q_peak = table->force(x) * s->force;
     // Masing: W = 8 Int Q_l - 4 x Q_l (hysteresis layer), in SI.
     p.energy = hysteresis::energy_per_cycle(*table, x) * s->force * s->sigma;
     p.Q_ratio = p.Q_peak / out.Q_max;
-    p.regime = p.Q_ratio >= 0.999 ? "gross slip" : "partial slip";
+    p.regime = x >= table->table_end() ? "gross slip" : "partial slip";
     out.amplitudes.push_back(p);
   }
   return out;
@@ -59,7 +83,15 @@ JointPrediction predict(const JointCase& c,
   out.psi = flat.parameters().psi;
   out.force_scale = flat.scales()->force;
   for (std::size_t i = 0; i < c.preloads.size(); ++i) {
-    auto lp = predict_load(flat, c.preloads[i], c.amplitudes);
+    LoadPrediction lp;
+    try {
+      lp = predict_load(flat, c.preloads[i], c.amplitudes, c.imposed, c.apparatus.compliance());
+    } catch (const InvalidInput& e) {
+      // Name where this load case came from (file, line, key).
+      if (i < c.preload_origin.size())
+        throw InvalidInput(fmt::format("{}: {}", c.preload_origin[i], e.what()));
+      throw;
+    }
     if (c.bolts && i < c.bolts->torques.size()) lp.torque = c.bolts->torques[i];
     out.loads.push_back(std::move(lp));
     if (progress) progress(i + 1, c.preloads.size());

@@ -3,9 +3,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 #include <functional>
 #include <map>
+#include <numbers>
 
 #include "asperity/contact/asperity_model.hpp"
 #include "asperity/contact/material.hpp"
@@ -26,9 +30,15 @@ namespace {
 
 using contact::ModelName;
 
+// Relative band within which a model-versus-experiment row reads "agrees (model vs
+// experiment)": indicative only (the preloads scatter by about 5 %, section 6.2); such
+// rows never fail.
+constexpr double kExperimentBand = 0.10;
+
 struct Builder {
   std::vector<ValidationRow> rows;
-  // tol: relative tolerance; known: a documented disagreement (seed_notes.md).
+  // tol: relative tolerance; known: a disagreement documented for this very row
+  // (seed_notes.md); out of tolerance without it the row FAILs.
   void add(std::string source, std::string quantity, double thesis, double ours, double tol,
            std::string note = {}, bool known = false) {
     ValidationRow r{std::move(source), std::move(quantity), thesis, ours, tol, "", std::move(note)};
@@ -38,8 +48,11 @@ struct Builder {
   }
   void experiment(std::string source, std::string quantity, double measured, double ours,
                   std::string note) {
-    ValidationRow r{std::move(source), std::move(quantity), measured, ours, 0.0,
-                    "experiment",      std::move(note)};
+    ValidationRow r{std::move(source), std::move(quantity), measured, ours, kExperimentBand, "",
+                    std::move(note)};
+    r.verdict = std::abs(r.relative_difference()) <= kExperimentBand
+                    ? "agrees (model vs experiment)"
+                    : "differs (model vs experiment)";
     rows.push_back(std::move(r));
   }
 };
@@ -92,28 +105,84 @@ void chapter3(Builder& b) {
   }
 }
 
+// Q*_max/P* of a rough flat at P* by a quadrature independent of RoughFlat's: Eq. 4.4 and
+// Eq. 4.7 summed over asperity heights with Boost's adaptive Gauss-Kronrod (RoughFlat uses
+// tanh-sinh), split at the asperity laws' branch points, and the separation solved for P*
+// by TOMS 748. Shares only the asperity laws (ch. 3, checked by Tables 3.2 and 3.4).
+double independent_flat_mu(const surface::RoughFlatParameters& p, double P_star) {
+  const contact::AsperityLaws laws(p.model, p.nu, p.friction);
+  const double s_a = std::sqrt(1.0 - 3.717e-4 / (p.beta * p.beta));  // below Eq. 4.2
+  const double wc = s_a / (p.psi * p.psi);                           // Eq. 4.5 on sigma_a
+  const double pref = 2.0 * std::numbers::pi / 3.0 * p.beta * wc;    // Eq. 4.4
+  const auto integral = [&](double d, bool friction) {
+    // u = z* - d* > 0: asperities in contact; the Gaussian (Eq. 4.2) is negligible past
+    // |z*| = 40 sigma_a.
+    const double u_end = std::max(40.0 * s_a - d, 1e-9);
+    std::vector<double> cuts{0.0};
+    for (double w : laws.break_points()) {
+      if (w * wc < u_end) cuts.push_back(w * wc);
+    }
+    cuts.push_back(u_end);
+    std::sort(cuts.begin(), cuts.end());
+    const auto f = [&](double u) {
+      const double w = u / wc, z = (d + u) / s_a;
+      const double phi = std::exp(-0.5 * z * z) / (std::sqrt(2.0 * std::numbers::pi) * s_a);
+      return (friction ? laws.mu(w) : 1.0) * laws.load_star(w) * phi;
+    };
+    double sum = 0.0;
+    for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+      if (cuts[i + 1] > cuts[i])
+        sum += boost::math::quadrature::gauss_kronrod<double, 31>::integrate(
+            f, cuts[i], cuts[i + 1], 15, 1e-11);
+    }
+    return pref * sum;
+  };
+  const auto g = [&](double d) { return std::log(integral(d, false)) - std::log(P_star); };
+  double lo = -5.0 * s_a, hi = lo;
+  while (g(hi) > 0.0) hi += s_a;
+  std::uintmax_t it = 200;
+  const auto [x0, x1] = boost::math::tools::toms748_solve(
+      g, lo, hi, boost::math::tools::eps_tolerance<double>(44), it);
+  const double d = 0.5 * (x0 + x1);
+  return integral(d, true) / integral(d, false);
+}
+
 void chapter4(Builder& b) {
   const double P = 1e-3;
   const char* names[] = {"CFC", "CEB", "KE", "BKE"};
   const double table41[3][4] = {
       {0.3, 0.83, 1.02, 1.18}, {0.3, 0.29, 0.68, 0.94}, {0.3, 0.03, 0.29, 0.63}};
+  // Rows of Table 4.1 we do not reproduce (seed_notes.md: the table does not follow from
+  // the printed equations); every other row must agree.
+  const bool documented[3][4] = {
+      {false, false, true, true}, {false, true, true, true}, {false, true, true, false}};
   const double psis[] = {0.5, 1.0, 2.0};
+  std::vector<std::pair<std::string, std::pair<double, double>>> regression;
   for (int j = 0; j < 3; ++j) {
     for (int i = 0; i < 4; ++i) {
-      const surface::RoughFlat f({.model = contact::kAllModels[i],
-                                  .beta = 0.04,
-                                  .psi = psis[j],
-                                  .nu = 0.3,
-                                  .G_over_E = 0.7 / 3.4,
-                                  .friction = {.mu_cfc = 0.3}});
+      const surface::RoughFlatParameters params{.model = contact::kAllModels[i],
+                                                .beta = 0.04,
+                                                .psi = psis[j],
+                                                .nu = 0.3,
+                                                .G_over_E = 0.7 / 3.4,
+                                                .friction = {.mu_cfc = 0.3}};
+      const surface::RoughFlat f(params);
       const double d = f.separation_star(P);
-      b.add("Table 4.1", fmt::format("mu {} psi = {}", names[i], psis[j]), table41[j][i],
-            f.static_friction_star(d) / P, 5e-2,
+      const double ours = f.static_friction_star(d) / P;
+      b.add("Table 4.1", fmt::format("mu {} psi = {}", names[i], psis[j]), table41[j][i], ours,
+            5e-2,
             "preload and nu not stated in the thesis: P* = 1e-3, nu = 0.3 (Fig. 4.4); Table 4.1 "
-            "does not follow "
-            "from the printed equations (seed_notes.md)",
-            i > 0);
+            "does not follow from the printed equations (seed_notes.md)",
+            documented[j][i]);
+      regression.push_back({fmt::format("mu {} psi = {}", names[i], psis[j]),
+                            {independent_flat_mu(params, P), ours}});
     }
+  }
+  // Our own values against an independent quadrature: these rows fail if the rough flat's
+  // summation changes.
+  for (const auto& [q, v] : regression) {
+    b.add("Table 4.1 (regression)", q, v.first, v.second, 1e-6,
+          "reference: Eq. 4.4/4.7 by an independent adaptive Gauss-Kronrod quadrature");
   }
   // Fig. 4.4 statements (beta = 0.04, psi = 0.5, P* = 1e-3, nu = 0.3).
   const auto flat = [&](ModelName m) {
@@ -164,6 +233,68 @@ void roughness_rows(Builder& b, const std::string& source, const std::string& la
   }
 }
 
+// Table 6.2: roughness of the PZT and load-cell halves (sigma [um], eta [um^-2], R [um])
+// and of their combination, before and after the experiments.
+struct T62 {
+  const char* label;
+  double h1[3], h2[3], c[3];
+  bool R;
+};
+const T62 kTable62[] = {
+    {"smooth Al before",
+     {0.507, 3.87e-4, 129.451},
+     {0.655, 3.26e-4, 152.867},
+     {0.828, 3.59e-4, 98.788},
+     true},
+    {"smooth Al after",
+     {0.506, 4.09e-4, 130.186},
+     {0.537, 3.58e-4, 138.147},
+     {0.738, 3.83e-4, 94.745},
+     true},
+    {"rough Al before",
+     {2.243, 3.00e-4, 39.119},
+     {1.791, 3.35e-4, 40.071},
+     {2.870, 3.16e-4, 27.992},
+     true},
+    {"rough Al after",
+     {1.903, 3.12e-4, 41.142},
+     {1.812, 3.28e-4, 43.410},
+     {2.628, 3.20e-4, 29.862},
+     true},
+    {"smooth steel before",
+     {0.387, 3.63e-4, 194.631},
+     {0.424, 3.56e-4, 163.532},
+     {0.574, 3.59e-4, 125.204},
+     true},
+    {"smooth steel after",
+     {0.357, 3.68e-4, 210.931},
+     {0.438, 3.55e-4, 167.981},
+     {0.566, 3.60e-4, 131.403},
+     true},
+    // R of the rough steel is not legible in the thesis text: sigma and eta only (eta
+    // of the combination needs R of the halves: beta = 0.024 assumed, see the example).
+    {"rough steel before",
+     {1.848, 3.23e-4, 40.2},
+     {1.863, 3.05e-4, 42.2},
+     {2.624, 3.14e-4, 0.0},
+     false},
+};
+
+// Table 6.1 (E, nu, G) with the hardness we assume (the thesis gives none for ch. 6):
+// aluminium 6061-T6 0.93 GPa (Brinell 95 HB), steel 420 5.8 GPa (Table 7.2).
+const contact::Material kAl6061{.E = 69e9, .nu = 0.33, .G = 26.2e9, .H = 0.93e9};
+
+// Table 6.4, dry: average mu = Q_max^av/P (Eq. 6.1) at 0.192/0.305/0.418 N m.
+struct T64 {
+  const char* joint;  // example file stem
+  const char* label;
+  double mu[3];
+};
+const T64 kTable64[] = {{"aluminium_smooth", "smooth Al", {0.31, 0.61, 0.52}},
+                        {"aluminium_rough", "rough Al", {0.32, 0.59, 0.54}},
+                        {"steel_smooth", "smooth St", {0.42, 0.47, 0.57}},
+                        {"steel_rough", "rough St", {0.68, 0.72, 0.53}}};
+
 void chapter5_6(Builder& b) {
   {
     const double h1[] = {1.763, 3.34e-4, 40.76}, h2[] = {2.015, 2.51e-4, 44.77},
@@ -175,51 +306,7 @@ void chapter5_6(Builder& b) {
     const double apsi[] = {3.284, 3.122, 4.534};
     roughness_rows(b, "Table 5.4", "after", kSteel420, a1, a2, ac, true, apsi);
   }
-  struct T62 {
-    const char* label;
-    double h1[3], h2[3], c[3];
-    bool R;
-  };
-  const T62 t62[] = {
-      {"smooth Al before",
-       {0.507, 3.87e-4, 129.451},
-       {0.655, 3.26e-4, 152.867},
-       {0.828, 3.59e-4, 98.788},
-       true},
-      {"smooth Al after",
-       {0.506, 4.09e-4, 130.186},
-       {0.537, 3.58e-4, 138.147},
-       {0.738, 3.83e-4, 94.745},
-       true},
-      {"rough Al before",
-       {2.243, 3.00e-4, 39.119},
-       {1.791, 3.35e-4, 40.071},
-       {2.870, 3.16e-4, 27.992},
-       true},
-      {"rough Al after",
-       {1.903, 3.12e-4, 41.142},
-       {1.812, 3.28e-4, 43.410},
-       {2.628, 3.20e-4, 29.862},
-       true},
-      {"smooth steel before",
-       {0.387, 3.63e-4, 194.631},
-       {0.424, 3.56e-4, 163.532},
-       {0.574, 3.59e-4, 125.204},
-       true},
-      {"smooth steel after",
-       {0.357, 3.68e-4, 210.931},
-       {0.438, 3.55e-4, 167.981},
-       {0.566, 3.60e-4, 131.403},
-       true},
-      // R of the rough steel is not legible in the thesis text: sigma and eta only (eta
-      // of the combination needs R of the halves: beta = 0.024 assumed, see the example).
-      {"rough steel before",
-       {1.848, 3.23e-4, 40.2},
-       {1.863, 3.05e-4, 42.2},
-       {2.624, 3.14e-4, 0.0},
-       false},
-  };
-  for (const auto& t : t62)
+  for (const auto& t : kTable62)
     roughness_rows(b, "Table 6.2", t.label, kSteel420, t.h1, t.h2, t.c, t.R);
 
   // Eq. 5.2 tables.
@@ -257,44 +344,91 @@ void chapter5_6(Builder& b) {
     b.add("Ch. 5 mu (BKE)", fmt::format("mu at {} N", P[i]), mu[i], lp.mu, 5e-2,
           "issue 5 asks for 5 %; ours falls slowly with preload, the thesis's is not monotone");
   }
-  // Table 5.6: the model in the apparatus (Fig. 5.7) against the measurements.
+  // Table 5.6: the model in the apparatus (Fig. 5.7) against the measurements: the
+  // joint amplitude of a steady cycle from delta + c Q_l(delta) = 6.75 um.
   const double dmax[] = {4.26, 2.69, 1.32, 0.79}, mu_exp[] = {0.479, 0.508, 0.420, 0.323};
+  const Apparatus app{};
   for (int i = 0; i < 4; ++i) {
-    const auto lp = predict_load(flat, P[i], {});
-    SyntheticOptions o;
-    o.excitation.amplitude = 6.75e-6;
-    o.excitation.cycles = 3;
-    o.noise_delta = 0.0;
-    o.noise_Q = 0.0;
-    const auto d = synthetic_experiment(lp.backbone, o);
-    double lo = 1e300, hi = -1e300, qlo = 1e300, qhi = -1e300;
-    for (std::size_t k = 0; k < d.t.size(); ++k) {
-      if (d.t[k] >= 2.0 && d.t[k] < 3.0) {  // a steady cycle
-        lo = std::min(lo, d.delta[k]);
-        hi = std::max(hi, d.delta[k]);
-        qlo = std::min(qlo, d.Q[k]);
-        qhi = std::max(qhi, d.Q[k]);
-      }
-    }
+    const auto lp = predict_load(flat, P[i], {}, {6.75e-6}, app.compliance());
+    const auto& a = lp.amplitudes.front();
     b.experiment("Table 5.6", fmt::format("delta_max at {} N [um] (PZT 6.75 um)", P[i]), dmax[i],
-                 0.5 * (hi - lo) * 1e6, "model in series with the 38 N/um PZT side (Fig. 5.7)");
-    b.experiment("Table 5.6", fmt::format("mu = Q_max/P at {} N", P[i]), mu_exp[i],
-                 0.5 * (qhi - qlo) / P[i], "measured mu against the BKE loop");
+                 a.delta_max * 1e6, "model in series with the 38 N/um PZT side (Fig. 5.7)");
+    b.experiment("Table 5.6", fmt::format("mu = Q_max/P at {} N", P[i]), mu_exp[i], a.Q_peak / P[i],
+                 "measured mu against the BKE loop's peak force");
   }
+  // Table 6.4: the chapter 6 joints' static friction coefficient (Eq. 4.7) against the
+  // measured dry mu of Eq. 6.1 (which equals it in gross slip, section 6.3).
+  const auto joints = chapter6_joints();
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    const auto f = joints[k].rough_flat();
+    for (std::size_t i = 0; i < 3; ++i) {
+      const double Pi = joints[k].preloads[i];
+      const auto& sc = *f.scales();
+      const double mu_ours =
+          f.static_friction_star(f.separation_star(Pi / sc.force)) * sc.force / Pi;
+      b.experiment("Table 6.4",
+                   fmt::format("{} dry mu at {:.3g} N m ({:.0f} N)", kTable64[k].label,
+                               joints[k].bolts->torques[i] * 2.0, Pi),
+                   kTable64[k].mu[i], mu_ours,
+                   "BKE static mu of the ch. 6 example (assumed hardness, docs/joints.md) "
+                   "against the measured dry mu");
+    }
+  }
+}
+
+JointCase chapter6_joint(const char* name, const char* title, const contact::Material& m,
+                         const T62& t) {
+  JointCase c;
+  c.name = title;
+  c.source = fmt::format("chapter 6 (built in, = examples/joints/{}.toml)", name);
+  c.area = 165e-6;  // section 6.2: 165 mm^2
+  for (int h = 0; h < 2; ++h) {
+    const double* v = h == 0 ? t.h1 : t.h2;
+    c.halves[h] = {
+        m,
+        {surface::SpectralMoments::from_parameters(v[0] * 1e-6, v[1] * 1e12, v[2] * 1e-6), {}, {}}};
+  }
+  Bolts bolts{.count = 2, .nut_factor = 0.2, .diameter = 2.9e-3, .torques = {}};
+  for (double T : {0.192, 0.305, 0.418}) {  // Table 6.3, total over the two bolts
+    bolts.torques.push_back(T / 2.0);
+    c.preloads.push_back(bolts.preload(T / 2.0));
+  }
+  c.bolts = bolts;
+  c.amplitudes = {0.02e-6, 0.05e-6, 0.1e-6, 0.25e-6};
+  c.imposed = {2.25e-6, 4.5e-6, 6.75e-6, 9e-6, 11.25e-6, 13.5e-6, 15.75e-6, 18e-6};
+  return c;
 }
 
 }  // namespace
 
+std::vector<JointCase> chapter6_joints() {
+  return {chapter6_joint("aluminium_smooth", "smooth aluminium 6061-T6 lap joint (thesis ch. 6)",
+                         kAl6061, kTable62[0]),
+          chapter6_joint("aluminium_rough", "rough aluminium 6061-T6 lap joint (thesis ch. 6)",
+                         kAl6061, kTable62[2]),
+          chapter6_joint("steel_smooth", "smooth steel 420 lap joint (thesis ch. 6)", kSteel420,
+                         kTable62[4]),
+          chapter6_joint("steel_rough", "rough steel 420 lap joint (thesis ch. 6)", kSteel420,
+                         kTable62[6])};
+}
+
 JointCase chapter5_joint() {
   JointCase c;
   c.name = "steel 420 lap joint, two bolts (thesis ch. 5)";
-  c.source = "chapter 5 (built in)";
-  c.area = 170e-6;
+  c.source = "chapter 5 (built in, = examples/joints/steel420_two_bolts.toml)";
+  c.area = 170e-6;  // 10 x 17 mm^2 (section 5.5)
   c.halves[0] = {kSteel420,
                  {surface::SpectralMoments::from_parameters(1.763e-6, 3.34e8, 40.76e-6), {}, {}}};
   c.halves[1] = {kSteel420,
                  {surface::SpectralMoments::from_parameters(2.015e-6, 2.51e8, 44.77e-6), {}, {}}};
-  c.preloads = {234.0, 331.0, 526.0, 721.0};
+  // Table 5.5: total torque on the two M3 bolts [lbf in], Eq. 5.2 with k = 0.2, D = 2.9 mm.
+  Bolts bolts{.count = 2, .nut_factor = 0.2, .diameter = 2.9e-3, .torques = {}};
+  const double lbf_in = 4.4482216152605 * 0.0254;  // N m: the exact lbf and inch
+  for (double T : {1.2, 1.7, 2.7, 3.7}) {
+    bolts.torques.push_back(T * lbf_in / 2.0);
+    c.preloads.push_back(bolts.preload(T * lbf_in / 2.0));
+  }
+  c.bolts = bolts;
   c.amplitudes = {0.05e-6, 0.1e-6, 0.25e-6, 0.5e-6, 1e-6, 2e-6, 4e-6};
   return c;
 }
@@ -309,10 +443,15 @@ std::vector<ValidationRow> validation_rows() {
 
 std::string validation_markdown(const std::vector<ValidationRow>& rows) {
   std::string s = "# Validation against the thesis\n\n";
-  s += "Generated by `asperity validate` (the test suite runs it). Each row recomputes one number\n"
-       "of Eriten (2012) with the library; `agrees` means within the row's relative tolerance,\n"
-       "`differs (documented)` is a known disagreement explained in docs/seed_notes.md and the\n"
-       "linked docs, `experiment` compares the model with a measurement (not a reproduction).\n\n";
+  s += "Generated by `asperity validate` (the test suite runs it and checks this file is\n"
+       "current). Each row recomputes one number of Eriten (2012) with the library. The\n"
+       "`reference` column is the thesis's value; in `(regression)` sections it is our own\n"
+       "value by an independent quadrature, and in model-versus-experiment rows (Tables 5.6,\n"
+       "6.4) the measurement. Verdicts: `agrees` (within the row's relative tolerance),\n"
+       "`differs (documented)` (a disagreement documented for that row in docs/seed_notes.md\n"
+       "and the linked docs), `FAIL` (anything else: `asperity validate` exits 1), and for\n"
+       "model-versus-experiment rows, which are not reproductions and never fail, `agrees\n"
+       "(model vs experiment)` within an indicative 10 % or `differs (model vs experiment)`.\n\n";
   std::map<std::string, int> count;
   for (const auto& r : rows) ++count[r.verdict];
   s += "Figures (`asperity validate --out DIR` writes them next to validation.md): the chapter 5\n"
@@ -328,14 +467,16 @@ std::string validation_markdown(const std::vector<ValidationRow>& rows) {
     if (r.source != current) {
       current = r.source;
       s += fmt::format(
-          "\n## {}\n\n| quantity | thesis | ours | rel. diff. | tolerance | verdict | note |\n"
+          "\n## {}\n\n| quantity | reference | ours | rel. diff. | tolerance | verdict | note |\n"
           "| --- | --- | --- | --- | --- | --- | --- |\n",
           current);
     }
-    s += fmt::format("| {} | {:.5g} | {:.5g} | {:+.2f} % | {} | {} | {} |\n", r.quantity, r.thesis,
-                     r.ours, 100.0 * r.relative_difference(),
-                     r.verdict == "experiment" ? "-" : fmt::format("{:.3g} %", 100.0 * r.tolerance),
-                     r.verdict, r.note);
+    // A difference that rounds to 0.00 % is printed unsigned: its sign is round-off and
+    // would make the report differ between machines.
+    const double d = 100.0 * r.relative_difference();
+    s += fmt::format("| {} | {:.5g} | {:.5g} | {} % | {:.3g} % | {} | {} |\n", r.quantity, r.thesis,
+                     r.ours, std::abs(d) < 0.005 ? std::string("0.00") : fmt::format("{:+.2f}", d),
+                     100.0 * r.tolerance, r.verdict, r.note);
   }
   return s;
 }

@@ -51,32 +51,122 @@ def synth(name, *extra):
     return path
 
 
+def expect_refused(args, out):
+    """--out names a directory asperity did not write: exit 2, the directory intact."""
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "precious.txt"), "w") as f:
+        f.write("not asperity's")
+    before = sorted(os.listdir(tmp))
+    p = run(*args, "--out", out, code=2)
+    check("did not write" in p.stderr and "choose another --out" in p.stderr, p.stderr)
+    check(os.listdir(out) == ["precious.txt"], f"foreign directory touched: {os.listdir(out)}")
+    check(open(os.path.join(out, "precious.txt")).read() == "not asperity's", "file changed")
+    check(sorted(os.listdir(tmp)) == before, f"stray files: {sorted(os.listdir(tmp))}")
+
+
 if case == "predict_example":
     out = os.path.join(tmp, "out")
     p = run("predict", os.path.join(ex, "steel420_two_bolts.toml"), "--out", out)
     check("0.34" in p.stdout and "partial slip" in p.stdout and "gross slip" in p.stdout, p.stdout)
-    for f in ["summary.json", "loops.csv", "energy.csv", "loops.png", "energy_vs_force.png",
-              "mu_vs_preload.png", "stiffness_vs_preload.png"]:
+    files = ["summary.json", "loops.csv", "energy.csv", "loops.png", "energy_vs_force.png",
+             "mu_vs_preload.png", "stiffness_vs_preload.png"]
+    for f in files:
         check(os.path.getsize(os.path.join(out, f)) > 0, f"missing {f}")
+    check(f"wrote {out}/ ({', '.join(files)})" in p.stdout, p.stdout)
+    check(os.path.exists(os.path.join(out, ".asperity-output")), "no marker")
     check(sorted(os.listdir(tmp)) == ["out"], f"stray files: {os.listdir(tmp)}")
+elif case == "out_dir_safety":
+    # An unrelated existing directory is refused and left intact, by every command.
+    expect_refused(["predict", os.path.join(ex, "steel420_two_bolts.toml")], os.path.join(tmp, "precious"))
+    expect_refused(["validate"], os.path.join(tmp, "docs"))
+    data = synth("d.csv", "--imposed", "6.75um", "--preload", "526N")
+    expect_refused(["analyze", data, "--P", "526N"], os.path.join(tmp, "mine"))
+    # A previous asperity output is replaced as a whole (its old files go).
+    out = os.path.join(tmp, "out")
+    run("predict", os.path.join(ex, "steel420_two_bolts.toml"), "--out", out)
+    check(os.path.exists(os.path.join(out, "loops.png")), "first run wrote no plots")
+    run("predict", os.path.join(ex, "steel420_two_bolts.toml"), "--out", out, "--no-plots")
+    check(sorted(os.listdir(out)) == [".asperity-output", "energy.csv", "loops.csv", "summary.json"],
+          f"not replaced: {sorted(os.listdir(out))}")
+    # A nonexistent directory is created; an empty one is taken.
+    new = os.path.join(tmp, "new")
+    run("predict", os.path.join(ex, "steel420_two_bolts.toml"), "--out", new, "--no-plots")
+    check(os.path.exists(os.path.join(new, "summary.json")), "not created")
+    empty = os.path.join(tmp, "empty")
+    os.makedirs(empty)
+    run("predict", os.path.join(ex, "steel420_two_bolts.toml"), "--out", empty + "/", "--no-plots")
+    check(os.path.exists(os.path.join(empty, "summary.json")), "empty directory not used")
+    check(not [f for f in os.listdir(tmp) if f.startswith(".")], f"temporaries left: {os.listdir(tmp)}")
+elif case == "predict_without_excitation":
+    text = BASE[:BASE.index("[excitation]")]
+    out = os.path.join(tmp, "out")
+    p = run("predict", write_case(text), "--out", out)
+    check("no [excitation]" in p.stdout, p.stdout)
+    written = sorted(f for f in os.listdir(out) if not f.startswith("."))
+    check(written == ["mu_vs_preload.png", "stiffness_vs_preload.png", "summary.json"], written)
+    check(f"wrote {out}/ (summary.json, mu_vs_preload.png, stiffness_vs_preload.png)" in p.stdout,
+          p.stdout)
 elif case == "predict_sweep_files":
-    for name in ["aluminium_smooth", "aluminium_rough", "steel_smooth", "steel_rough", "steel420_profiles"]:
+    # Chapter 5 joint from scans: Table 5.4 within 0.3 % (JointCase.ProfilesGiveTable54), so
+    # its mu at 526 N is the BKE value of section 5.3 (0.335) within the issue's 5 %, and
+    # equals the parameter case's within 0.5 %.
+    ref = json.loads(run("predict", write_case(BASE.replace(
+        'bolts = { count = 2, total_torques = ["1.2 lbf*in", "1.7 lbf*in", "2.7 lbf*in", "3.7 lbf*in"], nut_factor = 0.2, diameter = "2.9 mm" }',
+        'preload = "526 N"')), "--json").stdout)
+    out = os.path.join(tmp, "prof")
+    run("predict", os.path.join(ex, "steel420_profiles.toml"), "--out", out, "--no-plots")
+    s = json.load(open(os.path.join(out, "summary.json")))
+    check(abs(s["mu"] - 0.335) / 0.335 < 0.05, f"mu {s['mu']} vs 0.335 (section 5.3)")
+    for k in ["mu", "stiffness", "Q_max"]:
+        check(abs(s[k] - ref[k]) / ref[k] < 5e-3, f"{k}: scans {s[k]} vs parameters {ref[k]}")
+    # Chapter 6 joints: the same mu as validate's Table 6.4 rows (built-in copies of these
+    # files), to the report's 5 digits.
+    md = run("validate").stdout
+    labels = {"aluminium_smooth": "smooth Al", "aluminium_rough": "rough Al",
+              "steel_smooth": "smooth St", "steel_rough": "rough St"}
+    for name, label in labels.items():
         out = os.path.join(tmp, name)
         run("predict", os.path.join(ex, name + ".toml"), "--out", out, "--no-plots")
         s = json.load(open(os.path.join(out, "summary.json")))
         for load in s["loads"]:
-            check(0.05 < load["mu"] < 2 and load["stiffness"] > 0, f"{name}: {load}")
+            row = [l for l in md.splitlines() if l.startswith(f"| {label} dry mu at ") and f"({load['preload']:.0f} N)" in l]
+            check(len(row) == 1, f"{name}: no Table 6.4 row for {load['preload']}")
+            ours = float(row[0].split("|")[3])
+            check(abs(load["mu"] - ours) / ours < 1e-4, f"{name}: mu {load['mu']} vs validate {ours}")
+            check(load["stiffness"] > 0 and load["gross_slip_amplitude"] > 0, load)
+            imposed = [a for a in load["amplitudes"] if "imposed" in a]
+            check(len(imposed) == 8 and len(load["amplitudes"]) == 12, f"{name}: amplitudes")
+            # Fig. 5.7 in series: delta + c Q_peak = imposed.
+            c = 1 / 38e6 + 1 / 1462e6
+            for a in imposed:
+                check(abs(a["delta_max"] + c * a["Q_peak"] - a["imposed"]) < 1e-12, a)
+            # The small joint amplitudes are in partial slip (slope 2-3 part of Fig. 6.12).
+            check(all(a["regime"] == "partial slip" for a in load["amplitudes"][:3]), name)
+elif case == "predict_long_sweep":
+    # 40 preloads: one colour scale instead of 40 legend entries (looked at by eye).
+    P = ", ".join(f'"{200 + 15 * i} N"' for i in range(40))
+    text = BASE.replace(
+        'bolts = { count = 2, total_torques = ["1.2 lbf*in", "1.7 lbf*in", "2.7 lbf*in", "3.7 lbf*in"], nut_factor = 0.2, diameter = "2.9 mm" }',
+        f"preloads = [{P}]").replace('amplitudes = ["0.05 um", "0.1 um", "0.25 um", "0.5 um", "1 um", "2 um", "4 um"]',
+                                   'amplitudes = ["0.1 um", "1 um"]')
+    out = os.path.join(tmp, "sweep")
+    run("predict", write_case(text), "--out", out)
+    s = json.load(open(os.path.join(out, "summary.json")))
+    check(len(s["loads"]) == 40, len(s["loads"]))
+    for f in ["loops.png", "energy_vs_force.png", "mu_vs_preload.png"]:
+        check(os.path.getsize(os.path.join(out, f)) > 0, f"missing {f}")
 elif case == "predict_json_keys":
     p = run("predict", write_case(BASE.replace(
         'bolts = { count = 2, total_torques = ["1.2 lbf*in", "1.7 lbf*in", "2.7 lbf*in", "3.7 lbf*in"], nut_factor = 0.2, diameter = "2.9 mm" }',
         'preload = "526 N"')), "--json")
     s = json.loads(p.stdout)
-    for k in ["preload", "mu", "stiffness", "Q_max", "separation", "amplitudes", "loads"]:
+    for k in ["preload", "mu", "stiffness", "Q_max", "separation", "amplitudes", "loads", "gross_slip_amplitude"]:
         check(k in s, f"summary lacks {k}")
     check(abs(s["preload"] - 526) < 1e-9, s["preload"])
     check(abs(s["mu"] - 0.335) / 0.335 < 0.05, f"mu {s['mu']} vs thesis 0.335")
     for a in s["amplitudes"]:
         check(set(["delta_max", "Q_peak", "energy", "regime"]) <= set(a), a)
+        check((a["regime"] == "gross slip") == (a["delta_max"] >= s["gross_slip_amplitude"]), a)
     check(s["amplitudes"][0]["delta_max"] == 0.05e-6, s["amplitudes"][0])
 elif case == "analyze_synthetic":
     data = synth("d.csv", "--imposed", "6.75um", "--preload", "526N", "--seed", "11")
@@ -89,18 +179,59 @@ elif case == "analyze_synthetic":
         check(k in j["mean"] and all(k in c for c in j["per_cycle"]), k)
     check(abs(j["mu"] - 0.3427) < 0.01 * 0.3427, f"mu {j['mu']}")  # model mu at 526 N: 0.3427
     check(abs(j["model"]["relative_difference"]["mu"]) < 0.01, j["model"])
-    for f in ["analysis.json", "cycles.csv", "averaged_loop.csv", "loops.png"]:
+    # The stiffness with its standard error; the mean is the harmonic mean of the cycles'.
+    k, se = j["mean"]["stiffness"], j["standard_error"]["stiffness"]
+    check(abs(k - j["model"]["stiffness"]) < 3 * se, f"k {k} +- {se} vs {j['model']['stiffness']}")
+    ks = [c["stiffness"] for c in j["per_cycle"]]
+    check(abs(k - len(ks) / sum(1 / x for x in ks)) < 1e-9 * k, "mean is not the harmonic mean")
+    check(j["energy_resolved"] and isinstance(j["warnings"], list), j["warnings"])
+    for f in ["analysis.json", "cycles.csv", "cycle_traces.csv", "averaged_loop.csv", "loops.png"]:
         check(os.path.getsize(os.path.join(out, f)) > 0, f"missing {f}")
+    traces = open(os.path.join(out, "cycle_traces.csv")).read().splitlines()
+    check(traces[0] == "run,cycle,t[s],delta[um],Q[N],Delta[um]", traces[0])
+    check(len(traces) > 9 * 1000, f"{len(traces)} trace lines")
+    # Text output: the standard errors are printed.
+    p = run("analyze", data, "--P", "526N")
+    check("+-" in p.stdout and "stiffness" in p.stdout, p.stdout)
 elif case == "analyze_runs_power_law":
+    # Noise-free runs: the exponent equals the Masing exponent of the model over the same
+    # runs (the model's Q_peak and energy at each run's measured delta_max) to 1e-3: the
+    # measured energies are all 0.11 % low (moving average), which cancels in the slope.
     files = [synth(f"r{i}.csv", "--imposed", a, "--preload", "721N", "--noise-delta", "0um", "--noise-Q", "0N")
              for i, a in enumerate(["1um", "1.5um", "2um"])]
-    j = json.loads(run("analyze", *files, "--P", "721N", "--json").stdout)
-    check(len(j["runs"]) == 3 and 1.5 < j["power_law_exponent"] < 4, j.get("power_law_exponent"))
+    j = json.loads(run("analyze", *files, "--P", "721N", "--json", "--model",
+                       os.path.join(ex, "steel420_two_bolts.toml")).stdout)
+    q = [math.log(r["model"]["Q_peak"]) for r in j["runs"]]
+    e = [math.log(r["model"]["energy"]) for r in j["runs"]]
+    qm, em = sum(q) / 3, sum(e) / 3
+    n_model = sum((a - qm) * (b - em) for a, b in zip(q, e)) / sum((a - qm) ** 2 for a in q)
+    check(len(j["runs"]) == 3 and abs(j["power_law_exponent"] - n_model) < 1e-3 * n_model,
+          f"{j.get('power_law_exponent')} vs Masing {n_model}")
+    check(j["power_law"]["runs_excluded"] == [], j["power_law"])
+    # With the issue's noise (0.1 um, 1 N) at 526 N: the thin loops of 0.5 and 1 um imposed
+    # are below their noise floor and left out; the exponent of the others has an interval
+    # that holds the model's.
+    files = [synth(f"n{i}.csv", "--imposed", a, "--preload", "526N", "--seed", str(i + 3))
+             for i, a in enumerate(["0.5um", "1um", "2um", "3um", "4um"])]
+    p = run("analyze", *files, "--P", "526N", "--json", "--model", os.path.join(ex, "steel420_two_bolts.toml"))
+    j = json.loads(p.stdout)
+    law = j["power_law"]
+    check(law["runs_excluded"] == files[:2] and law["runs_used"] == files[2:], law)
+    check("left out" in p.stderr, p.stderr)
+    used = [r for r in j["runs"] if r["file"] in law["runs_used"]]
+    q = [math.log(r["model"]["Q_peak"]) for r in used]
+    e = [math.log(r["model"]["energy"]) for r in used]
+    qm, em = sum(q) / len(q), sum(e) / len(e)
+    n_model = sum((a - qm) * (b - em) for a, b in zip(q, e)) / sum((a - qm) ** 2 for a in q)
+    check(law["ci95"][0] < n_model < law["ci95"][1], f"{law} vs Masing {n_model}")
+    out = os.path.join(tmp, "pl")
+    run("analyze", *files, "--P", "526N", "--out", out)
+    check(os.path.getsize(os.path.join(out, "energy_vs_force.png")) > 0, "no energy plot")
 elif case == "validate_report":
     out = os.path.join(tmp, "val")
     p = run("validate", "--out", out)
     md = open(os.path.join(out, "validation.md")).read()
-    check("FAIL" not in md and "| mu at 526 N | 0.335 |" in md, "report incomplete")
+    check("| FAIL |" not in md and "| mu at 526 N | 0.335 |" in md, "report incomplete")
     check(p.stdout == md, "stdout differs from the file")
     for f in ["ch5_loops.png", "ch5_energy_vs_force.png", "ch5_mu_vs_preload.png", "ch5_stiffness_vs_preload.png"]:
         check(os.path.getsize(os.path.join(out, f)) > 0, f"missing {f}")
@@ -117,10 +248,17 @@ elif case == "bad.missing_half":
     i = BASE.index("[[joint.half]]", BASE.index("[[joint.half]]") + 1)
     bad_case(BASE[:i] + BASE[BASE.index("[load]"):], "joint.half", "two")
 elif case == "bad.negative_torque":
-    bad_case(BASE.replace('"1.2 lbf*in"', '"-1.2 lbf*in"'), "load.bolts.total_torques[1]", "> 0")
+    # The value as the user typed it, with file, line and key.
+    bad_case(BASE.replace('"1.2 lbf*in"', '"-1.2 lbf*in"'),
+             'case.toml:24: load.bolts.total_torques[1] = "-1.2 lbf*in": must be > 0')
 elif case == "bad.no_partial_output":
-    # Fails after the case is read: the preload is beyond the model's range.
-    bad_case(BASE.replace('"3.7 lbf*in"', '"3e6 lbf*in"'), "preload")
+    # Fails after the case is read: the preload is beyond the model's range; the error
+    # names where that load case came from.
+    bad_case(BASE.replace('"3.7 lbf*in"', '"3e6 lbf*in"'),
+             'case.toml:24: load.bolts.total_torques[4] = "3e6 lbf*in": preload = ')
+elif case == "bad.nu_string":
+    bad_case(BASE.replace("nu = 0.24, G", 'nu = "0.24", G', 1),
+             'case.toml:12: joint.half[1].material.nu = "0.24": a dimensionless value is a bare number')
 elif case.startswith("bad.data"):
     rows = [(i * 0.01, 1e-6 * math.sin(2 * math.pi * i * 0.01), 100 * math.sin(2 * math.pi * i * 0.01))
             for i in range(500)]
@@ -128,10 +266,10 @@ elif case.startswith("bad.data"):
     needle = ""
     if case == "bad.data_gap":
         rows = rows[:200] + rows[260:]
-        needle = "gap"
+        needle = "data.csv:202: a gap in time (1.99 s to 2.6 s, a step of 0.61 s where the median step is 0.01 s)"
     elif case == "bad.data_time_backwards":
         rows[100] = (rows[98][0],) + rows[100][1:]
-        needle = "data row 101"
+        needle = "data.csv:102: time t = 0.98 s does not increase"  # header on line 1
     elif case == "bad.data_missing_column":
         header = "t[s],delta[m],F[N]"
         needle = 'column "Q" is missing'

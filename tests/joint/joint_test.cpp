@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 
 #include "asperity/core/error.hpp"
@@ -64,6 +65,46 @@ TEST(TorquePreload, Table63AndTheShippedCh6Examples) {
     ASSERT_EQ(c.preloads.size(), 3U) << f;
     for (int i = 0; i < 3; ++i) EXPECT_LT(rel(c.preloads[i], P[i]), 2.5e-3) << f << " " << i;
     EXPECT_NEAR(c.preloads[1] / c.area / 1e6, 3.2, 0.05);
+  }
+}
+
+void expect_same_case(const JointCase& a, const JointCase& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_DOUBLE_EQ(a.area, b.area);
+  EXPECT_EQ(a.model, b.model);
+  for (int h = 0; h < 2; ++h) {
+    const auto &ma = a.halves[h].material, &mb = b.halves[h].material;
+    EXPECT_LT(rel(ma.E, mb.E), 1e-15);
+    EXPECT_EQ(ma.nu, mb.nu);
+    EXPECT_LT(rel(ma.G, mb.G), 1e-15);
+    EXPECT_LT(rel(ma.H, mb.H), 1e-15);
+    const auto &ra = a.halves[h].roughness.moments, &rb = b.halves[h].roughness.moments;
+    EXPECT_LT(rel(ra.m0, rb.m0), 1e-12);
+    EXPECT_LT(rel(ra.m2, rb.m2), 1e-12);
+    EXPECT_LT(rel(ra.m4, rb.m4), 1e-12);
+  }
+  ASSERT_EQ(a.preloads.size(), b.preloads.size());
+  for (std::size_t i = 0; i < a.preloads.size(); ++i)
+    EXPECT_LT(rel(a.preloads[i], b.preloads[i]), 1e-12);
+  ASSERT_EQ(a.amplitudes.size(), b.amplitudes.size());
+  for (std::size_t i = 0; i < a.amplitudes.size(); ++i)
+    EXPECT_LT(rel(a.amplitudes[i], b.amplitudes[i]), 1e-12);
+  ASSERT_EQ(a.imposed.size(), b.imposed.size());
+  for (std::size_t i = 0; i < a.imposed.size(); ++i)
+    EXPECT_LT(rel(a.imposed[i], b.imposed[i]), 1e-12);
+  EXPECT_DOUBLE_EQ(a.apparatus.compliance(), b.apparatus.compliance());
+}
+
+TEST(TorquePreload, ValidateUsesTheShippedExamples) {
+  // asperity validate builds the thesis's joints in (it must run without the source tree);
+  // they must equal the shipped example files, so neither drifts.
+  expect_same_case(chapter5_joint(), read_case_file(kExamples + "steel420_two_bolts.toml"));
+  const char* files[] = {"aluminium_smooth", "aluminium_rough", "steel_smooth", "steel_rough"};
+  const auto ch6 = chapter6_joints();
+  ASSERT_EQ(ch6.size(), 4U);
+  for (int i = 0; i < 4; ++i) {
+    SCOPED_TRACE(files[i]);
+    expect_same_case(ch6[i], read_case_file(kExamples + files[i] + ".toml"));
   }
 }
 
@@ -148,8 +189,10 @@ TEST(JointCase, WrongUnitsMissingHalvesAndBadLoads) {
   e = error_of(replaced(
       kCase, "preload = \"526 N\"",
       "bolts = { count = 2, torque = \"-0.1 N*m\", nut_factor = 0.2, diameter = \"2.9 mm\" }"));
-  EXPECT_NE(e.find("case.toml:13: load.bolts.torque"), std::string::npos) << e;
-  EXPECT_NE(e.find("> 0"), std::string::npos) << e;
+  // The value as typed, no SI conversion and no stray colon.
+  EXPECT_NE(e.find("case.toml:13: load.bolts.torque = \"-0.1 N*m\": must be > 0"),
+            std::string::npos)
+      << e;
   e = error_of(replaced(kCase, "preload = \"526 N\"", "preload = \"526 N\"\npreloads = [\"1 N\"]"));
   EXPECT_NE(e.find("exactly one"), std::string::npos) << e;
   e = error_of(replaced(kCase, "[load]\npreload = \"526 N\"\n", ""));
@@ -159,7 +202,88 @@ TEST(JointCase, WrongUnitsMissingHalvesAndBadLoads) {
   e = error_of(replaced(kCase, "[excitation]", "[excitation"));
   EXPECT_NE(e.find("case.toml:14: TOML syntax error"), std::string::npos) << e;
   e = error_of(replaced(kCase, "\"0.25 um\"", "\"-0.25 um\""));
-  EXPECT_NE(e.find("excitation.amplitudes[2]"), std::string::npos) << e;
+  EXPECT_NE(e.find("case.toml:15: excitation.amplitudes[2] = \"-0.25 um\": must be > 0"),
+            std::string::npos)
+      << e;
+}
+
+TEST(JointCase, MessagesNameTheKeyAndEchoTheValue) {
+  // Dimensionless values are bare numbers: a string is an error naming the key.
+  auto e = error_of(replaced(kCase,
+                             "nu = 0.24, G = \"80.7 GPa\", H = \"5.8 GPa\" }\nroughness = "
+                             "{ sigma = \"1.763 um\"",
+                             "nu = \"0.24\", G = \"80.7 GPa\", H = \"5.8 GPa\" }\nroughness = { "
+                             "sigma = \"1.763 um\""));
+  EXPECT_NE(e.find("case.toml:7: joint.half[1].material.nu = \"0.24\": a dimensionless value is "
+                   "a bare number"),
+            std::string::npos)
+      << e;
+  // Grammar of the half count.
+  const std::string k(kCase);
+  const auto second = k.find("[[joint.half]]", k.find("[[joint.half]]") + 1);
+  e = error_of(k.substr(0, second) + k.substr(k.find("[load]")));
+  EXPECT_NE(e.find("found 1 [[joint.half]] table; a joint has two"), std::string::npos) << e;
+  const auto half = k.substr(second, k.find("[load]") - second);
+  e = error_of(k.substr(0, k.find("[load]")) + half + k.substr(k.find("[load]")));
+  EXPECT_NE(e.find("found 3 [[joint.half]] tables"), std::string::npos) << e;
+  // [excitation] must say something.
+  e = error_of(replaced(kCase, "amplitudes = [\"1 um\", \"0.25 um\"]", ""));
+  EXPECT_NE(e.find("case.toml:14: excitation: give amplitudes"), std::string::npos) << e;
+  // The apparatus only with imposed amplitudes; its stiffness needs units of N/m.
+  e = error_of(std::string(kCase) + "apparatus = { pzt_stiffness = \"38 N/um\" }\n");
+  EXPECT_NE(e.find("excitation.apparatus: is used only with imposed"), std::string::npos) << e;
+  e = error_of(std::string(kCase) +
+               "imposed = [\"6.75 um\"]\napparatus = { pzt_stiffness = \"38 N\" }\n");
+  EXPECT_NE(e.find("case.toml:17: excitation.apparatus.pzt_stiffness"), std::string::npos) << e;
+}
+
+TEST(JointCase, ErrorsFoundLaterNameTheFileLineAndKey) {
+  // A preload beyond the model's range is found by predict, after parsing.
+  auto c = parse_case(replaced(kCase, "preload = \"526 N\"", "preloads = [\"526 N\", \"5e6 N\"]"),
+                      "case.toml");
+  try {
+    (void)predict(c);
+    FAIL() << "no error";
+  } catch (const InvalidInput& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.rfind("case.toml:13: load.preloads[2] = \"5e6 N\": preload = 5e+06 N is beyond", 0),
+              0U)
+        << m;
+  }
+  // beta = sigma R eta of the combination too small for Eq. 4.2: names the halves' roughness.
+  c = parse_case(replaced(replaced(kCase, "R = \"40.76 um\"", "R = \"4 um\""), "R = \"44.77 um\"",
+                          "R = \"4 um\""),
+                 "case.toml");
+  try {
+    (void)predict(c);
+    FAIL() << "no error";
+  } catch (const InvalidInput& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.rfind("case.toml:6: joint.half[1-2].roughness (combined", 0), 0U) << m;
+    EXPECT_NE(m.find("beta"), std::string::npos) << m;
+  }
+}
+
+TEST(JointCase, ImposedAmplitudesThroughTheApparatus) {
+  const auto c = parse_case(std::string(kCase) +
+                                "imposed = [\"6.75 um\", \"2 um\"]\n"
+                                "apparatus = { pzt_stiffness = \"40 N/um\" }\n",
+                            "case.toml");
+  ASSERT_EQ(c.imposed.size(), 2U);
+  EXPECT_DOUBLE_EQ(c.imposed[0], 2e-6);  // sorted
+  EXPECT_DOUBLE_EQ(c.apparatus.pzt_stiffness, 40e6);
+  EXPECT_DOUBLE_EQ(c.apparatus.load_cell_stiffness, 1462e6);  // default (section 5.2)
+  const auto p = predict(c);
+  const auto& l = p.loads.front();
+  ASSERT_EQ(l.amplitudes.size(), 4U);  // two given, two imposed, sorted by delta_max
+  for (std::size_t i = 1; i < l.amplitudes.size(); ++i)
+    EXPECT_LE(l.amplitudes[i - 1].delta_max, l.amplitudes[i].delta_max);
+  const double comp = 1.0 / 40e6 + 1.0 / 1462e6;
+  for (const auto& a : l.amplitudes) {
+    if (a.imposed == 0.0) continue;
+    // Fig. 5.7: the springs in series, delta + c Q_l(delta) = imposed (root to 50 bits).
+    EXPECT_LT(rel(a.delta_max + comp * a.Q_peak, a.imposed), 1e-12);
+  }
 }
 
 TEST(JointCase, TorqueSweepAndPerBoltTorque) {
@@ -238,13 +362,113 @@ TEST(JointOutput, StagedDirectoryLeavesNothingOnError) {
   }  // no commit: an error happened
   EXPECT_FALSE(std::filesystem::exists(target));
   EXPECT_TRUE(std::filesystem::is_empty(base));
+  {  // missing parents are created, and removed again when nothing is committed
+    StagedDirectory d((base / "a" / "b" / "out").string());
+    EXPECT_TRUE(std::filesystem::is_directory(base / "a" / "b"));
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(base));
   {
     StagedDirectory d(target);
     std::ofstream(d.file("a.txt")) << "y";
     d.commit();
   }
   EXPECT_TRUE(std::filesystem::exists(base / "out" / "a.txt"));
+  EXPECT_TRUE(std::filesystem::exists(base / "out" / kOutputMarker));
+  {  // an earlier asperity output (it has the marker) is replaced as a whole
+    StagedDirectory d(target);
+    std::ofstream(d.file("b.txt")) << "z";
+    d.commit();
+  }
+  EXPECT_FALSE(std::filesystem::exists(base / "out" / "a.txt"));
+  EXPECT_TRUE(std::filesystem::exists(base / "out" / "b.txt"));
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(base),
+                          std::filesystem::directory_iterator{}),
+            1);  // no temporary or old siblings left
   std::filesystem::remove_all(base);
+}
+
+TEST(JointOutput, StagedDirectoryNeverTouchesForeignFiles) {
+  const auto base = std::filesystem::temp_directory_path() / "asperity_joint_foreign_test";
+  std::filesystem::remove_all(base);
+  std::filesystem::create_directories(base / "precious");
+  std::ofstream(base / "precious" / "thesis.tex") << "years of work";
+  try {
+    StagedDirectory d((base / "precious").string());
+    FAIL() << "a foreign directory was accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("did not write"), std::string::npos) << e.what();
+  }
+  // Filled while the output was being staged: refused at commit, nothing lost.
+  std::filesystem::create_directories(base / "late");
+  {
+    StagedDirectory d((base / "late").string());
+    std::ofstream(d.file("a.txt")) << "x";
+    std::ofstream(base / "late" / "notes.txt") << "mine";
+    EXPECT_THROW(d.commit(), InvalidInput);
+  }
+  EXPECT_TRUE(std::filesystem::exists(base / "precious" / "thesis.tex"));
+  EXPECT_TRUE(std::filesystem::exists(base / "late" / "notes.txt"));
+  EXPECT_FALSE(std::filesystem::exists(base / "late" / "a.txt"));
+  // An empty directory is taken; a file is refused.
+  std::filesystem::create_directories(base / "empty");
+  {
+    StagedDirectory d((base / "empty").string());
+    d.commit();
+  }
+  EXPECT_TRUE(std::filesystem::exists(base / "empty" / kOutputMarker));
+  std::ofstream(base / "file") << "x";
+  EXPECT_THROW(StagedDirectory((base / "file").string()), InvalidInput);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(base),
+                          std::filesystem::directory_iterator{}),
+            4);  // precious, late, empty, file: no temporary siblings left
+  std::filesystem::remove_all(base);
+}
+
+TEST(JointPredict, RegimeFromTheBackbone) {
+  // Gross slip from the backbone table's end on (every asperity slips there: Q_l = Q_max
+  // to < 1e-12); below it partial slip, Q_peak < Q_max.
+  auto c = read_case_file(kExamples + "steel420_two_bolts.toml");
+  const auto p = predict(c);
+  for (const auto& l : p.loads) {
+    EXPECT_GT(l.gross_slip_amplitude, 0.0);
+    for (const auto& a : l.amplitudes) {
+      if (a.delta_max >= l.gross_slip_amplitude) {
+        EXPECT_EQ(a.regime, "gross slip");
+        EXPECT_NEAR(a.Q_ratio, 1.0, 1e-9);
+      } else {
+        EXPECT_EQ(a.regime, "partial slip");
+        EXPECT_LT(a.Q_ratio, 1.0);
+      }
+    }
+    EXPECT_EQ(l.amplitudes.front().regime, "partial slip");  // 0.05 um
+    EXPECT_EQ(l.amplitudes.back().regime, "gross slip");     // 4 um
+  }
+}
+
+TEST(JointPredict, ImposedAmplitudeMatchesTheSyntheticApparatus) {
+  // The closed form delta + c Q_l(delta) = imposed (used by predict and validate's Table
+  // 5.6) against the time-stepped synthetic experiment (Eq. 5.3, Fig. 5.7) at 20 kHz: the
+  // joint's steady half peak-to-peak motion. The sampled extreme lies within
+  // (pi f/rate)^2/2 = 1.2e-8 of the peak; 1e-5 covers the solver's tolerance.
+  const auto c = read_case_file(kExamples + "steel420_two_bolts.toml");
+  const Apparatus app{};
+  for (double P : {234.0, 721.0}) {
+    const auto lp = predict_load(c.rough_flat(), P, {}, {6.75e-6}, app.compliance());
+    SyntheticOptions o;
+    o.excitation.amplitude = 6.75e-6;
+    o.excitation.cycles = 3;
+    o.sample_rate = 20000.0;
+    o.noise_delta = o.noise_Q = 0.0;
+    const auto d = synthetic_experiment(lp.backbone, o);
+    double lo = 1e300, hi = -1e300;
+    for (std::size_t i = 0; i < d.t.size(); ++i) {
+      if (d.t[i] >= 2.0 && d.t[i] < 3.0) {
+        lo = std::min(lo, d.delta[i]);
+        hi = std::max(hi, d.delta[i]);
+      }
+    }
+    EXPECT_LT(rel(0.5 * (hi - lo), lp.amplitudes.front().delta_max), 1e-5) << P;
+  }
 }
 
 // ---------------------------------------------------------------- analysis
@@ -272,11 +496,34 @@ Truth truth_of(const hysteresis::Backbone& bb, SyntheticOptions o) {
 
 class AnalyzeSynthetic : public ::testing::TestWithParam<std::tuple<double, int, bool>> {};
 
+// The mean stiffness is 1/mean(1/k_i) over the cycles (fretting.hpp): with every cycle
+// resolved it lies between the per-cycle values.
+void expect_mean_consistent(const FrettingAnalysis& a) {
+  double sumC = 0.0, lo = 1e300, hi = -1e300;
+  bool all = true;
+  for (const auto& c : a.cycles) {
+    sumC += 1.0 / c.stiffness;
+    lo = std::min(lo, c.stiffness);
+    hi = std::max(hi, c.stiffness);
+    all &= c.stiffness_resolved;
+  }
+  EXPECT_LT(rel(a.mean.stiffness, static_cast<double>(a.cycles.size()) / sumC), 1e-12);
+  if (all) {
+    EXPECT_GE(a.mean.stiffness, lo);
+    EXPECT_LE(a.mean.stiffness, hi);
+  }
+}
+
 TEST_P(AnalyzeSynthetic, RecoversEnergyStiffnessAndMu) {
   // Table 5.6's experiment: the PZT tip moves 6.75 um (half peak-to-peak, Eq. 5.3, 1 Hz,
   // 10 cycles); the apparatus of Fig. 5.7 (38 N/um PZT side, 1462 N/um load cell side);
-  // noise 0.1 um on delta and 1 N on Q (section 5.2); 1 kHz sampling. The issue's
-  // tolerances: energy 2 %, stiffness 5 %, mu 1 %.
+  // noise 0.1 um on delta and 1 N on Q (section 5.2); 1 kHz sampling (section 5.3), the
+  // DEFAULT analysis. The issue's tolerances: energy 2 %, mu 1 %, stiffness 5 %.
+  // Stiffness at 1 kHz: 5 % is not reached run by run by any estimator we tried (docs/
+  // joints.md); with Delta the default's error over 80 seeds is 4-8 % rms (largest at
+  // 234 N, the smallest force swing), at most 12.8 %. Here: 15 % and within 3 reported
+  // standard errors. Without Delta (delta(Q) alone) it scatters by 13-46 % rms: then a
+  // warning is required and the standard error must still cover the error.
   const auto [P, seed, imposed] = GetParam();
   const auto c = read_case_file(kExamples + "steel420_two_bolts.toml");
   const auto lp = predict_load(c.rough_flat(), P, {});
@@ -290,8 +537,54 @@ TEST_P(AnalyzeSynthetic, RecoversEnergyStiffnessAndMu) {
   EXPECT_EQ(a.cycles.size(), 9U);  // 10 harmonic periods: 9 maximum-to-maximum cycles
   EXPECT_LT(rel(a.mean.energy, truth.energy), 0.02) << a.mean.energy << " " << truth.energy;
   EXPECT_LT(rel(a.loop_energy, truth.energy), 0.02);
+  EXPECT_TRUE(a.energy_resolved);
   EXPECT_LT(rel(a.mu, truth.Q_amp / P), 0.01) << a.mu << " " << truth.Q_amp / P;
   EXPECT_LT(rel(a.mean.delta_max, truth.delta_amp), 0.03);
+  // The noise estimates (second differences) recover the synthetic noise: 5 % (the
+  // signal's own second difference at 1 kHz is below 1e-3 of the noise).
+  EXPECT_LT(rel(a.noise_delta, o.noise_delta), 0.05);
+  EXPECT_LT(rel(a.noise_Q, o.noise_Q), 0.05);
+  const double err = std::abs(a.mean.stiffness - truth.stiffness);
+  EXPECT_LT(err, 3.0 * a.stiffness_standard_error)
+      << a.mean.stiffness << " +- " << a.stiffness_standard_error << " vs " << truth.stiffness;
+  if (imposed) {
+    EXPECT_LT(err / truth.stiffness, 0.15) << a.mean.stiffness << " " << truth.stiffness;
+  } else {
+    EXPECT_TRUE(std::any_of(a.warnings.begin(), a.warnings.end(), [](const std::string& w) {
+      return w.find("standard error") != std::string::npos;
+    }));
+  }
+  expect_mean_consistent(a);
+}
+
+TEST(AnalyzeSyntheticDefault, StiffnessAt1kHzOverSeeds) {
+  // The default path (Delta recorded, window 0.35, quadratic) on the thesis's 1 kHz
+  // experiment at the four preloads of Table 5.5, seeds 1-6. Measured (docs/joints.md):
+  // rms error 7.8/5.9/4.4/4.0 % at 234/331/526/721 N, mean -0.5..+1.7 %, all within
+  // 12.8 %, 22 of 24 within 2 standard errors. The issue's 5 % holds on average at 526
+  // and 721 N, not run by run: stated tolerances rms 7 %, mean 3 %, coverage 80 %.
+  const auto c = read_case_file(kExamples + "steel420_two_bolts.toml");
+  const auto flat = c.rough_flat();
+  double ss = 0.0, sum = 0.0;
+  int n = 0, covered = 0;
+  for (double P : {234.0, 331.0, 526.0, 721.0}) {
+    const auto lp = predict_load(flat, P, {});
+    for (int seed = 1; seed <= 6; ++seed) {
+      SyntheticOptions o;
+      o.excitation.amplitude = 6.75e-6;
+      o.seed = static_cast<std::uint64_t>(seed);
+      const auto a = analyze_fretting(synthetic_experiment(lp.backbone, o), P);
+      const double k0 = lp.backbone->initial_stiffness();
+      const double e = (a.mean.stiffness - k0) / k0;
+      ss += e * e;
+      sum += e;
+      ++n;
+      covered += std::abs(e) * k0 < 2.0 * a.stiffness_standard_error;
+    }
+  }
+  EXPECT_LT(std::sqrt(ss / n), 0.07);
+  EXPECT_LT(std::abs(sum / n), 0.03);
+  EXPECT_GE(covered, static_cast<int>(0.8 * n));
 }
 
 class AnalyzeSyntheticDense : public AnalyzeSynthetic {};
@@ -299,10 +592,9 @@ class AnalyzeSyntheticDense : public AnalyzeSynthetic {};
 TEST_P(AnalyzeSyntheticDense, RecoversStiffnessFromDeltaAlone) {
   // Without the imposed displacement the stiffness comes from delta(Q). The stiffness at
   // reversal of this joint (430-1200 N/um) makes the displacement over the fit window
-  // (0.3 of the force swing) only 0.1-0.2 um, comparable with the 0.1 um noise: at 1 kHz
-  // and 10 cycles the pooled fit scatters by tens of percent, at 20 kHz and 20 cycles by
-  // about 5 %. With 40 kHz (the LNS has 250 kHz bandwidth, section 5.2) and 40 cycles
-  // (scatter about 2.5 %, window 0.5: bias 1.2 %) it is within 5 %.
+  // only 0.1-0.2 um, comparable with the 0.1 um noise: at 1 kHz and 10 cycles the fit
+  // scatters by 13-46 %. With 40 kHz (the LNS has 250 kHz bandwidth, section 5.2) and 40
+  // cycles, a cubic over window 0.5 is within 5 %.
   const auto [P, seed, imposed] = GetParam();
   const auto c = read_case_file(kExamples + "steel420_two_bolts.toml");
   const auto lp = predict_load(c.rough_flat(), P, {});
@@ -313,23 +605,23 @@ TEST_P(AnalyzeSyntheticDense, RecoversStiffnessFromDeltaAlone) {
   o.seed = static_cast<std::uint64_t>(seed) + 100;
   auto data = synthetic_experiment(lp.backbone, o);
   if (!imposed) data.Delta.clear();  // with Delta: it splits the cycles, not the stiffness
-  const auto a =
-      analyze_fretting(data, P, {.stiffness_window = 0.5, .stiffness_from_imposed = false});
+  const auto a = analyze_fretting(
+      data, P, {.stiffness_window = 0.5, .stiffness_degree = 3, .stiffness_from_imposed = false});
   EXPECT_FALSE(a.stiffness_from_imposed);
   const double k0 = lp.backbone->initial_stiffness();
   EXPECT_LT(rel(a.mean.stiffness, k0), 0.05) << a.mean.stiffness << " " << k0;
   EXPECT_LT(rel(a.mean.stiffness, lp.stiffness), 0.05);
+  EXPECT_LT(std::abs(a.mean.stiffness - k0), 3.0 * a.stiffness_standard_error);
+  expect_mean_consistent(a);
 }
 
 class AnalyzeSyntheticImposed : public ::testing::TestWithParam<std::tuple<double, int>> {};
 
 TEST_P(AnalyzeSyntheticImposed, RecoversStiffnessAndApparatusCompliance) {
-  // Table 5.6's experiment as in AnalyzeSynthetic (Eq. 5.3, 10 cycles, noise 0.1 um and
-  // 1 N) with the imposed Delta: Q(Delta) has a noise-free regressor and the apparatus
-  // compliance is fitted on all samples, so the stiffness needs far fewer samples than
-  // from delta(Q): at 20 kHz, window 0.5, the cubic's bias is -1 % (noise-free, below)
-  // and the scatter over seeds about 1.5 % (24 runs within 4.3 %), so within the issue's
-  // 5 %. At 1 kHz it still scatters by about 15 %.
+  // Where the issue's 5 % is achieved with the thesis's 10 cycles: Table 5.6's experiment
+  // as in AnalyzeSynthetic (noise 0.1 um and 1 N) with the imposed Delta, sampled at
+  // 20 kHz and fitted by a cubic over window 0.5: noise-free bias -1 % (below), scatter
+  // about 1.5 %, 24 seeds within 4.3 %.
   const auto [P, seed] = GetParam();
   const auto c = read_case_file(kExamples + "steel420_two_bolts.toml");
   const auto lp = predict_load(c.rough_flat(), P, {});
@@ -337,11 +629,13 @@ TEST_P(AnalyzeSyntheticImposed, RecoversStiffnessAndApparatusCompliance) {
   o.excitation.amplitude = 6.75e-6;
   o.sample_rate = 20000.0;
   o.seed = static_cast<std::uint64_t>(seed) + 200;
-  const auto a =
-      analyze_fretting(synthetic_experiment(lp.backbone, o), P, {.stiffness_window = 0.5});
+  const AnalysisOptions dense{.stiffness_window = 0.5, .stiffness_degree = 3};
+  const auto a = analyze_fretting(synthetic_experiment(lp.backbone, o), P, dense);
   ASSERT_TRUE(a.stiffness_from_imposed);
   const double k0 = lp.backbone->initial_stiffness();
   EXPECT_LT(rel(a.mean.stiffness, k0), 0.05) << a.mean.stiffness << " " << k0;
+  EXPECT_LT(std::abs(a.mean.stiffness - k0), 3.0 * a.stiffness_standard_error);
+  EXPECT_TRUE(a.warnings.empty()) << a.warnings.front();
   // Fig. 5.7: the springs in series; the fit's standard error is about 0.03 %, so 0.5 %
   // is about 15 standard errors. The residual is the displacement noise (0.1 um) plus
   // c times the force noise (0.027 um) in quadrature.
@@ -351,8 +645,7 @@ TEST_P(AnalyzeSyntheticImposed, RecoversStiffnessAndApparatusCompliance) {
   // Noise-free: the bias of the method alone.
   o.noise_delta = 0.0;
   o.noise_Q = 0.0;
-  const auto clean =
-      analyze_fretting(synthetic_experiment(lp.backbone, o), P, {.stiffness_window = 0.5});
+  const auto clean = analyze_fretting(synthetic_experiment(lp.backbone, o), P, dense);
   EXPECT_LT(rel(clean.mean.stiffness, k0), 0.02) << clean.mean.stiffness << " " << k0;
   EXPECT_LT(clean.apparatus_residual_rms, 1e-3 * o.excitation.amplitude);
 }
@@ -364,12 +657,39 @@ INSTANTIATE_TEST_SUITE_P(AnalyzeTable56, AnalyzeSyntheticDense,
                          ::testing::Values(std::make_tuple(234.0, 1, false),
                                            std::make_tuple(526.0, 3, true),
                                            std::make_tuple(721.0, 5, false)));
-INSTANTIATE_TEST_SUITE_P(AnalyzeTable56, AnalyzeSynthetic,
-                         ::testing::Values(std::make_tuple(234.0, 1, false),
-                                           std::make_tuple(331.0, 2, false),
-                                           std::make_tuple(526.0, 3, true),
-                                           std::make_tuple(526.0, 4, false),
-                                           std::make_tuple(721.0, 5, false)));
+INSTANTIATE_TEST_SUITE_P(
+    AnalyzeTable56, AnalyzeSynthetic,
+    ::testing::Values(std::make_tuple(234.0, 1, false), std::make_tuple(331.0, 2, false),
+                      std::make_tuple(526.0, 3, true), std::make_tuple(526.0, 4, false),
+                      std::make_tuple(721.0, 5, false), std::make_tuple(234.0, 6, true),
+                      std::make_tuple(721.0, 7, true)));
+
+TEST(AnalyzeFretting, EnergyNoiseFloorOfThinLoops) {
+  // 526 N, PZT amplitude 0.5 um: the joint moves about 0.02 um and dissipates ~0.008 uJ
+  // per cycle, far below what the sensors resolve (noise 0.1 um, 1 N at 1 kHz). The signed
+  // per-cycle energy keeps the mean unbiased (|area| per cycle was 17x too high); the run
+  // is flagged, and over 12 seeds the mean's scatter matches the predicted noise floor
+  // (ratio of rms deviation to rms floor within 0.7-1.4: 12 samples give +-20 % on an rms).
+  const auto c = read_case_file(kExamples + "steel420_two_bolts.toml");
+  const auto lp = predict_load(c.rough_flat(), 526.0, {});
+  SyntheticOptions o;
+  o.excitation.amplitude = 0.5e-6;
+  const auto truth = truth_of(*lp.backbone, o);
+  double dev2 = 0.0, floor2 = 0.0;
+  for (int seed = 1; seed <= 12; ++seed) {
+    o.seed = static_cast<std::uint64_t>(seed);
+    const auto a = analyze_fretting(synthetic_experiment(lp.backbone, o), 526.0);
+    EXPECT_FALSE(a.energy_resolved) << a.mean.energy << " floor " << a.energy_noise_floor;
+    EXPECT_TRUE(std::any_of(a.warnings.begin(), a.warnings.end(), [](const std::string& w) {
+      return w.find("noise floor") != std::string::npos;
+    }));
+    dev2 += (a.mean.energy - truth.energy) * (a.mean.energy - truth.energy);
+    floor2 += a.energy_noise_floor * a.energy_noise_floor;
+  }
+  const double ratio = std::sqrt(dev2 / floor2);
+  EXPECT_GT(ratio, 0.7);
+  EXPECT_LT(ratio, 1.4);
+}
 
 TEST(AnalyzeFretting, NoiseFreeJenkinsLoopIsExact) {
   // A Jenkins element (k = 100 N/um, F = 50 N) driven directly: energy 4 F (d - F/k),
@@ -386,7 +706,7 @@ TEST(AnalyzeFretting, NoiseFreeJenkinsLoopIsExact) {
   const double d = 2e-6, F = 50.0, k = 100e6;
   // The moving average over 1/50 cycle rounds the loop's corners: 0.13 % less area.
   EXPECT_LT(rel(a.mean.energy, 4 * F * (d - F / k)), 2e-3);
-  EXPECT_LT(rel(a.loop_energy, 4 * F * (d - F / k)), 1e-4);  // raw samples, averaged loop
+  EXPECT_LT(rel(a.loop_energy, 4 * F * (d - F / k)), 2e-3);  // the averaged loop, smoothed too
   EXPECT_LT(rel(a.mean.sliding, d - F / k), 2e-3);
   EXPECT_LT(rel(a.mean.partial_slip, F / k), 2e-3 * d / (F / k));
   EXPECT_LT(rel(a.mean.stiffness, k), 1e-6);
@@ -396,6 +716,16 @@ TEST(AnalyzeFretting, NoiseFreeJenkinsLoopIsExact) {
 TEST(AnalyzeFretting, PowerLawExponent) {
   EXPECT_NEAR(power_law_exponent({1, 2, 4}, {3, 24, 192}), 3.0, 1e-12);
   EXPECT_THROW((void)power_law_exponent({1}, {1}), InvalidInput);
+  // The interval: log e = log 3 + 3 log q + (+-0.1): residuals +0.1, -0.2, +0.1 over
+  // log q = 0, ln 2, ln 4 (centred: -ln 2, 0, ln 2): slope unchanged, s^2 = 0.06/1,
+  // Sxx = 2 ln^2 2, t(0.975, 1) = 12.706.
+  const auto f =
+      fit_power_law({1, 2, 4}, {3 * std::exp(0.1), 24 * std::exp(-0.2), 192 * std::exp(0.1)});
+  EXPECT_NEAR(f.exponent, 3.0, 1e-12);
+  const double se = std::sqrt(0.06 / (2.0 * std::log(2.0) * std::log(2.0)));
+  EXPECT_NEAR(f.standard_error, se, 1e-12);
+  EXPECT_NEAR(f.ci_high - f.exponent, 12.7062047361747 * se, 1e-9);
+  EXPECT_TRUE(std::isnan(fit_power_law({1, 2}, {1, 8}).standard_error));
 }
 
 TEST(AnalyzeFretting, BadDataIsRejected) {
@@ -418,7 +748,9 @@ TEST(AnalyzeFretting, BadDataIsRejected) {
     g.validate();
     FAIL();
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("data row 51"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("x.csv: sample 51: time t = 0.49 s does not increase"),
+              std::string::npos)
+        << e.what();
   }
   auto h = d;
   for (std::size_t i = 60; i < h.t.size(); ++i) h.t[i] += 1.0;
@@ -426,7 +758,11 @@ TEST(AnalyzeFretting, BadDataIsRejected) {
     h.validate();
     FAIL();
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("gap"), std::string::npos) << e.what();
+    // Times with 6 significant digits, not 0.0099999999999998.
+    EXPECT_NE(std::string(e.what()).find("x.csv: sample 61: a gap in time (0.59 s to 1.6 s, a "
+                                         "step of 1.01 s where the median step is 0.01 s)"),
+              std::string::npos)
+        << e.what();
   }
 }
 
@@ -450,16 +786,31 @@ namespace {
 
 TEST(ValidateReport, EveryReproductionAgreesOrIsDocumented) {
   const auto rows = validation_rows();
-  std::size_t agrees = 0;
+  // The rows documented to differ from the thesis (docs/seed_notes.md: Table 4.1 does not
+  // follow from the printed equations). Every other reproduction must agree, and these
+  // must still differ (else the docs are out of date).
+  const std::set<std::string> documented = {
+      "Table 4.1: mu KE psi = 0.5", "Table 4.1: mu BKE psi = 0.5", "Table 4.1: mu CEB psi = 1",
+      "Table 4.1: mu KE psi = 1",   "Table 4.1: mu BKE psi = 1",   "Table 4.1: mu CEB psi = 2",
+      "Table 4.1: mu KE psi = 2"};
+  std::size_t experiments = 0, regression = 0;
   for (const auto& r : rows) {
-    EXPECT_NE(r.verdict, "FAIL") << r.source << " " << r.quantity << ": ours " << r.ours
-                                 << ", thesis " << r.thesis;
-    agrees += r.verdict == "agrees";
+    const std::string id = r.source + ": " + r.quantity;
+    if (r.verdict.find("model vs experiment") != std::string::npos) {
+      ++experiments;
+      EXPECT_TRUE(r.source == "Table 5.6" || r.source == "Table 6.4") << id;
+      continue;
+    }
+    regression += r.source == "Table 4.1 (regression)";
+    EXPECT_EQ(r.verdict, documented.count(id) ? "differs (documented)" : "agrees")
+        << id << ": ours " << r.ours << ", reference " << r.thesis;
   }
-  EXPECT_GE(agrees, 70U);
+  EXPECT_EQ(regression, 12U);   // every Table 4.1 entry against the independent quadrature
+  EXPECT_EQ(experiments, 20U);  // Table 5.6 (8) and Table 6.4 (12)
   // Every table of issue 5 is covered.
-  for (const char* s : {"Table 3.2", "Table 3.4", "Table 4.1", "Fig. 4.4", "Table 5.2", "Table 5.4",
-                        "Table 5.5", "Table 5.6", "Table 6.2", "Table 6.3", "Ch. 5 mu (BKE)"}) {
+  for (const char* s : {"Table 3.2", "Table 3.4", "Table 4.1", "Table 4.1 (regression)", "Fig. 4.4",
+                        "Table 5.2", "Table 5.4", "Table 5.5", "Table 5.6", "Table 6.2",
+                        "Table 6.3", "Table 6.4", "Ch. 5 mu (BKE)"}) {
     EXPECT_TRUE(std::any_of(rows.begin(), rows.end(), [&](const ValidationRow& r) {
       return r.source == s;
     })) << s;

@@ -60,6 +60,17 @@ struct ProfileSettings {
 [[nodiscard]] HalfRoughness half_roughness_from_files(const std::vector<std::string>& files,
                                                       const ProfileSettings& settings);
 
+/// The fretting apparatus between the PZT tip and the joint (Fig. 5.7): two linear
+/// springs in series, the PZT side (38 N/um, section 5.2) and the connector block with the
+/// load cell (1462 N/um). Used to turn imposed (PZT tip) amplitudes into joint amplitudes.
+struct Apparatus {
+  double pzt_stiffness = 38e6;          ///< [N/m]
+  double load_cell_stiffness = 1462e6;  ///< [N/m]
+  [[nodiscard]] double compliance() const {
+    return 1.0 / pzt_stiffness + 1.0 / load_cell_stiffness;
+  }
+};
+
 struct JointCase {
   std::string name;
   std::string source;  ///< the case file (or "<string>")
@@ -72,8 +83,17 @@ struct JointCase {
   /// Load cases [N], at least one; from `preload`, `preloads` or the bolts.
   std::vector<double> preloads;
   std::optional<Bolts> bolts;  ///< set when the load came from bolt torques
-  /// Tangential displacement amplitudes delta_max [m] (may be empty).
+  /// Tangential displacement amplitudes of the joint, delta_max [m] (may be empty).
   std::vector<double> amplitudes;
+  /// Amplitudes imposed at the PZT tip through the apparatus [m] (half the peak-to-peak
+  /// motion, as the 6.75 um of Table 5.6); the joint's amplitude follows per preload from
+  /// delta + c Q_l(delta) = imposed (predict.hpp). May be empty.
+  std::vector<double> imposed;
+  Apparatus apparatus{};
+  /// "FILE:LINE: key" of each load case and of the roughness, for errors found later
+  /// (a preload beyond the model's range, a roughness the model cannot take).
+  std::vector<std::string> preload_origin;
+  std::string roughness_origin;
 
   /// The halves' moments added (Eq. 5.1).
   [[nodiscard]] surface::SpectralMoments combined_roughness() const;

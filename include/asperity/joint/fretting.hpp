@@ -18,10 +18,15 @@ namespace asperity::joint {
 struct FrettingData {
   std::string source;
   std::vector<double> t, delta, Q, Delta;
-  /// Throws InvalidInput (naming the source and the row) unless the columns have equal
-  /// length, every value is finite, time increases strictly and has no gap (a step
-  /// over 5 times the median step).
+  /// Line of each sample in the source file (filled by read_fretting_csv; empty for data
+  /// built in memory, whose errors then name the sample number).
+  std::vector<std::size_t> lines;
+  /// Throws InvalidInput ("FILE:LINE: ...") unless the columns have equal length, every
+  /// value is finite, time increases strictly and has no gap (a step over 5 times the
+  /// median step).
   void validate() const;
+  /// "FILE:LINE" of sample i (or "SOURCE: sample i+1").
+  [[nodiscard]] std::string where(std::size_t i) const;
 };
 
 /// Reads columns t, delta, Q (and optionally Delta) with units in the header
@@ -29,22 +34,28 @@ struct FrettingData {
 [[nodiscard]] FrettingData read_fretting_csv(const std::string& path);
 
 struct AnalysisOptions {
-  /// Stiffness at a reversal: least-squares polynomial delta(Q) over the samples after
-  /// the reversal until |Q - Q_r| reaches this fraction of the cycle's peak-to-peak
-  /// force; stiffness = 1/(d delta/dQ at the reversal). Q is the regressor because its
-  /// noise (1 N) is small against the force swing, while delta's (0.1 um) is not small
-  /// against the displacement swing (a regression on delta would be biased low). Per
-  /// cycle: a quadratic at each of its two reversals. The mean stiffness: a cubic with
-  /// common coefficients pooled over every reversal (one intercept each). On
-  /// noise-free Masing loops of the ch. 5 joint the cubic's bias is 0.2 % at 0.3.
-  double stiffness_window = 0.3;
+  /// Stiffness at a reversal (the slope where the loop reverses, section 6.3): a least-
+  /// squares fit over the samples after each reversal until |Q - Q_r| (smoothed force)
+  /// reaches this fraction of the cycle's peak-to-peak force. Every branch of a steady
+  /// Masing loop has the same shape, so the fit is pooled over all reversals: an
+  /// intercept per reversal, a slope per cycle and common higher-order coefficients
+  /// (polynomial of `stiffness_degree` in the regressor). Per cycle the joint compliance
+  /// C_i = 1/k_i follows from the slope; the mean stiffness is 1/mean(C_i) (the
+  /// harmonic mean of the per-cycle values, so it lies between them when all are
+  /// positive) with the standard error of that mean from the spread of C_i.
+  /// Defaults (window 0.35, quadratic) chosen on synthetic experiments of the thesis's
+  /// ch. 5 joint at its 1 kHz sampling (docs/joints.md: the error of the mean is 4-7 % rms
+  /// there, the reported standard error covers it; 5 % needs denser sampling).
+  double stiffness_window = 0.35;
+  int stiffness_degree = 2;
   /// With the imposed displacement Delta in the data (noise-free: the PZT drive) the
   /// apparatus between the PZT tip and the joint is a linear spring in series (Fig.
   /// 5.7), Delta = delta + c Q + const: its compliance c is fitted to all samples, the
   /// force is fitted as a polynomial in Delta after each reversal (the regressor has no
-  /// noise, so the slope is unbiased) and stiffness = 1/(dDelta/dQ - c). The joint's
-  /// displacement then enters only through c, fitted on every sample, instead of
-  /// through the 0.1-0.2 um it moves inside each fit window. false: delta(Q) as above.
+  /// noise, so the slope is unbiased) and C = dDelta/dQ - c. The joint's displacement
+  /// then enters only through c, fitted on every sample, instead of through the
+  /// 0.1-0.2 um it moves inside each fit window. false: delta as a polynomial in Q
+  /// (Q's 1 N noise is small against its swing), C = d delta/dQ.
   bool stiffness_from_imposed = true;
   /// Points per branch of the averaged loop.
   std::size_t loop_points = 200;
@@ -52,23 +63,52 @@ struct AnalysisOptions {
 
 struct CycleMetrics {
   double t_start = 0.0, t_end = 0.0;
-  double energy = 0.0;     ///< loop area by the trapezoidal rule, closed [J]
+  /// Energy dissipated in the cycle, the closed loop integral of Q d delta (trapezoidal
+  /// rule on the smoothed signals; the loop runs maximum -> minimum -> maximum, so a
+  /// dissipative loop gives a positive value) [J]. Signed: with noise a cycle of a
+  /// small loop can come out negative; the mean over cycles stays unbiased.
+  double energy = 0.0;
   double Q_max = 0.0;      ///< half the peak-to-peak force [N]
   double delta_max = 0.0;  ///< half the peak-to-peak displacement [m]
   double Q_center = 0.0, delta_center = 0.0;
-  double stiffness = 0.0;  ///< mean of the stiffness at the cycle's two reversals [N/m]
-  double stiffness_unloading = 0.0, stiffness_reloading = 0.0;
+  /// Stiffness at the cycle's reversals, 1/C_i [N/m]; negative or infinite when noise
+  /// swamps the joint's compliance (then stiffness_resolved is false).
+  double stiffness = 0.0;
+  double stiffness_unloading = 0.0, stiffness_reloading = 0.0;  ///< per reversal [N/m]
+  bool stiffness_resolved = true;
   double sliding = 0.0;       ///< delta_s: half the loop's opening at Q = Q_center [m] (Fig. 6.1)
   double partial_slip = 0.0;  ///< delta_max - delta_s [m]
+  /// Trace of the cycle (samples, SI), for export.
+  std::size_t first_sample = 0, last_sample = 0;
 };
 
 struct FrettingAnalysis {
   double P = 0.0;
   std::vector<CycleMetrics> cycles;
-  CycleMetrics mean;  ///< mean over cycles; the stiffness pooled over all reversals
-  double mu = 0.0;    ///< mean Q_max / P (Eq. 6.1)
+  /// Mean over cycles; stiffness = 1/mean(1/k_i) (see AnalysisOptions).
+  CycleMetrics mean;
+  double mu = 0.0;  ///< mean Q_max / P (Eq. 6.1)
+  /// Standard errors of the means [J], [N/m]: the spread of the per-cycle values over
+  /// sqrt(cycles) (with one cycle: the noise floor / the fit's covariance).
+  double energy_standard_error = 0.0;
+  double stiffness_standard_error = 0.0;
+  /// Noise of the recorded signals, estimated from the data (second differences,
+  /// median absolute deviation): delta [m], Q [N].
+  double noise_delta = 0.0, noise_Q = 0.0;
+  /// Standard deviation that sensor noise alone gives the mean energy per cycle [J]:
+  /// sqrt(noise_delta^2 Sum dQ^2 + noise_Q^2 Sum d delta^2 + N 2 noise_delta^2 noise_Q^2/w^3)
+  /// / sqrt(cycles), the sums over a cycle's N increments of the signals (the smoothed
+  /// ones, less the noise the w-sample moving average leaves in them). The run's energy
+  /// is resolved when it exceeds 3 times this floor.
+  double energy_noise_floor = 0.0;
+  bool energy_resolved = true;
+  /// Joint displacement over the stiffness fit window (window force span / stiffness)
+  /// and the displacement noise it competes with (noise_delta; with the imposed
+  /// displacement: c noise_Q, the noise of Delta - c Q) [m].
+  double stiffness_window_motion = 0.0, stiffness_noise = 0.0;
+  std::vector<std::string> warnings;
   std::vector<double> loop_delta, loop_Q;  ///< averaged loop (unloading then reloading branch)
-  double loop_energy = 0.0;                ///< area of the averaged loop [J]
+  double loop_energy = 0.0;                ///< area of the averaged loop (smoothed signals) [J]
   /// Set when the stiffness came from the imposed displacement: the fitted compliance
   /// c of Delta = delta + c Q + const [m/N] and the rms residual of that fit [m] (about
   /// the displacement noise when the apparatus is linear; much larger: it is not).
@@ -83,8 +123,19 @@ struct FrettingAnalysis {
 [[nodiscard]] FrettingAnalysis analyze_fretting(const FrettingData& data, double P,
                                                 const AnalysisOptions& options = {});
 
-/// Exponent n of energy = c Q_max^n over a set of runs (least squares in log-log).
-/// Throws InvalidInput with fewer than two runs or non-positive values.
+/// Power law energy = c Q_max^n over a set of runs: least squares in log-log.
+struct PowerLawFit {
+  double exponent = 0.0;
+  double standard_error = 0.0;         ///< of the exponent (NaN with two runs)
+  double ci_low = 0.0, ci_high = 0.0;  ///< 95 % confidence interval (Student t; NaN with two runs)
+  std::size_t runs = 0;
+};
+
+/// Fits the power law. Throws InvalidInput with fewer than two runs, non-positive
+/// values or runs that all have the same Q_max.
+[[nodiscard]] PowerLawFit fit_power_law(const std::vector<double>& Q_max,
+                                        const std::vector<double>& energy);
+/// The exponent of fit_power_law.
 [[nodiscard]] double power_law_exponent(const std::vector<double>& Q_max,
                                         const std::vector<double>& energy);
 

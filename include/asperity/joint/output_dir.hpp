@@ -1,31 +1,51 @@
 #pragma once
-// An output directory written whole or not at all: files go into a temporary sibling
-// (DIR.tmp-XXXXXXXX) which commit() renames to DIR (replacing an older DIR); if the
-// object is destroyed before commit() (an error), the temporary directory is removed,
-// so no partial directory is left behind as if complete.
+// An output directory written whole or not at all, and never over somebody else's files.
+//
+// Files go into a temporary sibling (.DIR.tmp-XXXXXXXX) which commit() renames to DIR.
+// Every directory written this way holds a marker file, `.asperity-output`; an existing
+// DIR is replaced only when it carries that marker (asperity wrote it) or is empty. An
+// existing non-empty DIR without the marker is refused (InvalidInput, exit 2) before any
+// work is done, and checked again at commit(). If the object is destroyed before
+// commit() (an error), the temporary directory is removed, so no partial directory is
+// left behind as if complete.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace asperity::joint {
 
+/// Name of the marker file in every directory asperity writes with --out.
+inline constexpr const char* kOutputMarker = ".asperity-output";
+
 class StagedDirectory {
  public:
-  /// Creates the temporary sibling of `final_dir`. Throws InvalidInput when the parent
-  /// does not exist or is not writable, or when `final_dir` is an existing file.
-  explicit StagedDirectory(const std::string& final_dir);
+  /// Creates the temporary sibling of `final_dir` (with the marker file), and missing
+  /// parent directories (removed again when nothing is committed). Throws InvalidInput
+  /// when the parent cannot be created or is not writable, when `final_dir` is
+  /// an existing file or symbolic link, or when it is an existing non-empty directory
+  /// without the marker. `what` names the writer in the marker ("asperity predict").
+  explicit StagedDirectory(const std::string& final_dir, const std::string& what = "asperity");
   ~StagedDirectory();
   StagedDirectory(const StagedDirectory&) = delete;
   StagedDirectory& operator=(const StagedDirectory&) = delete;
   /// Path of a file inside the temporary directory.
   [[nodiscard]] std::string file(const std::string& name) const;
   [[nodiscard]] const std::filesystem::path& staging() const { return tmp_; }
-  /// Moves the temporary directory to its final name.
+  /// Moves the temporary directory to its final name, replacing an older asperity output
+  /// (or an empty directory) there.
   void commit();
 
  private:
+  std::string given_;  // the --out text, for messages
   std::filesystem::path final_;
   std::filesystem::path tmp_;
+  std::vector<std::filesystem::path> created_parents_;  // innermost first
   bool committed_ = false;
+  void remove_created_parents() noexcept;
 };
+
+/// Throws InvalidInput unless `dir` may be replaced by an asperity output: it does not
+/// exist, or it is a directory that is empty or carries the marker file.
+void require_replaceable_output(const std::filesystem::path& dir, const std::string& given);
 
 }  // namespace asperity::joint

@@ -14,11 +14,14 @@
 namespace asperity::joint {
 
 struct AmplitudePrediction {
-  double delta_max = 0.0;  ///< displacement amplitude [m]
+  double delta_max = 0.0;  ///< displacement amplitude of the joint [m]
+  double imposed = 0.0;    ///< PZT tip amplitude it came from [m] (0: given directly)
   double Q_peak = 0.0;     ///< force at delta_max on the backbone [N]
   double energy = 0.0;     ///< energy per symmetric cycle [J]
   double Q_ratio = 0.0;    ///< Q_peak/Q_max
-  std::string regime;      ///< "partial slip" (Q_peak < 0.999 Q_max) or "gross slip"
+  /// "gross slip" when delta_max reaches LoadPrediction::gross_slip_amplitude (every
+  /// asperity slips: Q_peak = Q_max to the backbone table's resolution), else "partial slip".
+  std::string regime;
 };
 
 struct LoadPrediction {
@@ -32,6 +35,9 @@ struct LoadPrediction {
   double stiffness = 0.0;           ///< tangential stiffness at every reversal [N/m]
   double contact_area_ratio = 0.0;  ///< real over nominal area
   double mean_pressure = 0.0;       ///< P/A0 [Pa]
+  /// Amplitude from which the joint is in gross slip [m]: the end of the backbone table,
+  /// beyond which Q_l equals Q_max to < 1e-12 (rough_flat.hpp).
+  double gross_slip_amplitude = 0.0;
   /// Backbone in SI units (x [m], Q [N]): a ScaledBackbone over the rough flat's table.
   std::shared_ptr<const hysteresis::Backbone> backbone;
   std::vector<AmplitudePrediction> amplitudes;
@@ -48,9 +54,19 @@ struct JointPrediction {
 [[nodiscard]] JointPrediction predict(
     const JointCase& c, const std::function<void(std::size_t, std::size_t)>& progress = {});
 
-/// Predictions at one preload (SI) for given amplitudes.
+/// Predictions at one preload (SI) for given joint amplitudes and, through an apparatus
+/// of compliance `apparatus_compliance` [m/N], for amplitudes imposed at the PZT tip;
+/// the amplitudes come out sorted by delta_max.
 [[nodiscard]] LoadPrediction predict_load(const surface::RoughFlat& flat, double preload,
-                                          const std::vector<double>& amplitudes);
+                                          const std::vector<double>& amplitudes,
+                                          const std::vector<double>& imposed = {},
+                                          double apparatus_compliance = 0.0);
+
+/// The joint amplitude of a steady symmetric cycle imposed through a linear apparatus
+/// (Fig. 5.7): the root of delta + c Q_l(delta) = imposed on the SI backbone (Masing: the
+/// peak force of a symmetric loop is the backbone's).
+[[nodiscard]] double joint_amplitude(const hysteresis::Backbone& backbone, double imposed,
+                                     double apparatus_compliance);
 
 /// A steady symmetric fretting loop of amplitude delta_max on an SI backbone, from
 /// (delta_max, Q_peak) down to -delta_max and back (Masing's rules), `n` points per

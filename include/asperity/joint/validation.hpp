@@ -12,11 +12,14 @@ namespace asperity::joint {
 struct ValidationRow {
   std::string source;    ///< "Table 3.2", "Fig. 4.4", ...
   std::string quantity;  ///< what is compared
-  double thesis = 0.0;
+  double thesis =
+      0.0;  ///< the reference: the thesis's value (or measurement, or our independent quadrature)
   double ours = 0.0;
   double tolerance = 0.0;  ///< relative tolerance of the row (and its reason in `note`)
-  /// "agrees", "differs (documented)" for known disagreements, "experiment" for
-  /// model-versus-measurement rows (not a reproduction), or "FAIL".
+  /// "agrees", "differs (documented)" for a disagreement documented for this row, or
+  /// "FAIL"; model-versus-measurement rows (not reproductions; `thesis` holds the
+  /// measurement) read "agrees (model vs experiment)" within 10 % or "differs (model vs
+  /// experiment)", and never fail.
   std::string verdict;
   std::string note;
   [[nodiscard]] double relative_difference() const;
@@ -27,7 +30,12 @@ struct ValidationRow {
 /// amplitudes 0.05-4 um.
 [[nodiscard]] JointCase chapter5_joint();
 
-/// Computes every row (well under a second).
+/// The four joints of chapter 6 (Tables 6.1-6.3; the same as examples/joints/
+/// {aluminium,steel}_{smooth,rough}.toml, tested): smooth Al, rough Al, smooth steel,
+/// rough steel; BKE, A0 = 165 mm^2, total torques 0.192/0.305/0.418 N m.
+[[nodiscard]] std::vector<JointCase> chapter6_joints();
+
+/// Computes every row (about a second).
 [[nodiscard]] std::vector<ValidationRow> validation_rows();
 
 /// Markdown report: a table per source with ours, the thesis's, the relative
