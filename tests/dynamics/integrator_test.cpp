@@ -215,6 +215,28 @@ TEST(IntegratorTest, VelocityZerosAtRestAreNotEvents) {
   EXPECT_GT(q.event_t.size(), 3u);
 }
 
+// y' = -1e4 (y - cos t): the solution follows cos t, so accuracy allows steps of ~0.01
+// while stability (h |lambda| < 3.3 for DP54) holds them at ~3e-4: the stiffness test
+// flags nearly all steps. y' = -y is not stiff: none.
+class StiffRelaxation final : public OdeProblem {
+ public:
+  [[nodiscard]] std::size_t size() const override { return 1; }
+  void rhs(double t, std::span<const double> y, std::span<double> dy) const override {
+    dy[0] = -1e4 * (y[0] - std::cos(t));
+  }
+};
+
+TEST(IntegratorTest, StiffnessTestFlagsStepsHeldByStability) {
+  StiffRelaxation p;
+  const auto s = integrate(p, std::vector<double>{1.0}, 0.0, 2.0, {.rtol = 1e-6, .atol = {1e-7}},
+                           {});
+  EXPECT_GT(static_cast<double>(s.stiff_steps), 0.9 * static_cast<double>(s.steps));
+  Decay d(-1.0);
+  const auto n = integrate(d, std::vector<double>{1.0}, 0.0, 5.0, {.rtol = 1e-9, .atol = {1e-12}},
+                           {});
+  EXPECT_EQ(n.stiff_steps, 0u);
+}
+
 TEST(IntegratorTest, StepsEndOnBreakpoints) {
   Kink p;
   IntegratorOptions o{.rtol = 1e-8, .atol = {1e-12}};

@@ -106,6 +106,14 @@ struct IntegratorStats {
   std::size_t rejected_steps = 0;   ///< steps that failed the error test
   std::size_t rhs_evaluations = 0;  ///< calls of OdeProblem::rhs
   std::size_t events = 0;           ///< located events
+  /// Accepted steps whose size was held by stability rather than accuracy (Dormand-Prince
+  /// only): the stiffness test of Hairer's DOPRI5, h |lambda| ~ h ||k7 - k6|| / ||y7 -
+  /// y6|| (the two stages at c = 1) above 2.5 (DOPRI5: 3.25; under ode45's control a
+  /// stiff problem settles at 2.7-2.9), counted from the 15th such step in a row on
+  /// (Hairer & Wanner, Solving ODEs II, sec. IV.2). Many of them mean a stiff problem (e.g. a
+  /// Dankowicz contact with F_max/delta >> 1 while it slides), for which an explicit
+  /// method is slow though still accurate.
+  std::size_t stiff_steps = 0;
 };
 
 /// Receives every accepted step: t, y, and a continuous extension valid on
