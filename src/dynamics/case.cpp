@@ -656,6 +656,21 @@ CaseResult run_case(const DynamicsCase& c) {
 
   j.emplace_back("case", c.source);
   j.emplace_back("excitation", c.excitation_name);
+  j.emplace_back("excitation_parameters",
+                 std::visit(
+                     [](const auto& e) -> SummaryObject {
+                       using T = std::decay_t<decltype(e)>;
+                       if constexpr (std::is_same_v<T, ImpulseExcitation>) {
+                         return {{"Omega", e.Omega}, {"amplitude", e.amplitude}};
+                       } else if constexpr (std::is_same_v<T, RampExcitation>) {
+                         return {{"alpha", e.alpha}};
+                       } else if constexpr (std::is_same_v<T, HarmonicExcitation>) {
+                         return {{"frequency", e.frequency}, {"amplitude", e.amplitude}};
+                       } else {
+                         return {};
+                       }
+                     },
+                     c.excitation));
   j.emplace_back("friction_model", tr.friction_model);
   j.emplace_back("epsilon", c.system.epsilon);
   j.emplace_back("method", to_string(sim.integrator.method));

@@ -136,7 +136,7 @@ class Stepper {
       problem_.rhs(ti, ytmp_, K_[i]);
       ++stats_.rhs_evaluations;
       if (i == s - 2) ystage_ = ytmp_;  // for the stiffness test
-      if (i == s - 1) ynew = ytmp_;    // FSAL: the last stage is at the new point
+      if (i == s - 1) ynew = ytmp_;     // FSAL: the last stage is at the new point
     }
     double err = 0.0;
     for (std::size_t m = 0; m < n_; ++m) {
@@ -303,7 +303,7 @@ IntegratorStats integrate(OdeProblem& problem, std::span<const double> y0, doubl
 
   int zero_length_events = 0;
   int stiff_run = 0;  // consecutive steps that failed DOPRI5's stiffness test
-  int dir = 0;  // direction of the event state (sign of velocity), 0 before motion
+  int dir = 0;        // direction of the event state (sign of velocity), 0 before motion
   if (events) dir = sign_of(y[ev]);
   // The rest rule: with a rest state (the displacement, whose rate is the event state),
   // zeros of the event state count as events only once the rest state has moved by

@@ -228,12 +228,12 @@ class StiffRelaxation final : public OdeProblem {
 
 TEST(IntegratorTest, StiffnessTestFlagsStepsHeldByStability) {
   StiffRelaxation p;
-  const auto s = integrate(p, std::vector<double>{1.0}, 0.0, 2.0, {.rtol = 1e-6, .atol = {1e-7}},
-                           {});
+  const auto s =
+      integrate(p, std::vector<double>{1.0}, 0.0, 2.0, {.rtol = 1e-6, .atol = {1e-7}}, {});
   EXPECT_GT(static_cast<double>(s.stiff_steps), 0.9 * static_cast<double>(s.steps));
   Decay d(-1.0);
-  const auto n = integrate(d, std::vector<double>{1.0}, 0.0, 5.0, {.rtol = 1e-9, .atol = {1e-12}},
-                           {});
+  const auto n =
+      integrate(d, std::vector<double>{1.0}, 0.0, 5.0, {.rtol = 1e-9, .atol = {1e-12}}, {});
   EXPECT_EQ(n.stiff_steps, 0u);
 }
 
