@@ -1,69 +1,95 @@
 #!/bin/sh
 # Regenerates the thesis's Fig. 7.3-7.7 from the shipped cases: runs every case with
-# `asperity dynamics` and overlays the outputs with gnuplot.
+# `asperity dynamics` (into a temporary directory, removed afterwards) and overlays the
+# outputs with gnuplot into fig_7_3.png ... fig_7_7.png.
 #   examples/dynamics/figures.sh [path/to/asperity] [output dir]
-# Assumptions are stated in each case file and in README.md (A0 = 1 cm^2, A = 18 um
-# for the physics-based law; Table 7.2 gives neither).
+# The output directory defaults to docs/figures of this repository (the committed
+# figures of docs/dynamics.md). Assumptions are stated in each case file, in the figures'
+# titles and in docs/dynamics.md: the physics-based (EPB) cases take A0 = 1 cm^2,
+# A = 18 um and P = 9 N, which Table 7.2 does not give.
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 bin=${1:-asperity}
-out=${2:-dynamics-figures}
+out=${2:-$here/../../docs/figures}
 mkdir -p "$out"
+out=$(cd "$out" && pwd)
+runs=$(mktemp -d)
+trap 'rm -rf "$runs"' EXIT
 for f in "$here"/*.toml; do
   n=$(basename "$f" .toml)
-  "$bin" dynamics "$f" --out "$out/$n" --no-plots > /dev/null
+  "$bin" dynamics "$f" --out "$runs/$n" --no-plots > /dev/null
 done
-cd "$out"
-gnuplot <<'GP'
+cd "$runs"
+# The largest power of each spectrum up to the plotted f_max = 5 (the normalisation).
+peak() { awk -F, 'NR > 1 && $1 <= 5 && $2 > m { m = $2 } END { printf "%.10g", m }' "$1/spectrum.csv"; }
+# A summary.json number (flat key).
+num() { sed -n "s/^ *\"$2\": \([-0-9.eE+]*\),*$/\1/p" "$1/summary.json" | head -1; }
+gnuplot <<GP
 set terminal pngcairo size 1000,700 enhanced font 'DejaVu Sans,11'
 set datafile separator ','
+set datafile columnheaders
 set grid
-set key top right noenhanced
+set key top right noenhanced box opaque
+assumed = 'EPB (physics-based, rough flat): A0 = 1 cm^2, A = 18 um, P = 9 N assumed (Table 7.2 gives no A0)'
 
-set output 'fig_7_3.png'
-set title 'Fig. 7.3: power spectra of the impulse response (Coulomb, Dankowicz, no friction)'
-set xlabel 'non-dimensional frequency'; set ylabel 'power'; set logscale y; set xrange [0:4]
-plot 'impulse_none/spectrum.csv' every ::1 using 1:2 with lines lw 2 title 'no friction', \
-     'impulse_coulomb_large/spectrum.csv' every ::1 using 1:2 with lines lw 2 title 'Coulomb (pulse 200 A)', \
-     'impulse_dankowicz/spectrum.csv' every ::1 using 1:2 with lines lw 2 title 'Dankowicz'
+set output '$out/fig_7_3.png'
+set title "Fig. 7.3: power spectra of the impulse response, Coulomb and Dankowicz (Table 7.2)\n{/*0.8 each normalised by its own peak: the 200 A Coulomb pulse has about 10^6 times the raw power of the others}" enhanced
+set xlabel 'non-dimensional frequency [cycles per unit tau]'
+set ylabel 'power / peak power'
+set logscale y; set format y '%g'; set yrange [1e-6:2]; set xrange [0:4]
+plot 'impulse_none/spectrum.csv' using 1:(\$2/$(peak impulse_none)) with lines lw 1.5 title sprintf('no friction: peak %.4f, zeta %.4f', $(num impulse_none modal_frequency), $(num impulse_none modal_damping)), \
+     'impulse_coulomb_large/spectrum.csv' using 1:(\$2/$(peak impulse_coulomb_large)) with lines lw 1.5 title sprintf('Coulomb, pulse 200 A: peak %.3f (undamped %.4f), zeta %.2f', $(num impulse_coulomb_large modal_frequency), $(num impulse_coulomb_large modal_frequency_undamped), $(num impulse_coulomb_large modal_damping)), \
+     'impulse_coulomb/spectrum.csv' using 1:(\$2/$(peak impulse_coulomb)) with lines lw 1.5 dt 2 title 'Coulomb, unit pulse: overdamped creep, no peak', \
+     'impulse_dankowicz/spectrum.csv' using 1:(\$2/$(peak impulse_dankowicz)) with lines lw 1.5 title sprintf('Dankowicz: peak %.3f, zeta %.4f', $(num impulse_dankowicz modal_frequency), $(num impulse_dankowicz modal_damping))
 
-set output 'fig_7_4.png'
-set title 'Fig. 7.4: power spectra of the impulse response, physics-based law, rough and smooth'
-plot 'impulse_none/spectrum.csv' every ::1 using 1:2 with lines lw 2 title 'no friction', \
-     'impulse_physics_rough/spectrum.csv' every ::1 using 1:2 with lines lw 2 title 'EPB rough', \
-     'impulse_physics_smooth/spectrum.csv' every ::1 using 1:2 with lines lw 2 title 'EPB smooth'
-unset logscale y; set xrange [*:*]
+set output '$out/fig_7_4.png'
+set title "Fig. 7.4: power spectra of the impulse response, physics-based (EPB) law, rough and smooth\n{/*0.8 each normalised by its own peak; ".assumed."}" enhanced
+set xrange [0:5]
+plot 'impulse_none/spectrum.csv' using 1:(\$2/$(peak impulse_none)) with lines lw 1.5 title sprintf('no friction: peak %.4f', $(num impulse_none modal_frequency)), \
+     'impulse_physics_rough/spectrum.csv' using 1:(\$2/$(peak impulse_physics_rough)) with lines lw 1.5 title sprintf('EPB rough: peak %.3f, zeta %.4f', $(num impulse_physics_rough modal_frequency), $(num impulse_physics_rough modal_damping)), \
+     'impulse_physics_smooth/spectrum.csv' using 1:(\$2/$(peak impulse_physics_smooth)) with lines lw 1.5 title sprintf('EPB smooth: peak %.3f, zeta %.4f', $(num impulse_physics_smooth modal_frequency), $(num impulse_physics_smooth modal_damping))
+unset logscale y; set format y '%g'; set yrange [*:*]; set xrange [*:*]
 
-set output 'fig_7_5.png'
-set title 'Fig. 7.5: ramp response (alpha = 1)'
-set xlabel 'tau'; set ylabel 'u'; set xrange [0:30]; set key top left
-plot 'ramp_coulomb_soft/timeseries.csv' every ::1 using 1:4 with lines dt 2 lc 'black' title 'base', \
-     'ramp_coulomb_soft/timeseries.csv' every ::1 using 1:2 with lines lw 2 title 'Coulomb, k = 1e4', \
-     'ramp_dankowicz_soft/timeseries.csv' every ::1 using 1:2 with lines lw 2 title 'Dankowicz, k = 1e4', \
-     'ramp_physics_rough_soft/timeseries.csv' every ::1 using 1:2 with lines lw 2 title 'EPB rough, k = 1e4', \
-     'ramp_dankowicz_hard/timeseries.csv' every ::1 using 1:2 with lines lw 2 title 'Dankowicz, k = 1e5'
-set xrange [*:*]; set key top right
+set output '$out/fig_7_5.png'
+set title "Fig. 7.5: ramp response (alpha = 1), soft (k = 1e4 N/m) and hard (k = 1e5 N/m) structure\n{/*0.8 ".assumed."; stick: |u'| < 5 % of the base velocity}" enhanced
+set xlabel 'tau'; set ylabel 'u = x/A'; set xrange [0:30]; set yrange [0:30]; set key top left
+plot 'ramp_coulomb_soft/timeseries.csv' using 'tau':'y' with lines dt 2 lc 'black' title 'base y = tau', \
+     '' using 'tau':'u' with lines lw 2 title sprintf('Coulomb, k = 1e4: slips from the start (%.2f)', $(num ramp_coulomb_soft first_slip)), \
+     'ramp_dankowicz_soft/timeseries.csv' using 'tau':'u' with lines lw 2 title sprintf('Dankowicz, k = 1e4: sticks until %.1f', $(num ramp_dankowicz_soft first_slip)), \
+     'ramp_physics_rough_soft/timeseries.csv' using 'tau':'u' with lines lw 2 title sprintf('EPB rough, k = 1e4: sticks until %.1f', $(num ramp_physics_rough_soft first_slip)), \
+     'ramp_dankowicz_hard/timeseries.csv' using 'tau':'u' with lines lw 2 title sprintf('Dankowicz, k = 1e5: sticks until %.2f', $(num ramp_dankowicz_hard first_slip)), \
+     'ramp_physics_rough_hard/timeseries.csv' using 'tau':'u' with lines lw 2 title sprintf('EPB rough, k = 1e5: sticks until %.2f', $(num ramp_physics_rough_hard first_slip))
+set xrange [*:*]; set yrange [*:*]; set key top right
 
-set output 'fig_7_6.png'
-set multiplot layout 2,2 title 'Fig. 7.6: steady harmonic response, Coulomb (left) and Dankowicz (right)'
-unset title; set xtics rotate by 30 right
-set xlabel 'u'; set ylabel "u'"; unset key
-plot 'harmonic_coulomb/timeseries.csv' every ::1 using ($1 >= 55 ? $2 : 1/0):3 with lines lw 2
-plot 'harmonic_dankowicz/timeseries.csv' every ::1 using ($1 >= 55 ? $2 : 1/0):3 with lines lw 2
-set ylabel 'F_s'
-plot 'harmonic_coulomb/timeseries.csv' every ::1 using ($1 >= 55 ? $2 : 1/0):5 with lines lw 2
-plot 'harmonic_dankowicz/timeseries.csv' every ::1 using ($1 >= 55 ? $2 : 1/0):5 with lines lw 2
+# Steady part: the last 5 of 60 periods.
+steady(t, x) = t >= 55 ? x : 1/0
+set output '$out/fig_7_6.png'
+set multiplot layout 2,2 title "Fig. 7.6: steady harmonic response (y = sin 2 pi tau), Coulomb (left) and Dankowicz (right)"
+unset key; set format x '%g'; set format y '%g'; set xtics rotate by 30 right
+set xlabel 'u'; set ylabel "u'"
+set title sprintf('(a) Coulomb: |u| <= %.2g %% of the base amplitude', 100*$(num harmonic_coulomb displacement_amplitude_over_base))
+plot 'harmonic_coulomb/timeseries.csv' using (steady(column('tau'), column('u'))):'v' with lines lw 2
+set title sprintf('(b) Dankowicz: |u| <= %.2g %%', 100*$(num harmonic_dankowicz displacement_amplitude_over_base))
+plot 'harmonic_dankowicz/timeseries.csv' using (steady(column('tau'), column('u'))):'v' with lines lw 2
+set ylabel 'F_s = f_s/(k A)'
+set title sprintf('(c) Coulomb: no micro-slip, %.3g dissipated per cycle', $(num harmonic_coulomb energy_per_cycle))
+plot 'harmonic_coulomb/timeseries.csv' using (steady(column('tau'), column('u'))):'friction' with lines lw 2
+set title sprintf('(d) Dankowicz: micro-slip loop, %.3g per cycle', $(num harmonic_dankowicz energy_per_cycle))
+plot 'harmonic_dankowicz/timeseries.csv' using (steady(column('tau'), column('u'))):'friction' with lines lw 2
 unset multiplot
 
-set output 'fig_7_7.png'
-set multiplot layout 2,2 title 'Fig. 7.7: steady harmonic response, EPB smooth (left) and rough (right)'
-unset title; set xtics rotate by 30 right
-set xlabel 'u'; set ylabel "u'"
-plot 'harmonic_physics_smooth/timeseries.csv' every ::1 using ($1 >= 55 ? $2 : 1/0):3 with lines lw 2
-plot 'harmonic_physics_rough/timeseries.csv' every ::1 using ($1 >= 55 ? $2 : 1/0):3 with lines lw 2
-set ylabel 'F_s'
-plot 'harmonic_physics_smooth/timeseries.csv' every ::1 using ($1 >= 55 ? $2 : 1/0):5 with lines lw 2
-plot 'harmonic_physics_rough/timeseries.csv' every ::1 using ($1 >= 55 ? $2 : 1/0):5 with lines lw 2
+set output '$out/fig_7_7.png'
+set multiplot layout 2,2 title "Fig. 7.7: steady harmonic response, EPB smooth (left) and rough (right)\n{/*0.8 ".assumed."}" enhanced
+set ylabel "u'"
+set title sprintf('(a) EPB smooth: |u| <= %.2g %%', 100*$(num harmonic_physics_smooth displacement_amplitude_over_base))
+plot 'harmonic_physics_smooth/timeseries.csv' using (steady(column('tau'), column('u'))):'v' with lines lw 2
+set title sprintf('(b) EPB rough: |u| <= %.2g %%', 100*$(num harmonic_physics_rough displacement_amplitude_over_base))
+plot 'harmonic_physics_rough/timeseries.csv' using (steady(column('tau'), column('u'))):'v' with lines lw 2
+set ylabel 'F_s = f_s/(k A)'
+set title sprintf('(c) EPB smooth: %.3g dissipated per cycle', $(num harmonic_physics_smooth energy_per_cycle))
+plot 'harmonic_physics_smooth/timeseries.csv' using (steady(column('tau'), column('u'))):'friction' with lines lw 2
+set title sprintf('(d) EPB rough: %.3g per cycle', $(num harmonic_physics_rough energy_per_cycle))
+plot 'harmonic_physics_rough/timeseries.csv' using (steady(column('tau'), column('u'))):'friction' with lines lw 2
 unset multiplot
 GP
 echo "wrote $out/fig_7_3.png ... fig_7_7.png"

@@ -26,7 +26,8 @@ Eq. 7.1 under :class:`ImpulseExcitation`, :class:`RampExcitation`,
 :class:`Trajectory` of numpy arrays; ``Periodogram``, ``power_spectrum``,
 ``modal_estimate``, ``free_decay``, ``stick_slip_intervals``, ``steady_loop``) are bound
 here. Dynamics works in the non-dimensional variables of section 7.2
-(:class:`DimensionalScales` converts);
+(:class:`DimensionalScales` converts); :mod:`asperity.dynamics` runs the case files of
+``asperity dynamics`` (``run_case``: summary and numpy arrays) and draws Fig. 7.3-7.7;
 Cattaneo-Mindlin tilde functions live in :mod:`asperity.mindlin`; matplotlib helpers in
 :mod:`asperity.plotting`; the thesis's experiments in :mod:`asperity.thesis`.
 """
@@ -38,6 +39,7 @@ from . import _core
 from ._core import *  # noqa: F401,F403
 from ._core import mindlin
 from . import joints  # noqa: F401  (matplotlib helpers for predict / analyze_fretting)
+from . import dynamics  # noqa: F401  (dynamics case files, Fig. 7.3-7.7 helpers)
 
 # `import asperity.mindlin` works like a submodule of the package.
 _sys.modules[__name__ + ".mindlin"] = mindlin

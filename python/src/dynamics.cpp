@@ -22,6 +22,7 @@
 #include "asperity/contact/asperity_model.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/dynamics/analysis.hpp"
+#include "asperity/dynamics/case.hpp"
 #include "asperity/dynamics/epb.hpp"
 #include "asperity/dynamics/friction_model.hpp"
 #include "asperity/dynamics/integrator.hpp"
@@ -64,6 +65,62 @@ std::vector<double> parse_atol(const nb::handle& atol) {
   } catch (const std::exception&) {
     throw InvalidInput("atol must be a number or a sequence of numbers (one per state)");
   }
+  return out;
+}
+
+// A run summary as Python objects (dict, list, float, int, str, bool, None).
+nb::object to_python(const SummaryValue& v) {
+  return std::visit(
+      [](const auto& x) -> nb::object {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, std::nullptr_t>) {
+          return nb::none();
+        } else if constexpr (std::is_same_v<T, SummaryArray>) {
+          nb::list l;
+          for (const auto& e : x) l.append(to_python(e));
+          return l;
+        } else if constexpr (std::is_same_v<T, SummaryObject>) {
+          nb::dict d;
+          for (const auto& [k, e] : x) d[k.c_str()] = to_python(e);
+          return d;
+        } else {
+          return nb::cast(x);
+        }
+      },
+      v.data);
+}
+
+// run_case as a dict: summary (the summary.json content), arrays (the timeseries.csv
+// columns as numpy arrays, names without their units), spectrum, warnings, trajectory.
+nb::dict case_dict(const DynamicsCase& c) {
+  CaseResult r = [&] {
+    nb::gil_scoped_release release;
+    return run_case(c);
+  }();
+  nb::dict out;
+  out["summary"] = to_python(SummaryValue(r.summary));
+  nb::dict arrays;
+  for (const auto& col : time_history_columns(c, r.trajectory)) {
+    const std::string name = col.name.substr(0, col.name.find('['));
+    if (name == "event") {
+      arrays[name.c_str()] = bool_array_of(r.trajectory.is_event);
+    } else {
+      arrays[name.c_str()] = array_of(col.values);
+    }
+  }
+  out["arrays"] = arrays;
+  if (r.spectrum) {
+    nb::dict sp;
+    sp["frequency"] = array_of(r.spectrum->frequency);
+    sp["power"] = array_of(r.spectrum->power);
+    out["spectrum"] = sp;
+  } else {
+    out["spectrum"] = nb::none();
+  }
+  nb::list w;
+  for (const auto& s : r.warnings) w.append(s);
+  out["warnings"] = w;
+  out["trajectory"] = nb::cast(std::move(r.trajectory));
   return out;
 }
 
@@ -181,7 +238,9 @@ void bind_dynamics(nb::module_& m) {
           [](SegalmanBackbone* self, double F_S, double K_T, double chi, double beta) {
             new (self) SegalmanBackbone({.F_S = F_S, .K_T = K_T, .chi = chi, .beta = beta});
           },
-          "F_S"_a, "K_T"_a, "chi"_a = -0.5, "beta"_a = 0.1)
+          "F_S"_a, "K_T"_a, "chi"_a, "beta"_a,
+          "F_S force at macro-slip, K_T stiffness at zero load, chi in (-1, 0], beta >= 0 (all "
+          "four required: no default is a property of a joint).")
       .def_prop_ro("phi_max", &SegalmanBackbone::phi_max)
       .def_prop_ro("R", &SegalmanBackbone::R)
       .def_prop_ro("S", &SegalmanBackbone::S);
@@ -193,9 +252,9 @@ void bind_dynamics(nb::module_& m) {
       [](double F_S, double K_T, double chi, double beta) {
         return make_segalman_iwan({.F_S = F_S, .K_T = K_T, .chi = chi, .beta = beta});
       },
-      "F_S"_a, "K_T"_a, "chi"_a = -0.5, "beta"_a = 0.1,
+      "F_S"_a, "K_T"_a, "chi"_a, "beta"_a,
       "Segalman's four-parameter Iwan model: F_S force at macro-slip, K_T stiffness at zero "
-      "load, chi in (-1, 0], beta >= 0.");
+      "load, chi in (-1, 0], beta >= 0 (all four required; e.g. chi = -0.5, beta = 0.1).");
   m.def(
       "make_physics_based",
       [](std::shared_ptr<const hysteresis::Backbone> backbone_si, double k, double A,
@@ -369,6 +428,23 @@ void bind_dynamics(nb::module_& m) {
   ASPERITY_TRAJECTORY_ARRAY(event_u, "displacements at the located velocity reversals");
 #undef ASPERITY_TRAJECTORY_ARRAY
   traj.def_prop_ro(
+          "internal",
+          [](const Trajectory& t) {
+            // (n, n_internal) copy: the friction model's internal states (Dankowicz: z).
+            const std::size_t n = t.size(), k = t.internal.size();
+            std::unique_ptr<double[]> data(new double[n * k > 0 ? n * k : 1]);
+            for (std::size_t i = 0; i < n; ++i) {
+              for (std::size_t j = 0; j < k; ++j) data[i * k + j] = t.internal[j][i];
+            }
+            return detail::make_array(std::move(data), {n, k});
+          },
+          "the friction model's internal states, shape (len, n_internal) (Dankowicz: z in "
+          "column 0; a copy)")
+      .def_prop_ro(
+          "stiff_steps", [](const Trajectory& t) { return t.stats.stiff_steps; },
+          "accepted steps held by stability rather than accuracy (Dormand-Prince stiffness "
+          "test)")
+      .def_prop_ro(
           "is_event", [](const Trajectory& t) { return bool_array_of(t.is_event); },
           "per sample: the sample is a located reversal (a bool array copy)")
       .def_prop_ro(
@@ -424,7 +500,8 @@ void bind_dynamics(nb::module_& m) {
   nb::class_<Periodogram>(
       m, "Periodogram",
       "Power spectrum P(f) = |dt sum (x_n - mean) exp(-2 pi i f t_n)|^2 of a uniformly sampled "
-      "signal, evaluated at any frequency (direct DFT in double precision).")
+      "signal: at any frequency by Goertzel's recurrence (exact DTFT in double precision); "
+      "power_spectrum gives it on an FFT grid (KISS FFT).")
       .def(
           "__init__",
           [](Periodogram* self, const Array1& x, double dt) {
@@ -445,14 +522,19 @@ void bind_dynamics(nb::module_& m) {
         const Spectrum s = power_spectrum(p, f_min, f_max, bins);
         return std::make_pair(FloatOrArray{array_of(s.frequency)}, FloatOrArray{array_of(s.power)});
       },
-      "periodogram"_a, "f_min"_a, "f_max"_a, "bins"_a = std::size_t{4000},
-      "(frequency, power) on `bins` equally spaced frequencies in [f_min, f_max].");
+      "periodogram"_a, "f_min"_a, "f_max"_a, "min_bins"_a = std::size_t{0},
+      "(frequency, power) on the FFT grid k/(n_fft dt) inside [f_min, f_max], by KISS FFT of the "
+      "signal zero-padded to n_fft >= 4 len (and fine enough for at least min_bins points in "
+      "the range); each value equals the periodogram at that frequency.");
 
   nb::class_<ModalEstimate>(m, "ModalEstimate", "The main spectral peak and its half-power points.")
       .def_ro("frequency", &ModalEstimate::frequency, "peak frequency")
       .def_ro("damping_ratio", &ModalEstimate::damping_ratio,
               "(f_high - f_low)/(2 frequency): half-power bandwidth")
       .def_ro("peak_power", &ModalEstimate::peak_power)
+      .def_ro("undamped_frequency", &ModalEstimate::undamped_frequency,
+              "frequency/sqrt(1 - 2 damping_ratio^2): the undamped natural frequency of a "
+              "viscously damped mode whose displacement spectrum peaks at `frequency`")
       .def_ro("f_low", &ModalEstimate::f_low)
       .def_ro("f_high", &ModalEstimate::f_high)
       .def("__repr__", [](const ModalEstimate& e) {
@@ -461,8 +543,26 @@ void bind_dynamics(nb::module_& m) {
       });
   m.def("modal_estimate", &modal_estimate, "periodogram"_a, "f_min"_a, "f_max"_a,
         "bins"_a = std::size_t{4000},
-        "Largest interior peak in [f_min, f_max] (refined by Brent's method) and its half-power "
-        "points; NumericalError if one lies outside the range.");
+        "Largest interior peak of power_spectrum in [f_min, f_max], refined by Brent's method on "
+        "the exact periodogram, and its half-power points (root finding on it); NumericalError "
+        "if one lies outside the range.");
+  m.def(
+      "run_dynamics_case", [](const std::string& path) { return case_dict(read_case_file(path)); },
+      "path"_a,
+      "Runs a dynamics case file (the TOML of `asperity dynamics`, docs/dynamics.md) and "
+      "returns a dict: summary (the content of summary.json: modal_frequency, "
+      "modal_frequency_undamped, modal_damping, energy_balance_error, friction, warnings, ...), "
+      "arrays (the timeseries.csv columns as numpy arrays: tau, u, v, y, friction, z, "
+      "work_base, dissipated_damper, work_friction, energy, event (bool), and with the scales "
+      "t [s], x [m], xdot [m/s], base [m], f_s [N]), spectrum (dict of frequency, power for "
+      "decays, else None), warnings (list of str) and trajectory (the Trajectory).");
+  m.def(
+      "run_dynamics_case_text",
+      [](const std::string& text, const std::string& base_dir) {
+        return case_dict(parse_case_text(text, "<string>", base_dir));
+      },
+      "text"_a, "base_dir"_a = ".",
+      "run_dynamics_case for case-file text (base_dir resolves a [joint]'s profile paths).");
   m.def(
       "uniform_samples",
       [](const Trajectory& tr, double output_interval, double tau_start) {

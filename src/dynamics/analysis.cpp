@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <boost/math/tools/minima.hpp>
 #include <cmath>
+#include <complex>
+#include <kissfft/kissfft.hh>
+#include <limits>
 #include <numbers>
 #include <numeric>
 
@@ -36,28 +39,75 @@ double Periodogram::operator()(double f) const {
   return std::max(p, 0.0) * dt_ * dt_;
 }
 
-Spectrum power_spectrum(const Periodogram& p, double f_min, double f_max, std::size_t bins) {
+namespace {
+
+// The smallest 2^a 3^b 5^c >= n (KISS FFT is fastest for these radices).
+std::size_t next_fast_size(std::size_t n) {
+  for (std::size_t m = std::max<std::size_t>(n, 1);; ++m) {
+    std::size_t r = m;
+    for (std::size_t f : {2, 3, 5}) {
+      while (r % f == 0) r /= f;
+    }
+    if (r == 1) return m;
+  }
+}
+
+}  // namespace
+
+Spectrum power_spectrum(const Periodogram& p, double f_min, double f_max, std::size_t min_bins) {
   core::require_non_negative("f_min", f_min);
   if (!(f_max > f_min)) throw InvalidInput("the spectrum needs f_max > f_min");
-  if (bins < 2) throw InvalidInput("the spectrum needs at least 2 frequencies");
+  const double dt = p.dt();
+  const double nyquist = 0.5 / dt;
+  if (f_max > nyquist * (1.0 + 1e-12)) {
+    throw InvalidInput(fmt::format(
+        "the spectrum's f_max = {:.6g} exceeds the Nyquist frequency 1/(2 dt) = {:.6g} of samples "
+        "every {:.6g}: lower f_max or sample finer (output_interval)",
+        f_max, nyquist, dt));
+  }
+  const std::size_t n = p.size();
+  // Zero padding 4x; a grid spacing of at most (f_max - f_min)/(min_bins - 1).
+  double need = 4.0 * static_cast<double>(n);
+  if (min_bins > 1) {
+    need = std::max(need, static_cast<double>(min_bins - 1) / ((f_max - f_min) * dt));
+  }
+  constexpr double kMaxFft = 67108864.0;  // 2^26 points (1 GiB of complex doubles)
+  if (!(need <= kMaxFft)) {
+    throw InvalidInput(fmt::format(
+        "a spectrum with {} points in [{:.6g}, {:.6g}] from samples every {:.6g} needs an FFT of "
+        "{:.3g} points (at most 2^26): ask for fewer bins or a wider range",
+        min_bins, f_min, f_max, dt, need));
+  }
+  const std::size_t nfft = next_fast_size(static_cast<std::size_t>(std::ceil(need)));
+  std::vector<std::complex<double>> in(nfft), out(nfft);
+  const auto x = p.samples();
+  for (std::size_t i = 0; i < n; ++i) in[i] = {x[i], 0.0};
+  const kissfft<double> fft(nfft, false);
+  fft.transform(in.data(), out.data());
+  const double df = 1.0 / (static_cast<double>(nfft) * dt);
   Spectrum s;
-  s.frequency.resize(bins);
-  s.power.resize(bins);
-  for (std::size_t i = 0; i < bins; ++i) {
-    const double f =
-        f_min + (f_max - f_min) * static_cast<double>(i) / static_cast<double>(bins - 1);
-    s.frequency[i] = f;
-    s.power[i] = p(f);
+  const auto k0 = static_cast<std::size_t>(std::ceil(f_min / df - 1e-9));
+  const auto k1 = std::min(nfft / 2, static_cast<std::size_t>(std::floor(f_max / df + 1e-9)));
+  for (std::size_t k = k0; k <= k1; ++k) {
+    s.frequency.push_back(static_cast<double>(k) * df);
+    s.power.push_back(std::norm(out[k]) * dt * dt);
+  }
+  if (s.frequency.size() < 3) {
+    throw InvalidInput(
+        fmt::format("the spectrum range [{:.6g}, {:.6g}] holds fewer than 3 points "
+                    "of the FFT grid (spacing {:.6g})",
+                    f_min, f_max, df));
   }
   return s;
 }
 
 ModalEstimate modal_estimate(const Periodogram& p, double f_min, double f_max, std::size_t bins) {
   const Spectrum s = power_spectrum(p, f_min, f_max, bins);
+  const std::size_t nb = s.frequency.size();
   // The largest interior local maximum: a spectrum falling from the lower end (the
   // slow creep of a regularized Coulomb contact, a drift) is not a mode.
   std::size_t k = 0;
-  for (std::size_t i = 1; i + 1 < bins; ++i) {
+  for (std::size_t i = 1; i + 1 < nb; ++i) {
     if (s.power[i] >= s.power[i - 1] && s.power[i] > s.power[i + 1] &&
         (k == 0 || s.power[i] > s.power[k])) {
       k = i;
@@ -68,19 +118,17 @@ ModalEstimate modal_estimate(const Periodogram& p, double f_min, double f_max, s
         "power spectrum: no peak between {:.6g} and {:.6g} (the response may be overdamped)", f_min,
         f_max));
   }
-  const auto it = s.power.begin() + static_cast<std::ptrdiff_t>(k);
   const double df = s.frequency[1] - s.frequency[0];
   ModalEstimate m;
   {
-    const double lo = std::max(f_min, s.frequency[k] - df);
-    const double hi = std::min(f_max, s.frequency[k] + df);
-    const auto r =
-        boost::math::tools::brent_find_minima([&](double f) { return -p(f); }, lo, hi, 50);
+    // Brent's method on the exact periodogram within one grid spacing of the grid peak.
+    const auto r = boost::math::tools::brent_find_minima(
+        [&](double f) { return -p(f); }, s.frequency[k - 1], s.frequency[k + 1], 50);
     m.frequency = r.first;
     m.peak_power = -r.second;
-    if (m.peak_power < *it) {
+    if (m.peak_power < s.power[k]) {
       m.frequency = s.frequency[k];
-      m.peak_power = *it;
+      m.peak_power = s.power[k];
     }
   }
   const double half = 0.5 * m.peak_power;
@@ -97,7 +145,7 @@ ModalEstimate modal_estimate(const Periodogram& p, double f_min, double f_max, s
   m.f_low = core::find_root(g, s.frequency[i], std::min(m.frequency, s.frequency[i] + df),
                             "lower half-power point", 50);
   std::size_t j = k;
-  while (j + 1 < bins && s.power[j] > half) ++j;
+  while (j + 1 < nb && s.power[j] > half) ++j;
   if (s.power[j] > half) {
     throw NumericalError(
         fmt::format("power spectrum: the upper half-power point of the peak at {:.6g} lies above "
@@ -107,6 +155,9 @@ ModalEstimate modal_estimate(const Periodogram& p, double f_min, double f_max, s
   m.f_high = core::find_root(g, std::max(m.frequency, s.frequency[j] - df), s.frequency[j],
                              "upper half-power point", 50);
   m.damping_ratio = (m.f_high - m.f_low) / (2.0 * m.frequency);
+  const double c = 1.0 - 2.0 * m.damping_ratio * m.damping_ratio;
+  m.undamped_frequency =
+      c > 0.0 ? m.frequency / std::sqrt(c) : std::numeric_limits<double>::quiet_NaN();
   return m;
 }
 

@@ -47,15 +47,13 @@ std::unique_ptr<FrictionModel> Dankowicz::clone() const {
 }
 
 double Dankowicz::force(double, double, std::span<const double> z) const {
-  const double r = std::clamp(z[0] / p_.delta, -1.0, 1.0);
-  return p_.F_max * r;  // Eq. 7.7
+  return p_.F_max * z[0] / p_.delta;  // Eq. 7.7
 }
 
 void Dankowicz::internal_rates(double, double v, std::span<const double> z,
                                std::span<double> dz) const {
-  const double r = std::clamp(z[0] / p_.delta, -1.0, 1.0);
   // Eq. 7.6: zeta' = u' (1 - zeta/delta sgn u') = u' - |u'| zeta/delta.
-  dz[0] = v - std::abs(v) * r;
+  dz[0] = v - std::abs(v) * (z[0] / p_.delta);
 }
 
 HysteresisFriction::HysteresisFriction(std::shared_ptr<const hysteresis::Backbone> backbone,

@@ -135,15 +135,21 @@ class Stepper {
       const double ti = tab_.c[i] == 1.0 ? t_end_eval : t + tab_.c[i] * h;
       problem_.rhs(ti, ytmp_, K_[i]);
       ++stats_.rhs_evaluations;
-      if (i == s - 1) ynew = ytmp_;  // FSAL: the last stage is at the new point
+      if (i == s - 2) ystage_ = ytmp_;  // for the stiffness test
+      if (i == s - 1) ynew = ytmp_;     // FSAL: the last stage is at the new point
     }
     double err = 0.0;
+    for (std::size_t m = 0; m < n_; ++m) {
+      if (!std::isfinite(ynew[m])) finite = false;
+    }
+    if (!finite) return std::numeric_limits<double>::infinity();
+    problem_.error_scales(t, y, t_end_eval, ynew, e_);
     for (std::size_t m = 0; m < n_; ++m) {
       double e = 0.0;
       for (int j = 0; j < s; ++j) e += tab_.E[j] * K_[j][m];
       e *= h;
-      if (!std::isfinite(ynew[m]) || !std::isfinite(e)) finite = false;
-      const double wt = std::max({std::abs(y[m]), std::abs(ynew[m]), threshold[m]});
+      if (!std::isfinite(e)) finite = false;
+      const double wt = std::max(e_[m], threshold[m]);
       err = std::max(err, std::abs(e) / wt);
     }
     if (!finite) return std::numeric_limits<double>::infinity();
@@ -151,6 +157,21 @@ class Stepper {
   }
 
   [[nodiscard]] std::span<const double> fnew() const { return K_[tab_.stages - 1]; }
+
+  // h |lambda| estimated from the last two stages when both are at c = 1 (DOPRI5's
+  // stiffness test), after an attempt that ended at ynew; 0 for other tableaus.
+  [[nodiscard]] double stability_estimate(std::span<const double> ynew) const {
+    const int s = tab_.stages;
+    if (tab_.c[s - 2] != 1.0) return 0.0;
+    double num = 0.0, den = 0.0;
+    for (std::size_t m = 0; m < n_; ++m) {
+      const double dk = K_[s - 1][m] - K_[s - 2][m];
+      const double dy = ynew[m] - ystage_[m];
+      num += dk * dk;
+      den += dy * dy;
+    }
+    return den > 0.0 ? h_ * std::sqrt(num / den) : 0.0;
+  }
 
   // Continuous extension at time s in [t, t + h] of the last attempt.
   void dense(double s, std::span<double> out) const {
@@ -196,6 +217,7 @@ class Stepper {
   std::vector<double> ytmp_;
   std::vector<double> e_;
   std::vector<double> y0_;
+  std::vector<double> ystage_;
   double t_ = 0.0;
   double h_ = 1.0;
 };
@@ -251,12 +273,16 @@ IntegratorStats integrate(OdeProblem& problem, std::span<const double> y0, doubl
                             std::abs(t)));
   };
   auto fail = [&](double t, double h, const std::string& why) {
+    const std::string stiff =
+        stats.stiff_steps > stats.steps / 2 && stats.steps > 0
+            ? fmt::format(", {} of them held by stability: the problem is stiff", stats.stiff_steps)
+            : std::string();
     throw NumericalError(
         fmt::format("{} integration: {} at t = {:.10g} (step {:.3g}, rtol {:.3g}, atol {:.3g}); "
-                    "tried {} steps ({} rejected). Loosen the tolerances, or check the parameters "
-                    "for a stiff or unbounded response",
+                    "tried {} steps ({} rejected{}). Loosen the tolerances, or check the "
+                    "parameters for a stiff or unbounded response",
                     to_string(options.method), why, t, h, rtol, options.atol.front(), stats.steps,
-                    stats.rejected_steps));
+                    stats.rejected_steps, stiff));
   };
 
   double t = t0;
@@ -276,8 +302,24 @@ IntegratorStats integrate(OdeProblem& problem, std::span<const double> y0, doubl
   }
 
   int zero_length_events = 0;
-  int dir = 0;  // direction of the event state (sign of velocity), 0 before motion
+  int stiff_run = 0;  // consecutive steps that failed DOPRI5's stiffness test
+  int dir = 0;        // direction of the event state (sign of velocity), 0 before motion
   if (events) dir = sign_of(y[ev]);
+  // The rest rule: with a rest state (the displacement, whose rate is the event state),
+  // zeros of the event state count as events only once the rest state has moved by
+  // more than ten times its absolute tolerance since the last event. Below that the
+  // integration does not resolve the motion: a mass that has come to rest dithers at the
+  // level of the local error allowed per step (measured: u swinging by 2 atol at the
+  // contact's natural frequency for a Jenkins element at rest, |v| ~ atol for a creeping
+  // Coulomb contact), and each such "reversal" would commit memory and restart the step.
+  const std::size_t rs = problem.event_rest_state();
+  const bool rest_rule = events && rs < n;
+  const double rest_swing = rest_rule ? 10.0 * threshold[rs] * rtol : 0.0;
+  double rest_ref = rest_rule ? y[rs] : 0.0;  // the rest state at the last event
+  double swing = 0.0;                         // its largest excursion since then
+  // Stepper state of the last attempt, to know whether its continuous extension is the
+  // one of the step finally taken.
+  double attempted_h = 0.0;
 
   auto emit = [&](double tp, double tn, bool is_event) {
     if (!observer) return;
@@ -302,12 +344,14 @@ IntegratorStats integrate(OdeProblem& problem, std::span<const double> y0, doubl
     }
     bool nofailed = true;
     double err = 0.0;
+    double tend_eval = t + h;
     for (;;) {
       const double tend = to_stop ? stop : t + h;
-      const double tend_eval = to_stop && stop != t1
-                                   ? std::nextafter(stop, -std::numeric_limits<double>::infinity())
-                                   : tend;
+      tend_eval = to_stop && stop != t1
+                      ? std::nextafter(stop, -std::numeric_limits<double>::infinity())
+                      : tend;
       err = stepper.attempt(t, y, f0, h, tend_eval, threshold, ynew);
+      attempted_h = h;
       if (err <= rtol) break;
       ++stats.rejected_steps;
       if (absh <= hmin) {
@@ -329,9 +373,19 @@ IntegratorStats integrate(OdeProblem& problem, std::span<const double> y0, doubl
     }
     const double tnew = to_stop ? stop : t + h;
 
-    // Event search on the continuous extension.
+    // Event search on the continuous extension: the first of kSamples sub-intervals on
+    // which dir * v changes sign.
     bool event_found = false;
     double t_event = tnew;
+    double sb_event = tnew;  // upper end of the sub-interval holding the crossing
+    double v_step = std::abs(y[ev < n ? ev : 0]);
+    double swing_step = swing;
+    auto track_swing = [&](double s) {  // only until the swing passes the rest threshold
+      if (rest_rule && swing_step <= rest_swing) {
+        const double x = s == tnew ? ynew[rs] : s == t ? y[rs] : stepper.dense_component(s, rs);
+        swing_step = std::max(swing_step, std::abs(x - rest_ref));
+      }
+    };
     if (events && dir != 0) {
       constexpr int kSamples = 4;
       double sa = t;
@@ -340,22 +394,111 @@ IntegratorStats integrate(OdeProblem& problem, std::span<const double> y0, doubl
         const double sb = j == kSamples ? tnew : t + (tnew - t) * j / kSamples;
         const double gb = j == kSamples ? dir * ynew[ev] : dir * stepper.dense_component(sb, ev);
         if (gb < 0.0) {
-          event_found = true;
-          if (ga <= 0.0) {
-            t_event = sa;  // already at (or just past) zero at the start of the bracket
-          } else {
-            t_event =
-                core::find_root([&](double s) { return dir * stepper.dense_component(s, ev); }, sa,
-                                sb, "event location", 52);
+          double te = sa;  // already at (or just past) zero at the start of the bracket
+          if (ga > 0.0) {
+            te = core::find_root([&](double s) { return dir * stepper.dense_component(s, ev); }, sa,
+                                 sb, "event location", 52);
           }
+          if (rest_rule) {
+            track_swing(te);                      // the excursion up to the zero
+            if (swing_step <= rest_swing) break;  // at rest: not a reversal
+          }
+          event_found = true;
+          sb_event = sb;
+          t_event = te;
           break;
         }
+        v_step = std::max(v_step, std::abs(gb));
+        if (rest_rule && j < kSamples) track_swing(sb);
         sa = sb;
         ga = gb;
       }
     }
 
+    // The discrete solution's own zero of v: the step is redone to end where
+    // g(he) = dir * v(t + he), the velocity after a step of length he, vanishes. The
+    // interpolant's root starts a safeguarded Newton iteration (dg/dhe = dir * v' at
+    // the step's end, the FSAL stage) inside a bracket [a, b] with g(a) > 0 >= g(b),
+    // bisecting when Newton leaves the bracket or is slow; it stops when |g| is at
+    // round-off level (32 eps of the velocity scale of the step) or, failing that, on
+    // the b side of a bracket a few ulps wide. The step finally taken is recomputed if
+    // it was not the last one attempted, so its state and continuous extension belong
+    // together.
+    double he = 0.0;
+    if (event_found && t_event - t > hmin_at(t)) {
+      constexpr double kEps = std::numeric_limits<double>::epsilon();
+      const double hfull = tnew - t;
+      double g = 0.0, dg = 0.0;
+      auto g_at = [&](double hh) {
+        const double te = hh == hfull ? tend_eval : t + hh;
+        stepper.attempt(t, y, f0, hh, te, threshold, yev);
+        attempted_h = hh;
+        g = dir * yev[ev];
+        dg = dir * stepper.fnew()[ev];
+      };
+      double a = 0.0, b = std::numeric_limits<double>::quiet_NaN();
+      double vscale = std::max(std::abs(y[ev]), v_step);
+      auto evaluate = [&](double hh) {  // true when converged at hh
+        g_at(hh);
+        vscale = std::max(vscale, std::abs(dg) * hfull);
+        if (g <= 0.0) {
+          b = hh;
+        } else {
+          a = hh;
+        }
+        return std::abs(g) <= 32.0 * kEps * vscale;
+      };
+      double he_try = t_event - t;
+      bool done = evaluate(he_try);
+      // An upper end of the bracket if the interpolant's root fell short of the zero.
+      for (double cand : {sb_event - t, hfull}) {
+        if (done || !std::isnan(b) || !(cand > a)) continue;
+        he_try = cand;
+        done = evaluate(cand);
+      }
+      if (done) {
+        he = he_try;
+      } else if (std::isnan(b)) {
+        // The interpolant crossed zero but the discrete solution does not reverse on
+        // this step (a tangency at tolerance level): no event.
+        event_found = false;
+      } else {
+        he = b;
+        for (int it = 0; it < 200; ++it) {
+          if (b - a <= 4.0 * kEps * (std::abs(t) + b)) break;
+          double c = dg != 0.0 ? he_try - g / dg : a;
+          if (!(c > a && c < b) || it >= 8) c = 0.5 * (a + b);
+          he_try = c;
+          if (evaluate(c)) {
+            he = c;
+            break;
+          }
+          he = b;
+        }
+      }
+      if (event_found) {
+        if (attempted_h != he) g_at(he);  // the state and extension of the step taken
+        y.swap(yev);
+        ++stats.steps;
+      }
+    } else if (event_found) {
+      he = 0.0;  // the event is at the start of the step
+    }
+
     if (!event_found) {
+      if (attempted_h != tnew - t) {
+        stepper.attempt(t, y, f0, tnew - t, tend_eval, threshold, ynew);
+        attempted_h = tnew - t;
+      }
+      // DOPRI5's test with threshold 2.5 rather than Hairer's 3.25: under ode45's step
+      // control h |lambda| settles at 2.7-2.9 on a stiff problem (measured, Dankowicz
+      // delta = 1e-6 sliding), below the real stability boundary 3.3; a non-stiff step
+      // has h |lambda| << 1.
+      if (stepper.stability_estimate(ynew) > 2.5) {
+        if (++stiff_run >= 15) ++stats.stiff_steps;
+      } else {
+        stiff_run = 0;
+      }
       y.swap(ynew);
       const double tprev = t;
       t = tnew;
@@ -368,39 +511,26 @@ IntegratorStats integrate(OdeProblem& problem, std::span<const double> y0, doubl
         const auto fn = stepper.fnew();
         std::copy(fn.begin(), fn.end(), f0.begin());
       }
-      if (events && dir == 0) dir = sign_of(y[ev]);
+      if (events) {
+        if (rest_rule) swing = std::max({swing, swing_step, std::abs(y[rs] - rest_ref)});
+        const int s = sign_of(y[ev]);
+        // Set the direction at the start of motion, and follow the sign of v while the
+        // mass is at rest (sign changes below the tolerance are not events).
+        if (dir == 0 || (s != 0 && s != dir)) dir = s;
+      }
       zero_length_events = 0;
       emit(tprev, t, false);
     } else {
-      // Redo the step to end on the event, then Newton-correct its length until the
-      // event state is zero to round-off.
-      double he = t_event - t;
-      const double hmin_e = hmin_at(t);
-      if (he > hmin_e) {
-        for (int it = 0; it < 6; ++it) {
-          stepper.attempt(t, y, f0, he, t + he, threshold, yev);
-          const double g = yev[ev];
-          const double dg = stepper.fnew()[ev];
-          if (g == 0.0 || !(dg != 0.0)) break;
-          const double dh = -g / dg;
-          const double he_new = std::clamp(he + dh, 0.5 * he, std::min(h, 1.5 * he));
-          if (std::abs(he_new - he) <=
-              4.0 * std::numeric_limits<double>::epsilon() * (std::abs(t) + he)) {
-            break;
-          }
-          he = he_new;
-        }
-        y.swap(yev);
-        ++stats.steps;
-      } else {
-        he = 0.0;  // the event is at the start of the step
-      }
       const double tprev = t;
       t = t + he;
       ++stats.events;
       if (he > 0.0) emit(tprev, t, true);  // before the commit: the step used the old memory
       problem.on_event(t, y);
       dir = -dir;
+      if (rest_rule) {
+        rest_ref = y[rs];
+        swing = 0.0;
+      }
       problem.rhs(t, y, f0);  // the memory changed: fresh right-hand side
       ++stats.rhs_evaluations;
       zero_length_events = he > 0.0 ? 0 : zero_length_events + 1;

@@ -62,36 +62,259 @@ delta = 0.011
         j = json.load(open(os.path.join(out, "summary.json")))
         if not os.path.exists(os.path.join(out, "timeseries.csv")):
             return fail("no timeseries.csv")
-    missing = [k for k in KEYS if k not in j]
+        with open(os.path.join(out, "timeseries.csv")) as f:
+            header = f.readline().strip().split(",")
+    missing = [k for k in KEYS + ["modal_frequency_undamped", "modal_note", "friction", "warnings",
+                                  "stiff_steps"] if k not in j]
     if missing:
         return fail(f"missing keys {missing}")
     if not (1.8 < j["modal_frequency"] < 1.95):  # sqrt(1 + 1.5/0.011)/(2 pi) = 1.87
         return fail(f"modal_frequency {j['modal_frequency']}")
-    if not j["energy_balance_error"] < 1e-5:
+    # Issue 6: the energy balance closes to 1e-6 of the input work.
+    if not j["energy_balance_error"] < 1e-6:
         return fail(f"energy_balance_error {j['energy_balance_error']}")
+    if j["warnings"] != [] or r.stderr:
+        return fail(f"unexpected warnings {j['warnings']} {r.stderr!r}")
+    if j["friction"]["model"] != "dankowicz" or j["friction"]["delta_tilde"] != 0.011:
+        return fail(f"friction section {j['friction']}")
+    # Non-dimensional case: the Dankowicz state z is a column, no dimensional columns.
+    if header[:6] != ["tau", "u", "v", "y", "friction", "z"] or any("[" in h for h in header):
+        return fail(f"header {header}")
     return 0
+
+
+def run_example(exe, name, tmp):
+    path = os.path.join(EXAMPLES, name + ".toml")
+    r = subprocess.run([exe, "dynamics", path, "--out", os.path.join(tmp, name), "--no-plots"],
+                       capture_output=True, text=True, timeout=300)
+    if r.returncode != 0:
+        raise RuntimeError(f"{path}: exit {r.returncode}: {r.stderr}")
+    return json.load(open(os.path.join(tmp, name, "summary.json"))), r
 
 
 def examples_table_7_2(exe):
     cases = sorted(glob.glob(os.path.join(EXAMPLES, "*.toml")))
     if len(cases) < 10:
         return fail(f"only {len(cases)} example cases in {EXAMPLES}")
-    for path in cases:
-        with tempfile.TemporaryDirectory() as tmp:
-            r = subprocess.run([exe, "dynamics", path, "--out", tmp, "--no-plots"],
-                               capture_output=True, text=True, timeout=300)
-            if r.returncode != 0:
-                return fail(f"{path}: exit {r.returncode}: {r.stderr}")
-            j = json.load(open(os.path.join(tmp, "summary.json")))
-        for k in KEYS:
-            if k not in j:
-                return fail(f"{path}: missing {k}")
-        for k, v in j.items():
-            if isinstance(v, float) and not math.isfinite(v):
-                return fail(f"{path}: {k} is not finite")
-        # BS23 at rtol 1e-6, atol 1e-7 (the thesis's settings): balance to ~1e-6.
-        if not j["energy_balance_error"] < 1e-5:
-            return fail(f"{path}: energy_balance_error {j['energy_balance_error']}")
+    with tempfile.TemporaryDirectory() as tmp:
+        for path in cases:
+            name = os.path.basename(path)[:-5]
+            try:
+                j, r = run_example(exe, name, tmp)
+            except RuntimeError as e:
+                return fail(str(e))
+            for k in KEYS:
+                if k not in j:
+                    return fail(f"{path}: missing {k}")
+            for k, v in j.items():
+                if isinstance(v, float) and not math.isfinite(v):
+                    return fail(f"{path}: {k} is not finite")
+            # Issue 6: "Energy balance closes to 1e-6 of the input work for every friction
+            # model". The examples run Dormand-Prince 5(4) at the thesis's tolerances
+            # (rtol 1e-6, atol 1e-7); measured at most 1.3e-7.
+            if not j["energy_balance_error"] < 1e-6:
+                return fail(f"{path}: energy_balance_error {j['energy_balance_error']}")
+            if j["warnings"] or "warning" in r.stderr:
+                return fail(f"{path}: warnings {j['warnings']} {r.stderr}")
+    return 0
+
+
+def f0_of(j):
+    """Small-amplitude modal frequency sqrt(1 + k_c/k)/(2 pi) of the contact's initial
+    stiffness in parallel with the structure's (Dankowicz: F_max/delta; rough flat: k_t/k)."""
+    f = j["friction"]
+    k = f.get("k_t_over_k", f.get("contact_stiffness_tilde"))
+    return math.sqrt(1 + k) / (2 * math.pi)
+
+
+def examples_physics(exe):
+    """The documented physics of the shipped examples (docs/dynamics.md, section 7.4)."""
+    fn = 1 / (2 * math.pi)
+    with tempfile.TemporaryDirectory() as tmp:
+        try:
+            s = {n: run_example(exe, n, tmp)[0] for n in (
+                "impulse_none", "impulse_coulomb", "impulse_coulomb_large", "impulse_dankowicz",
+                "impulse_physics_rough", "impulse_physics_smooth", "ramp_coulomb_soft",
+                "ramp_dankowicz_soft", "ramp_dankowicz_hard", "ramp_physics_rough_soft",
+                "ramp_physics_rough_hard", "harmonic_coulomb", "harmonic_dankowicz",
+                "harmonic_physics_rough", "harmonic_physics_smooth")}
+        except RuntimeError as e:
+            return fail(str(e))
+    errors = []
+
+    def check(cond, msg):
+        if not cond:
+            errors.append(msg)
+
+    # No friction: the damped peak of |H|^2 at f_n sqrt(1 - 2 zeta^2); the undamped estimate
+    # gives f_n = 1/(2 pi) to 2e-4 (the pulse spectrum is flat to 1e-4 there), the
+    # half-power width zeta = eps/2 = 0.016 to 1 % (O(zeta^2) and the 400-tau record).
+    n = s["impulse_none"]
+    check(abs(n["modal_frequency_undamped"] / fn - 1) < 2e-4, f"none: f {n['modal_frequency_undamped']}")
+    check(abs(n["modal_damping"] / 0.016 - 1) < 0.01, f"none: zeta {n['modal_damping']}")
+    # Coulomb, unit pulse: overdamped creep (F~max k~tan = 9.5 >> 2), no modal peak.
+    check(s["impulse_coulomb"]["modal_frequency"] is None, "coulomb unit pulse has a peak")
+    check(s["impulse_coulomb"]["events"] < 10, "coulomb unit pulse: spurious reversals")
+    # Coulomb, 200 A pulse: sliding friction adds damping, not stiffness (Table 7.3). The
+    # damped peak is low (0.142 = f_n sqrt(1 - 2 zeta^2) with zeta = 0.32); the undamped
+    # estimate and the first cycle's period give 1/(2 pi) to 1 % (the tanh regularisation
+    # and the damping's O(zeta^2) bias of the half-power estimate).
+    c = s["impulse_coulomb_large"]
+    check(abs(c["modal_frequency_undamped"] / fn - 1) < 0.01, f"coulomb f_n {c['modal_frequency_undamped']}")
+    check(abs(c["free_decay"]["cycles"][0]["frequency"] / fn - 1) < 0.01, "coulomb first cycle f")
+    check(c["modal_damping"] > 5 * 0.016, f"coulomb zeta {c['modal_damping']}")
+    # Dankowicz and the rough flat stiffen the structure: the spectral peak (dominated by
+    # the long small-amplitude tail) lies within 2 % of the small-amplitude limit
+    # sqrt(1 + k_c/k)/(2 pi) (larger loops soften the early motion); the smooth contact
+    # is stiffer than the rough one (section 7.4: 3.6 against 2.3; here 3.38 and 2.24).
+    for name in ("impulse_dankowicz", "impulse_physics_rough", "impulse_physics_smooth"):
+        j = s[name]
+        check(0.98 < j["modal_frequency"] / f0_of(j) < 1.0001, f"{name}: f {j['modal_frequency']} f0 {f0_of(j)}")
+        check(j["free_decay"]["cycles"][0]["damping_ratio"] > 0.016, f"{name}: first-cycle damping")
+    check(s["impulse_physics_smooth"]["modal_frequency"] > 1.4 * s["impulse_physics_rough"]["modal_frequency"],
+          "smooth not stiffer than rough")
+    # Ramp (Fig. 7.5). Soft structure (k = 1e4 N/m): Dankowicz and the rough flat stick for
+    # more than 15 time units (thesis), Coulomb slips at once. The stick ends where the
+    # spring and damper force tau + eps reaches F~max: Dankowicz (F~max 15) at 15.0, the
+    # rough flat (F~max 19.9) at 20.1.
+    check(s["ramp_dankowicz_soft"]["first_slip"] > 14.0, "dankowicz soft stick")
+    check(s["ramp_physics_rough_soft"]["first_slip"] > 15.0, "physics soft stick")
+    check(s["ramp_coulomb_soft"]["first_slip"] < 2.0, "coulomb soft stick")
+    # Hard structure (Table 7.2): the stick ends at F~max - eps, to 0.1 for Dankowicz's
+    # quick transition and 0.25 for the rough flat's gradual micro-slip near Q_max
+    # (thesis: "about 3", which Table 7.2's F~max = 1.5 does not give; docs/dynamics.md).
+    for name, tol in (("ramp_dankowicz_hard", 0.1), ("ramp_physics_rough_hard", 0.25)):
+        j = s[name]
+        target = j["friction"]["F_max_tilde"] - 0.032
+        check(abs(j["first_slip"] - target) < tol, f"{name}: first slip {j['first_slip']} vs {target}")
+    # Harmonic (Fig. 7.6-7.7): the mass moves less than 2 % of the base amplitude (thesis;
+    # measured 1.5, 1.7, 0.9 and 0.3 %); the smooth contact moves less than the rough one
+    # and its loop is smaller (section 7.4).
+    for name in ("harmonic_coulomb", "harmonic_dankowicz", "harmonic_physics_rough",
+                 "harmonic_physics_smooth"):
+        check(s[name]["steady_loop"]["displacement_amplitude_over_base"] < 0.02, f"{name}: amplitude")
+    r_, s_ = s["harmonic_physics_rough"]["steady_loop"], s["harmonic_physics_smooth"]["steady_loop"]
+    check(s_["displacement_amplitude"] < 0.5 * r_["displacement_amplitude"], "smooth moves as much")
+    check(s_["energy_per_cycle"] < r_["energy_per_cycle"], "smooth loop not smaller")
+    if errors:
+        return fail("; ".join(errors))
+    return 0
+
+
+def dimensional_output(exe):
+    """t[s], x[m], xdot[m/s], base[m], f_s[N] when mass, stiffness and amplitude are given
+    (section 7.2: t = sqrt(m/k) tau, x = A u, f_s = k A F_s), and the rough flat's
+    derived parameters in the summary's friction section."""
+    m, k, A = 2.0, 1e5, 18e-6
+    case = f"""[dynamics]
+excitation = "impulse"
+mass = "{m} kg"
+stiffness = "{k} N/m"
+amplitude = "18 um"
+duration = 5
+[dynamics.friction]
+model = "physics"
+E_star = "106 GPa"
+G_star = "22.9 GPa"
+H = "5.8 GPa"
+nu = 0.3
+sigma = "2.7 um"
+R = "30.1 um"
+eta = "2.9e8 m^-2"
+A0 = "1 cm^2"
+P = "9 N"
+"""
+    with tempfile.TemporaryDirectory() as tmp:
+        r, out = run(exe, case, tmp)
+        if r.returncode != 0:
+            return fail(f"exit {r.returncode}: {r.stderr}")
+        j = json.load(open(os.path.join(out, "summary.json")))
+        with open(os.path.join(out, "timeseries.csv")) as f:
+            header = f.readline().strip().split(",")
+            rows = [list(map(float, line.split(","))) for line in f]
+    want = ["t[s]", "x[m]", "xdot[m/s]", "base[m]", "f_s[N]"]
+    if header[-5:] != want:
+        return fail(f"header {header}")
+    col = {h: i for i, h in enumerate(header)}
+    T = math.sqrt(m / k)
+    for row in rows[::50]:
+        for dim_, nd, scale in (("t[s]", "tau", T), ("x[m]", "u", A), ("xdot[m/s]", "v", A / T),
+                                ("base[m]", "y", A), ("f_s[N]", "friction", k * A)):
+            if abs(row[col[dim_]] - row[col[nd]] * scale) > 1e-9 * abs(row[col[nd]] * scale) + 1e-300:
+                return fail(f"{dim_} = {row[col[dim_]]} is not {nd} x {scale}")
+    f = j["friction"]
+    # model = "physics" defaults to the rough flat (backbone omitted above).
+    if f.get("backbone") != "rough_flat" or f.get("memory") != "masing":
+        return fail(f"friction section {f}")
+    for key in ("F_max_tilde", "k_t_over_k", "P_N", "A0_m2", "Q_max_N", "k_t_N_per_m", "mu"):
+        if key not in f:
+            return fail(f"friction section lacks {key}: {f}")
+    if f["P_N"] != 9.0 or abs(f["A0_m2"] - 1e-4) > 1e-18:
+        return fail(f"P, A0 {f['P_N']} {f['A0_m2']}")
+    if abs(f["F_max_tilde"] - f["Q_max_N"] / (k * A)) > 1e-12 * f["F_max_tilde"]:
+        return fail("F_max_tilde is not Q_max/(k A)")
+    if abs(f["k_t_over_k"] - f["k_t_N_per_m"] / k) > 1e-12 * f["k_t_over_k"]:
+        return fail("k_t_over_k is not k_t/k")
+    if abs(f["mu"] - f["Q_max_N"] / 9.0) > 1e-12:
+        return fail("mu is not Q_max/P")
+    if "modal_frequency_hz" not in j or abs(j["modal_frequency_hz"] - j["modal_frequency"] / T) > 1e-9 * j["modal_frequency_hz"]:
+        return fail("modal_frequency_hz")
+    return 0
+
+
+def warning_unresolved_dankowicz(exe):
+    """A loose per-state atol on the Dankowicz state (0.1 >> delta = 0.011): z overshoots
+    its bound; the run finishes (exit 0) with a warning on stderr and in summary.json."""
+    case = """[dynamics]
+excitation = "harmonic"
+duration = 20
+[dynamics.harmonic]
+frequency = 0.15
+amplitude = 20
+[dynamics.friction]
+model = "dankowicz"
+F_max = 1.5
+delta = 0.011
+[dynamics.integrator]
+rtol = 1e-3
+atol = [1e-4, 1e-4, 0.1, 1e-4, 1e-4, 1e-4]
+"""
+    with tempfile.TemporaryDirectory() as tmp:
+        r, out = run(exe, case, tmp)
+        if r.returncode != 0:
+            return fail(f"exit {r.returncode}: {r.stderr}")
+        j = json.load(open(os.path.join(out, "summary.json")))
+    if not any("overshoots" in w for w in j["warnings"]) or "warning: the Dankowicz state" not in r.stderr:
+        return fail(f"no overshoot warning: {j['warnings']} {r.stderr!r}")
+    if not j["friction"]["max_abs_z_over_delta"] > 1 + 100 * 1e-3:
+        return fail(f"max |z|/delta {j['friction']['max_abs_z_over_delta']}")
+    return 0
+
+
+def warning_stiff(exe):
+    """Dankowicz with delta = 1e-6 A sliding: the contact (F_max/delta = 1.5e6) makes the
+    problem stiff. The integration stays accurate (energy balance < 1e-6) but the step is
+    held by stability: a warning, exit 0."""
+    case = """[dynamics]
+excitation = "harmonic"
+duration = 1
+[dynamics.harmonic]
+frequency = 0.15
+amplitude = 20
+[dynamics.friction]
+model = "dankowicz"
+F_max = 1.5
+delta = 1e-6
+"""
+    with tempfile.TemporaryDirectory() as tmp:
+        r, out = run(exe, case, tmp)
+        if r.returncode != 0:
+            return fail(f"exit {r.returncode}: {r.stderr}")
+        j = json.load(open(os.path.join(out, "summary.json")))
+    if not any("stiff" in w for w in j["warnings"]) or "stiff" not in r.stderr:
+        return fail(f"no stiffness warning: {j['warnings']} {r.stderr!r}")
+    if not j["energy_balance_error"] < 1e-6 or not j["friction"]["max_abs_z_over_delta"] < 1 + 1e-4:
+        return fail(f"not accurate: {j['energy_balance_error']} {j['friction']}")
     return 0
 
 
@@ -107,6 +330,18 @@ BAD = {
     "bad_input.units_without_scales":
         ('[dynamics]\n[dynamics.friction]\nmodel = "coulomb"\nF_max = "150 N"\nk_tan = 6.32\n',
          "amplitude"),
+    # Segalman's chi and beta have no default (a user would take it for a joint property).
+    "bad_input.iwan_without_chi":
+        ('[dynamics]\n[dynamics.friction]\nmodel = "iwan"\nF_S = 1.5\nK_T = 136\nbeta = 0.1\n',
+         ["chi", "required"]),
+    # model = "physics" is the rough flat unless a backbone says otherwise: it needs the scales.
+    "bad_input.physics_default_is_rough_flat":
+        ('[dynamics]\n[dynamics.friction]\nmodel = "physics"\n', ["rough_flat", "stiffness"]),
+    "bad_input.rough_flat_without_load":
+        ('[dynamics]\nstiffness = "1e5 N/m"\namplitude = "18 um"\n[dynamics.friction]\n'
+         'model = "physics"\nE_star = "106 GPa"\nG_star = "22.9 GPa"\nH = "5.8 GPa"\nnu = 0.3\n'
+         'sigma = "2.7 um"\nR = "30.1 um"\neta = "2.9e8 m^-2"\nA0 = "1 cm^2"\n', ["normal load", "P"]),
+    "bad_input.nan": ('[dynamics]\nepsilon = nan\n', "epsilon"),
 }
 
 
@@ -162,7 +397,7 @@ def joint_example(exe):
     f0 = math.sqrt(1 + jt["stiffness_tilde"]) / (2 * math.pi)
     if not (0.98 * f0 < j["modal_frequency"] <= f0 * (1 + 1e-9)):
         return fail(f"modal_frequency {j['modal_frequency']} against {f0}")
-    if not j["energy_balance_error"] < 1e-5:
+    if not j["energy_balance_error"] < 1e-6:
         return fail(f"energy_balance_error {j['energy_balance_error']}")
     return 0
 
@@ -254,6 +489,24 @@ def main():
         return summary_keys(exe)
     if case == "examples_table_7_2":
         return examples_table_7_2(exe)
+    if case == "examples_physics":
+        return examples_physics(exe)
+    if case == "dimensional_output":
+        return dimensional_output(exe)
+    if case == "warning.unresolved_dankowicz":
+        return warning_unresolved_dankowicz(exe)
+    if case == "warning.stiff":
+        return warning_stiff(exe)
+    if case == "bad_input.out_dot":
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "case.toml")
+            with open(path, "w") as f:
+                f.write('[dynamics]\n')
+            r = subprocess.run([exe, "dynamics", path, "--out", "."], capture_output=True,
+                               text=True, timeout=60, cwd=tmp)
+            if r.returncode != 2 or "--out" not in r.stderr or os.listdir(tmp) != ["case.toml"]:
+                return fail(f"--out .: exit {r.returncode}, {r.stderr!r}, {os.listdir(tmp)}")
+        return 0
     if case == "figures":
         return figures(exe)
     if case == "joint_example":

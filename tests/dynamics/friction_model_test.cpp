@@ -8,7 +8,9 @@
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/numerics.hpp"
+#include "asperity/dynamics/analysis.hpp"
 #include "asperity/dynamics/epb.hpp"
+#include "asperity/dynamics/system.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 
 namespace asperity::dynamics {
@@ -35,10 +37,14 @@ TEST(FrictionModelTest, DankowiczRatesAreEq76) {
   z[0] = 0.011;
   d.internal_rates(0.0, 3.0, z, dz);
   EXPECT_DOUBLE_EQ(dz[0], 0.0);
-  // Overshoot from integration error is projected: the force never exceeds F_max.
-  z[0] = 0.0110001;
-  EXPECT_DOUBLE_EQ(d.force(0.0, 0.0, z), 1.5);
+  // Beyond delta (an integration error) Eq. 7.6 pulls z back: z' = -|v| (z/delta - 1),
+  // and Eq. 7.7 is evaluated as printed, so the overshoot shows in the force.
+  z[0] = 0.0111;
+  d.internal_rates(0.0, 3.0, z, dz);
+  EXPECT_NEAR(dz[0], -3.0 * (0.0111 / 0.011 - 1.0), 1e-15);
+  EXPECT_DOUBLE_EQ(d.force(0.0, 0.0, z), 1.5 * 0.0111 / 0.011);
   EXPECT_EQ(d.internal_states(), 1u);
+  EXPECT_DOUBLE_EQ(d.internal_state_scale(0), 0.011);
 }
 
 TEST(FrictionModelTest, HysteresisFrictionFollowsMasingAndCommitsReversals) {
@@ -102,48 +108,78 @@ TEST(FrictionModelTest, SegalmanIwanDissipationPowerLaw) {
   EXPECT_NEAR(slope, 2.6, 1e-3);
 }
 
-TEST(FrictionModelTest, SaturatingBackboneApproachesJenkinsAtLargeAmplitude) {
-  // Coulomb and Jenkins limits (issue 6): a CFC-like saturating backbone (Cattaneo-
-  // Mindlin shape) has a loop whose energy per cycle approaches the Jenkins element's
-  // with the same sliding force as the amplitude grows past the slip displacement:
-  // both tend to 4 F x_max.
-  const double F = 1.0, s = 0.01;
-  const hysteresis::FunctionBackbone cfc(
-      [=](double x) { return x >= s ? F : F * (1.0 - std::pow(1.0 - x / s, 1.5)); }, F,
-      1.5 * F / s);
-  const hysteresis::JenkinsBackbone jenkins(1.5 * F / s, F);
-  double previous_gap = 1.0;
-  for (double amp : {0.02, 0.2, 2.0}) {
-    const double ratio =
-        hysteresis::energy_per_cycle(cfc, amp) / hysteresis::energy_per_cycle(jenkins, amp);
-    const double gap = std::abs(ratio - 1.0);
-    EXPECT_LT(gap, previous_gap) << amp;
-    previous_gap = gap;
-  }
-  EXPECT_LT(previous_gap, 2e-3);
-}
-
+// Issue 6, "Coulomb and Jenkins limits": the physics-based law with CFC asperities
+// (constant mu) saturates at mu P; far beyond its slip displacement it acts as the
+// Jenkins element with the same sliding force and initial stiffness. Shown by time
+// integration of Eq. 7.1 with both laws under the same large harmonic base motion.
 TEST(FrictionModelTest, RoughFlatWithCfcApproachesJenkinsAtLargeAmplitude) {
-  // Issue 6, "Coulomb and Jenkins limits": the physics-based law with CFC asperities
-  // (constant mu) saturates at mu P; far beyond its slip displacement its loop tends to
-  // the Jenkins loop with the same limit, W -> 4 Q_max x_max.
   auto c = table_7_2_rough();
   c.model = contact::ModelName::cfc;
   c.friction.mu_cfc = 0.3;
-  c.A0 = 1e-4;
-  c.P = 9.0;
+  c.A0 = 1e-4;  // the assumptions of docs/dynamics.md: A0 = 1 cm^2, P = 9 N,
+  c.P = 9.0;    // k = 1e5 N/m, A = 18 um
   const auto bb = epb_backbone(c);
   EXPECT_NEAR(bb->limit() / (0.3 * 9.0), 1.0, 1e-3);  // Q*_max = 0.3 P* for CFC (SEED_NOTES)
-  const hysteresis::JenkinsBackbone jenkins(bb->initial_stiffness(), bb->limit());
-  const double slip = bb->limit() / bb->initial_stiffness();
-  double previous_gap = 1.0;
-  for (double amp : {3.0 * slip, 30.0 * slip, 300.0 * slip}) {
-    const double gap = std::abs(
-        hysteresis::energy_per_cycle(*bb, amp) / hysteresis::energy_per_cycle(jenkins, amp) - 1.0);
-    EXPECT_LT(gap, previous_gap) << amp;
-    previous_gap = gap;
+  const double k = 1e5, A = 18e-6;
+  const auto physics = make_physics_based(bb, k, A);
+  const auto jenkins = make_jenkins(bb->initial_stiffness() / k, bb->limit() / (k * A));
+  const double F = jenkins->max_force();                  // 1.5
+  const double slip = F / (bb->initial_stiffness() / k);  // Jenkins slip displacement 0.0081
+
+  SimulationOptions o;
+  o.output_interval = 0.01;
+  o.integrator.rtol = 1e-8;
+  o.integrator.atol = {1e-10};
+  // Base motion at f~ = 0.1 (below resonance), amplitudes 5, 50, 500: the mass slides
+  // back and forth over ~1e3, 1e4 and 1e5 slip displacements.
+  double previous_dev = 1.0, previous_energy = 1.0;
+  for (double a : {5.0, 50.0, 500.0}) {
+    const HarmonicExcitation h{.frequency = 0.1, .amplitude = a};
+    o.duration = 60.0;  // the last 2 of 6 periods (the same for both laws)
+    const auto tp = simulate({.epsilon = 0.032}, h, *physics, o);
+    const auto tj = simulate({.epsilon = 0.032}, h, *jenkins, o);
+    const auto lp = steady_loop(tp, 10.0, 2);
+    const auto lj = steady_loop(tj, 10.0, 2);
+    ASSERT_GT(lj.displacement_amplitude, 10 * slip) << a;  // gross slip each cycle
+    // Loop force deviation: the two friction forces compared along the path in the
+    // F-u plane over the last two periods, sum |F_p - F_j| |du| / sum |F_j| |du| on the
+    // uniform samples (both runs sample the same times). The forces differ only within
+    // a few slip displacements of each reversal, where the rough flat's CFC backbone
+    // rounds the Jenkins corner, so the deviation scales as slip/amplitude.
+    auto on_grid = [](const Trajectory& tr) {  // (u, F) at the uniform samples from 40
+      std::vector<std::pair<double, double>> f;
+      for (std::size_t i = 0; i < tr.size(); ++i) {
+        if (tr.is_event[i] || tr.tau[i] < 40.0) continue;
+        const double n = tr.tau[i] / 0.01;
+        if (std::abs(n - std::round(n)) < 1e-6) f.emplace_back(tr.u[i], tr.friction[i]);
+      }
+      return f;
+    };
+    const auto fp = on_grid(tp), fj = on_grid(tj);
+    ASSERT_EQ(fp.size(), fj.size());
+    ASSERT_GT(fp.size(), 1000u);
+    double num = 0.0, den = 0.0;
+    for (std::size_t i = 1; i < fp.size(); ++i) {
+      const double du = std::abs(fj[i].first - fj[i - 1].first);
+      num += std::abs(fp[i].second - fj[i].second) * du;
+      den += std::abs(fj[i].second) * du;
+    }
+    const double dev = num / den;
+    const double amp = std::abs(lp.displacement_amplitude / lj.displacement_amplitude - 1.0);
+    const double energy = std::abs(lp.energy_per_cycle / lj.energy_per_cycle - 1.0);
+    // The corner spans ~1-2 slip displacements at each of the two reversals of a path
+    // 4 x amplitude long, with a force difference below F: dev < 2 slip/amplitude
+    // (measured 0.6-0.8 slip/amplitude at amplitudes of 8, 96 and 1040).
+    EXPECT_LT(dev, 2.0 * slip / lj.displacement_amplitude) << a;
+    // Response amplitude and dissipation of the two laws agree to 1 % already at ~1000
+    // slip displacements (measured 0.5 %) and approach each other as the amplitude grows.
+    EXPECT_LT(amp, 0.01) << a;
+    EXPECT_LT(energy, 0.01) << a;
+    EXPECT_LT(dev, previous_dev) << a;
+    EXPECT_LT(energy, previous_energy) << a;
+    previous_dev = dev;
+    previous_energy = energy;
   }
-  EXPECT_LT(previous_gap, 0.02);
 }
 
 TEST(FrictionModelTest, PhysicsBasedScalesAnSiBackbone) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "asperity/core/error.hpp"
@@ -94,7 +95,10 @@ std::vector<std::pair<std::string, std::unique_ptr<FrictionModel>>> all_models()
   auto rough = table_7_2_rough();
   rough.A0 = 1e-4;
   rough.P = 5.0 * 1e5 * 18e-6;
-  m.emplace_back("physics-rough-flat", make_physics_based(epb_backbone(rough), 1e5, 18e-6));
+  const auto bb = epb_backbone(rough);
+  m.emplace_back("physics-rough-flat", make_physics_based(bb, 1e5, 18e-6));
+  m.emplace_back("physics-rough-flat-eq7.10",
+                 make_physics_based(bb, 1e5, 18e-6, hysteresis::MemoryRule::reset_at_reversal));
   return m;
 }
 
@@ -117,46 +121,130 @@ TEST(DynamicsSystemTest, EnergyBalanceClosesForEveryModelAndExcitation) {
   }
 }
 
-TEST(DynamicsSystemTest, EnergyBalanceAtTheThesisTolerancesWithOde23) {
-  // rtol 1e-6 and atol 1e-7 in the non-dimensional states (section 7.4): the balance
-  // closes to about the tolerance, not to 1e-6 of the input. Checked at 1e-4.
+// The same target at the thesis's tolerances (rtol 1e-6, atol 1e-7), the settings of
+// the shipped examples, with the default Dormand-Prince 5(4). MATLAB ode23's
+// Bogacki-Shampine 3(2) at those tolerances leaves ~1e-6 (measured 0.9-1.1e-6 for the
+// harmonic cases): its third-order global error in u enters the mechanical energy
+// through the spring stretch u - y ~ 1 (the W states' own tolerance does not matter);
+// ten times tighter tolerances bring it to 1e-7.
+TEST(DynamicsSystemTest, EnergyBalanceClosesAtTheThesisTolerances) {
+  const std::vector<std::pair<std::string, Excitation>> cases{
+      {"impulse", ImpulseExcitation{}},
+      {"ramp", RampExcitation{1.0}},
+      {"harmonic", HarmonicExcitation{}},
+  };
   for (const auto& [mname, model] : all_models()) {
-    SimulationOptions o;
-    o.duration = 30.0;
-    o.integrator.method = Method::bogacki_shampine_32;
-    const auto tr = simulate({.epsilon = kEps}, HarmonicExcitation{}, *model, o);
-    EXPECT_LT(tr.energy_balance_error(), 1e-4) << mname;
+    for (const auto& [ename, exc] : cases) {
+      SimulationOptions o;
+      o.duration = 30.0;
+      const auto tr = simulate({.epsilon = kEps}, exc, *model, o);
+      EXPECT_LT(tr.energy_balance_error(), 1e-6) << mname << " / " << ename << " dp54";
+      o.integrator.method = Method::bogacki_shampine_32;
+      o.integrator.rtol = 1e-7;
+      o.integrator.atol = {1e-8};
+      const auto tb = simulate({.epsilon = kEps}, exc, *model, o);
+      EXPECT_LT(tb.energy_balance_error(), 1e-6) << mname << " / " << ename << " bs23";
+    }
   }
 }
 
-TEST(DynamicsSystemTest, DankowiczForceNeverExceedsFmax) {
+// Eq. 7.6 keeps |z| <= delta; the integrated z overshoots by the integration error only
+// (no projection hides it). With one atol, z is integrated with atol * delta
+// (FrictionModel::internal_state_scale), so the overshoot is at the level of the
+// tolerances: below 10 rtol, and smaller for tighter tolerances.
+TEST(DynamicsSystemTest, DankowiczStateStaysWithinDeltaToTheTolerance) {
   // Large excitation: the contact slides back and forth, z approaches delta each time.
   const Dankowicz model({.F_max = 1.5, .delta = 0.011});
   for (Method m : {Method::bogacki_shampine_32, Method::dormand_prince_54}) {
-    SimulationOptions o;
-    o.duration = 40.0;
-    o.integrator.method = m;
-    const auto tr = simulate({.epsilon = kEps},
-                             HarmonicExcitation{.frequency = 0.15, .amplitude = 20.0}, model, o);
-    double peak = 0.0;
-    for (double F : tr.friction) peak = std::max(peak, std::abs(F));
-    EXPECT_LE(peak, 1.5) << to_string(m);
-    EXPECT_GT(peak, 1.5 * 0.999) << to_string(m);  // it does slide
+    double previous = INFINITY;
+    for (double rtol : {1e-6, 1e-9}) {
+      SimulationOptions o;
+      o.duration = 40.0;
+      o.integrator.method = m;
+      o.integrator.rtol = rtol;
+      o.integrator.atol = {rtol / 10};
+      const auto tr = simulate({.epsilon = kEps},
+                               HarmonicExcitation{.frequency = 0.15, .amplitude = 20.0}, model, o);
+      ASSERT_EQ(tr.internal.size(), 1u);
+      ASSERT_EQ(tr.internal[0].size(), tr.size());
+      double zmax = 0.0, Fmax = 0.0;
+      for (std::size_t i = 0; i < tr.size(); ++i) {
+        zmax = std::max(zmax, std::abs(tr.internal[0][i]));
+        Fmax = std::max(Fmax, std::abs(tr.friction[i]));
+        EXPECT_EQ(tr.friction[i], 1.5 * tr.internal[0][i] / 0.011);  // Eq. 7.7, unprojected
+      }
+      const double overshoot = zmax / 0.011 - 1.0;
+      EXPECT_GT(zmax, 0.011 * (1 - 1e-3)) << to_string(m);  // it does slide
+      EXPECT_LT(overshoot, 10 * rtol) << to_string(m) << " rtol " << rtol;
+      EXPECT_LT(overshoot, previous) << to_string(m);
+      previous = std::max(overshoot, 0.0);
+      EXPECT_LE(Fmax, 1.5 * (1 + std::max(overshoot, 0.0)) * (1 + 1e-15));
+    }
   }
 }
 
+// Events are located on the discrete solution: the state at an event has v = 0 to
+// round-off, and it is the state at the event's time (not at a time shifted by an
+// unfinished Newton correction).
 TEST(DynamicsSystemTest, HysteresisModelsCommitAtEveryReversal) {
   const auto model = make_jenkins(136.0, 1.5);
-  SimulationOptions o;
-  o.duration = 20.0;
-  const auto tr = simulate({.epsilon = kEps}, HarmonicExcitation{}, *model, o);
-  ASSERT_GT(tr.event_tau.size(), 30u);  // two reversals per cycle, 20 cycles
-  for (std::size_t i = 0; i < tr.size(); ++i) {
-    if (tr.is_event[i]) {
-      EXPECT_NEAR(tr.v[i], 0.0, 1e-10);
+  for (Method m : {Method::bogacki_shampine_32, Method::dormand_prince_54}) {
+    SimulationOptions o;
+    o.duration = 20.0;
+    o.integrator.method = m;
+    const auto tr = simulate({.epsilon = kEps}, HarmonicExcitation{}, *model, o);
+    ASSERT_GT(tr.event_tau.size(), 30u);  // two reversals per cycle, 20 cycles
+    // v at round-off: within 32 eps of max |v| + max |u''| tau_end (the location stops
+    // when |v| is at 32 eps of its scale, or when the step's end is resolved to a few ulps
+    // of tau, over which v changes by |u''| ulp; u'' from Eq. 7.1).
+    double vmax = 0.0, amax = 0.0, worst = 0.0;
+    for (std::size_t i = 0; i < tr.size(); ++i) {
+      vmax = std::max(vmax, std::abs(tr.v[i]));
+      amax = std::max(amax,
+                      std::abs(tr.y[i] - tr.u[i] + kEps * (tr.dy[i] - tr.v[i]) - tr.friction[i]));
+      if (tr.is_event[i]) worst = std::max(worst, std::abs(tr.v[i]));
     }
+    EXPECT_LE(worst, 32 * std::numeric_limits<double>::epsilon() * (vmax + amax * tr.tau.back()))
+        << to_string(m);
+    EXPECT_EQ(tr.event_tau.size(), tr.stats.events);
   }
-  EXPECT_EQ(tr.event_tau.size(), tr.stats.events);
+}
+
+// Velocity zeros below the tolerance are not reversals: the unit-pulse Coulomb mass
+// creeps back to rest and then dithers at |v| ~ atol, which used to be located as
+// hundreds of "reversals" at |u| ~ 1e-14. A reversal counts only once |v| has exceeded
+// 10 atol since the previous one (integrator.hpp).
+TEST(DynamicsSystemTest, NoSpuriousReversalsAtRest) {
+  SimulationOptions o;
+  o.duration = 400.0;
+  o.output_interval = 0.05;
+  o.locate_reversals = true;
+  auto check_between = [](const Trajectory& tr, const std::string& what) {
+    std::size_t last = 0;
+    for (std::size_t i = 0; i < tr.size(); ++i) {
+      if (!tr.is_event[i]) continue;
+      double vmax = 0.0;
+      for (std::size_t j = last; j < i; ++j) vmax = std::max(vmax, std::abs(tr.v[j]));
+      // Samples every 0.05 miss the peak of |v| between them by at most
+      // 1 - cos(pi f dt) = 4 % at f = 1.86: 0.9 of the 10 atol threshold.
+      EXPECT_GT(vmax, 0.9 * 10 * 1e-7) << what << ": event at " << tr.tau[i];
+      last = i;
+    }
+  };
+  const auto tc = simulate({.epsilon = kEps}, ImpulseExcitation{}, RegularizedCoulomb({}), o);
+  EXPECT_LT(tc.stats.events, 10u);  // overdamped creep: a few genuine reversals
+  check_between(tc, "coulomb");
+  // A hysteretic law that comes to rest: a Jenkins element (F_max 1.5, stiffness 136)
+  // with heavy damping eps = 0.5. Its small-amplitude motion, at
+  // sqrt(137)/(2 pi) = 1.86 cycles per unit tau, decays as exp(-eps tau/2) from |v| ~ 1
+  // to 1e-6 by tau ~ 55; after that the mass is at rest and no reversal may be located.
+  const auto jenkins = make_jenkins(136.0, 1.5);
+  o.duration = 200.0;
+  const auto tj = simulate({.epsilon = 0.5}, ImpulseExcitation{.amplitude = 5.0}, *jenkins, o);
+  check_between(tj, "jenkins");
+  ASSERT_GT(tj.event_tau.size(), 20u);
+  EXPECT_LT(tj.event_tau.back(), 70.0);
+  EXPECT_LT(static_cast<double>(tj.stats.events), 2 * 1.86 * 70.0);
 }
 
 TEST(DynamicsSystemTest, DimensionalScalesFollowSection72) {

@@ -94,7 +94,9 @@ struct SimulationOptions {
   double u0 = 0.0;          ///< initial displacement
   double v0 = 0.0;          ///< initial velocity
   /// Integrator settings. The state is [u, v, internal states..., W_base, D_damper,
-  /// W_friction]; atol may have one entry or one per state.
+  /// W_friction]; atol may have one entry or one per state. One entry applies to every
+  /// state except the friction model's internal states, which get it times
+  /// FrictionModel::internal_state_scale (Dankowicz: atol * delta, since |z| <= delta).
   IntegratorOptions integrator{};
   /// 0: record every accepted step; > 0: record uniform samples every this much tau
   /// (from the continuous extension), plus every event.
@@ -109,6 +111,9 @@ struct SimulationOptions {
 struct Trajectory {
   std::vector<double> tau, u, v, y, dy, friction;
   std::vector<double> work_base, dissipated_damper, work_friction, energy;
+  /// The friction model's internal ODE states (Dankowicz: z), one vector per state,
+  /// each sampled like tau.
+  std::vector<std::vector<double>> internal;
   std::vector<double> event_tau;  ///< located velocity reversals
   std::vector<double> event_u;
   std::vector<bool> is_event;  ///< per sample: sample is a located reversal
@@ -116,8 +121,11 @@ struct Trajectory {
   std::size_t force_evaluations = 0;
   std::string friction_model;
 
-  /// |E_end - E_0 - (W_base - D_damper - W_friction)| divided by the energy put in,
-  /// max(|W_base|, 0) + E_0 (or 1e-300 if both vanish).
+  /// |E_end - E_0 - (W_base - D_damper - W_friction)| divided by the energy put in:
+  /// E_0 plus the largest work the base has done up to any recorded time (or 1e-300 if
+  /// both vanish). The largest, not the final, base work: a base can take back what it
+  /// gave (the transient of a ramp, a lightly damped harmonic response), leaving a net
+  /// input far below the energy in play and a ratio that says nothing about accuracy.
   [[nodiscard]] double energy_balance_error() const;
   [[nodiscard]] std::size_t size() const { return tau.size(); }
 };
