@@ -77,9 +77,11 @@ class RoughFlat {
   /// P/(K H A0) at separation d* (Eq. 4.4).
   [[nodiscard]] double normal_load_star(double d_star) const;
   /// The separation d* carrying P* = P/(K H A0) (Eq. 4.4 inverted); P* from 1e-12 up to
-  /// the load at d* = -5 sigma_a/sigma_s. Throws InvalidInput beyond.
+  /// the load at d* = -5 sigma_a/sigma_s, and only while the real contact area stays below
+  /// the nominal one (A_r < A0). Throws InvalidInput beyond.
   [[nodiscard]] double separation_star(double P_star) const;
-  /// Largest P* accepted by separation_star.
+  /// P* at d* = -5 sigma_a/sigma_s: no larger load is accepted by separation_star (which
+  /// may refuse smaller ones too, where A_r/A0 >= 1).
   [[nodiscard]] double max_load_star() const;
   /// Static friction Q_max/(K H A0) at d* (Eq. 4.7).
   [[nodiscard]] double static_friction_star(double d_star) const;
