@@ -150,10 +150,12 @@ double Hysteresis::branch_displacement(std::size_t k, double Q) const {
 }
 
 double Hysteresis::force(double x) const {
+  core::require_finite("displacement", x);
   return branch_force(active_branch(x), x);
 }
 
 double Hysteresis::tangent_stiffness(double x) const {
+  core::require_finite("displacement", x);
   const std::size_t k = active_branch(x);
   const double h = 1e-7 * std::max(1e-300, std::abs(x) + (k ? std::abs(stack_[k - 1].x) : 0.0));
   // One-sided in the direction of motion keeps the difference on the active branch.
@@ -174,6 +176,7 @@ void Hysteresis::move_to(std::size_t k, double x, double Q) {
 }
 
 void Hysteresis::commit_reversal(double x) {
+  core::require_finite("displacement", x);
   const std::size_t k = active_branch(x);
   const double Q = branch_force(k, x);
   move_to(k, x, Q);

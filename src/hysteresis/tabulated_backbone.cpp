@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <limits>
 
 #include "asperity/core/error.hpp"
@@ -22,6 +23,11 @@ constexpr double kKnotGap = 1e-6;
 // A sample at a knot is taken this far (relative) inside its own segment, so that each
 // segment sees its one-sided derivatives.
 constexpr double kInside = 1e-10;
+// The fast look-up covers 2^-kFastOctaves of the top octave upwards (below: the reference
+// interpolant), with 2^m cells per octave, m from kFastMinBits up to kFastMaxBits.
+constexpr int kFastOctaves = 24;
+constexpr int kFastMinBits = 2;
+constexpr int kFastMaxBits = 6;
 // Bucket count at most (bucket width down to the narrowest cell otherwise).
 constexpr std::size_t kMaxBuckets = std::size_t{1} << 14;
 
@@ -132,7 +138,7 @@ TabulatedBackbone::TabulatedBackbone(const BackboneTabulation& in)
       const double s = i == m ? b : a + (b - a) * static_cast<double>(i) / static_cast<double>(m);
       double at = s;
       if (i == 0 && k > 0) at = s * (1.0 + kInside);
-      if (i == m && k + 2 < edges.size()) at = s * (1.0 - kInside);
+      if (i == m) at = s * (1.0 - kInside);  // also at x_end: samples stay in (0, x_end)
       nodes.push_back(node(s, at));
     }
     for (std::size_t i = 0; i < m; ++i) pending.push_back({nodes[i], nodes[i + 1]});
@@ -189,6 +195,119 @@ TabulatedBackbone::TabulatedBackbone(const BackboneTabulation& in)
   cumulative_.assign(n + 1, 0.0);
   for (std::size_t k = 0; k < n; ++k)
     cumulative_[k + 1] = cumulative_[k] + partial_integral(k, 1.0);
+
+  std::vector<double> knots_x;
+  for (std::size_t k = 1; k + 1 < edges.size(); ++k) knots_x.push_back(edges[k] * edges[k]);
+  build_fast_grid(knots_x, in.rel_tol);
+}
+
+BackboneSample TabulatedBackbone::reference_moments(double x, bool from_left) const {
+  const std::size_t n = cells_.size() - 1;
+  const double s = std::sqrt(x);
+  std::size_t i = s >= std::sqrt(x_end_) ? n - 1 : locate(s);
+  if (from_left && i > 0 && s <= cells_[i].s0) --i;
+  const Cell& c = cells_[i];
+  const double t = (s - c.s0) * c.inv_h;
+  const double* a = c.c;
+  const double G = a[0] + t * (a[1] + t * (a[2] + t * (a[3] + t * (a[4] + t * a[5]))));
+  const double Gt = a[1] + t * (2 * a[2] + t * (3 * a[3] + t * (4 * a[4] + t * 5 * a[5])));
+  const double Gtt = 2 * a[2] + t * (6 * a[3] + t * (12 * a[4] + t * 20 * a[5]));
+  const double Gs = Gt * c.inv_h;
+  const double Gss = Gtt * c.inv_h * c.inv_h;
+  // Q = x G(s), s = sqrt(x): Q' = G + s G_s/2, Q'' = (3/4) G_s/s + G_ss/4.
+  return {x * G, G + 0.5 * s * Gs, 0.75 * Gs / s + 0.25 * Gss};
+}
+
+void TabulatedBackbone::build_fast_grid(const std::vector<double>& knots, double rel_tol) {
+  // Cells 2^-m of an octave wide on [x_min, x_top): the index is read off the bits of x
+  // (biased exponent and m leading mantissa bits, monotone in x > 0). Splits at the knots
+  // (where Q_l's derivatives jump) and at x_end (where Q_l becomes the constant limit).
+  const double x_top = std::exp2(std::ceil(std::log2(x_end_)));
+  const double x_min = std::ldexp(x_top, -kFastOctaves);
+  std::vector<double> splits;
+  for (double k : knots) {
+    if (k > x_min) splits.push_back(k);
+  }
+  if (x_end_ < x_top) splits.push_back(x_end_);
+  std::sort(splits.begin(), splits.end());
+
+  auto piece_for = [&](double p0, double p1, FastPiece& piece) -> double {
+    piece.x0 = p0;
+    piece.inv_w = 1.0 / (p1 - p0);
+    if (p0 >= x_end_) {
+      std::fill(std::begin(piece.c), std::end(piece.c), 0.0);
+      piece.c[0] = limit_;
+      return 0.0;
+    }
+    const auto a = reference_moments(p0, false);
+    const auto b = reference_moments(p1, true);
+    const auto c = quintic(Node{p0, a.Q, a.dQ, a.d2Q}, Node{p1, b.Q, b.dQ, b.d2Q});
+    std::copy(c.begin(), c.end(), piece.c);
+    double worst = 0.0;
+    for (const double u : {0.25, 0.5, 0.75}) {
+      const double ref = evaluate_reference(p0 + u * (p1 - p0));
+      worst = std::max(worst, std::abs(polynomial(piece.c, u) - ref) / std::abs(ref));
+    }
+    return worst;
+  };
+
+  for (int m = kFastMinBits;; ++m) {
+    shift_ = static_cast<unsigned>(52 - m);
+    base_ = std::bit_cast<std::uint64_t>(x_min) >> shift_;
+    const std::uint64_t n = (std::bit_cast<std::uint64_t>(x_top) >> shift_) - base_;
+    fast_.assign(n, FastCell{});
+    fast_error_ = 0.0;
+    bool refine = false;
+    auto k = splits.begin();
+    for (std::uint64_t i = 0; i < n && !refine; ++i) {
+      FastCell& cell = fast_[i];
+      const double a = std::bit_cast<double>((base_ + i) << shift_);
+      const double b = std::bit_cast<double>((base_ + i + 1) << shift_);
+      while (k != splits.end() && *k <= a) ++k;
+      auto k_end = k;
+      while (k_end != splits.end() && *k_end < b) ++k_end;
+      const auto inside = k_end - k;
+      double error = 0.0;
+      if (inside == 0) {
+        cell.split = std::numeric_limits<double>::infinity();
+        error = piece_for(a, b, cell.piece[0]);
+        cell.piece[1] = cell.piece[0];
+      } else if (inside == 1) {
+        cell.split = *k;
+        error = std::max(piece_for(a, *k, cell.piece[0]), piece_for(*k, b, cell.piece[1]));
+      } else {
+        cell.fallback = 1;
+        continue;
+      }
+      if (!(error <= rel_tol)) {
+        if (m < kFastMaxBits) {
+          refine = true;
+          continue;
+        }
+        cell.fallback = 1;  // the finest grid allowed: this cell defers to the reference
+        continue;
+      }
+      fast_error_ = std::max(fast_error_, error);
+    }
+    if (!refine) return;
+  }
+}
+
+double TabulatedBackbone::evaluate_outside(double x) const noexcept {
+  if (x >= x_end_) return limit_;
+  if (x >= 0.0) return evaluate_reference(x);
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+std::size_t TabulatedBackbone::fallback_cells() const {
+  std::size_t n = 0;
+  for (const auto& c : fast_) n += c.fallback ? 1 : 0;
+  return n;
+}
+
+void TabulatedBackbone::reject_displacement(double x) {
+  core::require_non_negative("displacement x", x);
+  throw InvalidInput("displacement x must be >= 0");  // not reached: x is negative or NaN
 }
 
 double TabulatedBackbone::partial_integral(std::size_t i, double t) const {

@@ -114,7 +114,7 @@ TEST_P(RoughFlatModels, TableWithinOneEMinus8OfQuadratureOverTheWholeRange) {
   const auto flat = fig44(GetParam());
   const double d = flat.separation_star(1e-3);
   const auto table = flat.backbone(d);
-  EXPECT_LE(table->verified_error(), 1e-9);
+  EXPECT_LE(table->verified_error(), 2e-9);  // reference (1e-9) + fast cells (1e-9)
   // The table's fixed-rule sum and the adaptive quadrature agree to ~1e-11; 1e-10 leaves
   // an order of margin below the table's 1e-9 target.
   EXPECT_LT(rel(table->limit(), flat.static_friction_star(d)), 1e-10);
@@ -166,7 +166,7 @@ TEST_P(RoughFlatModels, TableWithinOneEMinus8OverParametersAndLoads) {
     }
     const auto table = flat.backbone(d);
     ++built;
-    EXPECT_LE(table->verified_error(), 1e-9);
+    EXPECT_LE(table->verified_error(), 2e-9);  // reference (1e-9) + fast cells (1e-9)
     EXPECT_LT(rel(table->limit(), flat.static_friction_star(d)), 1e-11);
     EXPECT_LT(rel(table->initial_stiffness(), flat.stiffness_star(d)), 1e-11);
     double worst = 0.0;

@@ -114,11 +114,11 @@ class Hysteresis {
   [[nodiscard]] double branch_displacement(std::size_t k, double Q) const;
   void move_to(std::size_t k, double x, double Q);
 
-  // Q_l(x) for x >= 0, inline when the backbone is a table (possibly scaled to SI).
+  // Q_l(x) for finite x >= 0, inline when the backbone is a table (possibly scaled to SI).
   [[nodiscard]] double backbone_force(double x) const {
     if (table_) {
-      return table_scaled_ ? table_Q_scale_ * table_->evaluate(x / table_x_scale_)
-                           : table_->evaluate(x);
+      return table_scaled_ ? table_Q_scale_ * table_->evaluate_non_negative(x / table_x_scale_)
+                           : table_->evaluate_non_negative(x);
     }
     return backbone_->force(x);
   }
