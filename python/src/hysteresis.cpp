@@ -8,7 +8,10 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "asperity/core/error.hpp"
+#include "asperity/core/validate.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 #include "asperity/hysteresis/masing.hpp"
 #include "bindings.hpp"
@@ -21,8 +24,18 @@ using namespace asperity::hysteresis;
 
 namespace {
 
-std::vector<double> to_vector(const nb::ndarray<const double, nb::ndim<1>, nb::c_contig>& a) {
-  return std::vector<double>(a.data(), a.data() + a.shape(0));
+// A history from anything numpy turns into a 1-D float64 array (list, tuple, array of any
+// dtype or stride).
+std::vector<double> to_history(const ArrayLike& a, const char* name) {
+  nb::module_ np = nb::module_::import_("numpy");
+  const nb::object arr =
+      np.attr("ascontiguousarray")(np.attr("asarray")(a.obj, nb::arg("dtype") = "float64"));
+  const auto view = nb::cast<nb::ndarray<const double, nb::c_contig, nb::device::cpu>>(arr);
+  if (view.ndim() != 1) {
+    throw InvalidInput(fmt::format("{} must be a 1-D sequence, got an array with {} dimensions",
+                                   name, view.ndim()));
+  }
+  return std::vector<double>(view.data(), view.data() + view.shape(0));
 }
 
 MemoryRule parse_rule(const std::string& name) {
@@ -41,7 +54,12 @@ void bind_hysteresis(nb::module_& m) {
       .def(
           "force",
           [](const Backbone& b, const ArrayLike& x) {
-            return vectorize([&b](double v) { return b.force(v); }, x);
+            return vectorize(
+                [&b](double v) {
+                  core::require_non_negative("displacement x", v);
+                  return b.force(v);
+                },
+                x);
           },
           "x"_a, "Q_l(x) for x >= 0.")
       .def(
@@ -111,15 +129,17 @@ void bind_hysteresis(nb::module_& m) {
           "remembered reversal points (x, Q), oldest first")
       .def(
           "forces",
-          [](const Hysteresis& h, const nb::ndarray<const double, nb::ndim<1>, nb::c_contig>& x)
-              -> nb::object { return array_of(h.forces(to_vector(x))); },
+          [](const Hysteresis& h, const ArrayLike& x) -> nb::object {
+            return array_of(h.forces(to_history(x, "the displacement history")));
+          },
           "x"_a,
           "Forces along a displacement history (1-D array), from the current state; "
           "the object is not changed.")
       .def(
           "displacements",
-          [](const Hysteresis& h, const nb::ndarray<const double, nb::ndim<1>, nb::c_contig>& Q)
-              -> nb::object { return array_of(h.displacements(to_vector(Q))); },
+          [](const Hysteresis& h, const ArrayLike& Q) -> nb::object {
+            return array_of(h.displacements(to_history(Q, "the force history")));
+          },
           "Q"_a, "Displacements along a force history (1-D array), from the current state.");
 }
 

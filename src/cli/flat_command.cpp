@@ -122,15 +122,67 @@ void run_flat(const FlatOptions& o, std::string& out) {
       amplitude_star = dm / sigma;
     }
   }
-  if (o.points < 2 || o.points > 100000) throw InvalidInput("--points must lie in [2, 100000]");
+  if (o.points < 2 || o.points > 100000) {
+    throw InvalidInput(
+        fmt::format("--points {} is not allowed: it must lie in [2, 100000]", o.points));
+  }
+  // Every input is checked, and the history read, before anything is computed or written.
+  if ((o.loop_csv || o.plot_png) && !amplitude_star) {
+    throw InvalidInput("--loop and --plot need an amplitude: give --delta-star-max or --delta-max");
+  }
+  if (o.history_csv && !o.out_csv)
+    throw InvalidInput("--history needs --out FILE.csv for the forces");
+  if (o.out_csv && !o.history_csv)
+    throw InvalidInput("--out writes the force history of --history: give both");
+  require_distinct_outputs({{"--loop", o.loop_csv.value_or("")},
+                            {"--plot", o.plot_png.value_or("")},
+                            {"--out", o.out_csv.value_or("")},
+                            {"--history", o.history_csv.value_or("")}});
+  const auto& scales = flat->scales();
+  std::vector<double> history_star;
+  bool history_si = false;
+  if (o.history_csv) {
+    const auto csv = core::read_csv_table(*o.history_csv);
+    const auto* c_star = csv.find("delta_star");
+    const auto* c_si = csv.find("delta");
+    if (c_star && c_si) {
+      throw InvalidInput(
+          fmt::format("{}: both a \"delta_star\" and a \"delta\" column: keep the one you mean",
+                      *o.history_csv));
+    }
+    if (c_star) {
+      history_star = csv.si_values(*c_star, dim::dimensionless);
+    } else if (c_si) {
+      if (!scales) {
+        throw InvalidInput(
+            fmt::format("{}: a \"delta\" column needs the dimensional inputs; with "
+                        "normalized inputs give a \"delta_star\" column",
+                        *o.history_csv));
+      }
+      history_star = csv.si_values(*c_si, dim::length);
+      for (auto& v : history_star) v /= scales->sigma;
+      history_si = true;
+    } else {
+      throw InvalidInput(
+          fmt::format("{}: no \"delta_star\" column and no \"delta[unit]\" column in the header",
+                      *o.history_csv));
+    }
+  }
 
   const auto& params = flat->parameters();
   const double d = flat->separation_star(P_star);
   const double Q_max = flat->static_friction_star(d);
   const double k = flat->stiffness_star(d);
-  const auto& scales = flat->scales();
+  // The table (one load case) only when a displacement needs it.
+  const bool need_table = amplitude_star || o.history_csv;
+  if (need_table && !(Q_max > 0.0)) {
+    if (o.loop_csv || o.plot_png || o.history_csv) {
+      throw InvalidInput(
+          fmt::format("the {} model carries no friction force here (Q*_max = 0)", o.model));
+    }
+  }
   std::shared_ptr<const surface::RoughFlatBackbone> table;
-  if (Q_max > 0.0) table = flat->backbone(d);
+  if (need_table && Q_max > 0.0) table = flat->backbone(d);
 
   std::optional<double> Q_amp, energy;
   std::optional<std::string> regime;
@@ -211,17 +263,6 @@ void run_flat(const FlatOptions& o, std::string& out) {
     }
   }
 
-  if ((o.loop_csv || o.plot_png) && !amplitude_star) {
-    throw InvalidInput("--loop and --plot need an amplitude: give --delta-star-max or --delta-max");
-  }
-  if (o.history_csv && !o.out_csv)
-    throw InvalidInput("--history needs --out FILE.csv for the forces");
-  if (o.out_csv && !o.history_csv)
-    throw InvalidInput("--out writes the force history of --history: give both");
-  if (!table && (o.loop_csv || o.plot_png || o.history_csv)) {
-    throw InvalidInput(
-        fmt::format("the {} model carries no friction force here (Q*_max = 0)", o.model));
-  }
   const double xs = scales ? scales->sigma : 1.0;
   const double fs = scales ? scales->force : 1.0;
   if (o.loop_csv || o.plot_png) {
@@ -264,34 +305,14 @@ void run_flat(const FlatOptions& o, std::string& out) {
     }
   }
   if (o.history_csv) {
-    const auto csv = core::read_csv_table(*o.history_csv);
-    std::vector<double> x;
-    bool si = false;
-    if (const auto* c = csv.find("delta_star")) {
-      x = csv.si_values(*c, dim::dimensionless);
-    } else if (const auto* c2 = csv.find("delta")) {
-      if (!scales) {
-        throw InvalidInput(
-            fmt::format("{}: a \"delta\" column needs the dimensional inputs; with "
-                        "normalized inputs give a \"delta_star\" column",
-                        *o.history_csv));
-      }
-      x = csv.si_values(*c2, dim::length);
-      for (auto& v : x) v /= scales->sigma;
-      si = true;
-    } else {
-      throw InvalidInput(
-          fmt::format("{}: no \"delta_star\" column and no \"delta[unit]\" column in the header",
-                      *o.history_csv));
-    }
     const hysteresis::Hysteresis h(table);
-    auto Q = h.forces(x);
-    if (si) {
-      for (auto& v : x) v *= scales->sigma;
+    auto Q = h.forces(history_star);
+    if (history_si) {
+      for (auto& v : history_star) v *= scales->sigma;
       for (auto& v : Q) v *= scales->force;
-      core::write_csv_table(*o.out_csv, {"delta[m]", "Q[N]"}, {x, Q});
+      core::write_csv_table(*o.out_csv, {"delta[m]", "Q[N]"}, {history_star, Q});
     } else {
-      core::write_csv_table(*o.out_csv, {"delta_star", "Q_star"}, {x, Q});
+      core::write_csv_table(*o.out_csv, {"delta_star", "Q_star"}, {history_star, Q});
     }
   }
 }

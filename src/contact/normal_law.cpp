@@ -48,6 +48,9 @@ BkeConstants BkeConstants::for_poisson(double nu) {
         "be > 0, which needs nu in about (0.118, 0.5)",
         core::format_value(nu), c.l_c, c.delta_c));
   }
+  c.load_scale = c.l_c / (c.delta_c * std::sqrt(c.delta_c));
+  c.delta_c_alpha = std::pow(c.delta_c, c.alpha);
+  c.delta_c_gamma = std::pow(c.delta_c, c.gamma);
   return c;
 }
 
@@ -63,16 +66,15 @@ constexpr double kBkeLogForm = 1e150;
 
 double bke_load(const BkeConstants& c, double w) {
   // B.4
-  const double scale = c.l_c / std::pow(c.delta_c, 1.5);
-  if (w <= c.delta_c) return scale * std::pow(w, 1.5);
-  const double da = std::pow(c.delta_c, c.alpha);
-  const double gap = std::pow(w, c.alpha) - da;
+  const double elastic = c.load_scale * w * std::sqrt(w);
+  if (w <= c.delta_c) return elastic;
+  const double gap = std::pow(w, c.alpha) - c.delta_c_alpha;
   // Just above delta_c the rounded gap can be 0: the factor is then exactly 1 (B.4's limit).
-  if (!(gap > 0.0)) return scale * std::pow(w, 1.5);
+  if (!(gap > 0.0)) return elastic;
   // 1 - exp(-x) as -expm1(-x): exact also where x = da/gap is below the round-off of 1.
-  const double factor = -std::expm1(-da / gap);
-  if (w > kBkeLogForm) return std::exp(std::log(scale) + 1.5 * std::log(w) + std::log(factor));
-  return scale * std::pow(w, 1.5) * factor;
+  const double factor = -std::expm1(-c.delta_c_alpha / gap);
+  if (w > kBkeLogForm) return std::exp(std::log(c.load_scale) + 1.5 * std::log(w) + std::log(factor));
+  return elastic * factor;
 }
 
 }  // namespace
@@ -110,10 +112,9 @@ double contact_radius_star(NormalLaw law, double w, const BkeConstants& c) {
     case NormalLaw::bke: {  // B.8
       const double scale = 1.0 / std::sqrt(c.delta_c);
       if (w <= c.delta_c) return scale * std::sqrt(w);
-      const double dg = std::pow(c.delta_c, c.gamma);
-      const double gap = std::pow(w, c.gamma) - dg;
+      const double gap = std::pow(w, c.gamma) - c.delta_c_gamma;
       if (!(gap > 0.0)) return scale * std::sqrt(w);  // B.8's limit at delta_c
-      return scale * std::sqrt(w) * std::sqrt(1.0 + std::exp(-dg / gap));
+      return scale * std::sqrt(w) * std::sqrt(1.0 + std::exp(-c.delta_c_gamma / gap));
     }
   }
   return 0.0;

@@ -8,6 +8,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/numerics.hpp"
 #include "asperity/core/validate.hpp"
+#include "asperity/hysteresis/backbones.hpp"
 
 namespace asperity::hysteresis {
 
@@ -42,6 +43,16 @@ double energy_per_cycle(const Backbone& backbone, double x_max) {
 Hysteresis::Hysteresis(std::shared_ptr<const Backbone> backbone, MemoryRule rule)
     : backbone_(std::move(backbone)), rule_(rule) {
   if (!backbone_) throw InvalidInput("Hysteresis needs a backbone");
+  if (const auto* table = dynamic_cast<const TabulatedBackbone*>(backbone_.get())) {
+    table_ = table;
+  } else if (const auto* scaled = dynamic_cast<const ScaledBackbone*>(backbone_.get())) {
+    if (const auto* inner = dynamic_cast<const TabulatedBackbone*>(&scaled->inner())) {
+      table_ = inner;
+      table_scaled_ = true;
+      table_Q_scale_ = scaled->Q_scale();
+      table_x_scale_ = scaled->x_scale();
+    }
+  }
   stack_.reserve(64);
 }
 
@@ -51,9 +62,6 @@ void Hysteresis::refresh_top() {
     return;
   }
   top_ = stack_.back();
-  if (rule_ == MemoryRule::reset_at_reversal) {
-    top_.closes_at = top_.direction * std::numeric_limits<double>::infinity();
-  }
 }
 
 void Hysteresis::reset() {
@@ -79,8 +87,10 @@ std::size_t Hysteresis::active_branch(double x) const {
       --k;
       continue;
     }
-    if (rule_ == MemoryRule::masing) {
-      if ((x - r.closes_at) * d >= 0.0) {  // the inner loop closes: continue on the older branch
+    // Masing: the inner loop closes, continue on the older branch. Eq. 7.10 keeps one
+    // branch only; past the mirror of its reversal it rejoins the virgin curve.
+    if (rule_ == MemoryRule::masing || k == 1) {
+      if ((x - r.closes_at) * d >= 0.0) {
         k = k >= 2 ? k - 2 : 0;
         continue;
       }
@@ -99,7 +109,7 @@ std::size_t Hysteresis::active_branch_force(double Q) const {
       --k;
       continue;
     }
-    if (rule_ == MemoryRule::masing) {
+    if (rule_ == MemoryRule::masing || k == 1) {
       const double target = k >= 2 ? stack_[k - 2].Q : -stack_[0].Q;
       if ((Q - target) * d >= 0.0) {
         k = k >= 2 ? k - 2 : 0;
@@ -114,7 +124,7 @@ std::size_t Hysteresis::active_branch_force(double Q) const {
 double Hysteresis::branch_force(std::size_t k, double x) const {
   if (k == 0) return odd_force(*backbone_, x);
   const ReversalPoint& r = stack_[k - 1];
-  return r.Q + r.direction * 2.0 * backbone_->force(std::abs(x - r.x) * 0.5);
+  return r.Q + r.direction * 2.0 * backbone_force(std::abs(x - r.x) * 0.5);
 }
 
 double Hysteresis::branch_displacement(std::size_t k, double Q) const {
@@ -140,10 +150,12 @@ double Hysteresis::branch_displacement(std::size_t k, double Q) const {
 }
 
 double Hysteresis::force(double x) const {
+  core::require_finite("displacement", x);
   return branch_force(active_branch(x), x);
 }
 
 double Hysteresis::tangent_stiffness(double x) const {
+  core::require_finite("displacement", x);
   const std::size_t k = active_branch(x);
   const double h = 1e-7 * std::max(1e-300, std::abs(x) + (k ? std::abs(stack_[k - 1].x) : 0.0));
   // One-sided in the direction of motion keeps the difference on the active branch.
@@ -164,29 +176,53 @@ void Hysteresis::move_to(std::size_t k, double x, double Q) {
 }
 
 void Hysteresis::commit_reversal(double x) {
+  core::require_finite("displacement", x);
   const std::size_t k = active_branch(x);
   const double Q = branch_force(k, x);
   move_to(k, x, Q);
-  const int current =
-      k ? static_cast<int>(stack_[k - 1].direction) : (direction_ != 0 ? direction_ : sign_of(x));
+  const int current = k ? static_cast<int>(stack_[k - 1].direction)
+                        : (direction_ != 0.0 ? static_cast<int>(direction_) : sign_of(x));
   if (current == 0) return;  // a reversal at the origin before any motion: nothing to remember
-  if (rule_ == MemoryRule::reset_at_reversal) {
-    // Eq. 7.10: u_max reset to the displacement at the reversal; the branch starts from
-    // the backbone value there, Q_l(u_max), whatever the force was.
-    stack_.clear();
-    push_reversal(x, odd_force(*backbone_, x), -current);
-  } else {
-    push_reversal(x, Q, -current);
-  }
   direction_ = -current;
-  Q_ = stack_.back().Q;
+  if (rule_ == MemoryRule::reset_at_reversal) {
+    // Eq. 7.10: u_max is reset to the displacement at the reversal and the force restarts
+    // from the backbone value there, Q_l(u_max), whatever it was: the history is replaced
+    // by a virgin loading to x. Towards the origin the branch is Eq. 4.12/4.13's
+    // unloading from u_max, which meets the virgin curve at -u_max (its mirror closing);
+    // away from the origin the path is that virgin loading, continued.
+    stack_.clear();
+    Q_ = odd_force(*backbone_, x);
+    if (direction_ * x < 0.0) push_reversal(x, Q_, -current);
+    refresh_top();
+    return;
+  }
+  push_reversal(x, Q, -current);
+  Q_ = Q;
+}
+
+double Hysteresis::update_slow(double x) {
+  const double d = (x > x_) ? 1.0 : (x < x_ ? -1.0 : 0.0);
+  if (d == -direction_ && d != 0.0 && rule_ == MemoryRule::masing && std::isfinite(x)) {
+    // A reversal at the current point whose fresh branch does not close within the step:
+    // the stack is already pruned to the active branch, so push and follow the new branch.
+    const double closes_at = stack_.empty() ? -x_ : stack_.back().x;
+    if ((x - closes_at) * d < 0.0) {
+      stack_.push_back({x_, Q_, d, closes_at});
+      top_ = stack_.back();
+      direction_ = d;
+      Q_ = top_.Q + d * 2.0 * backbone_force(std::abs(x - top_.x) * 0.5);
+      x_ = x;
+      return Q_;
+    }
+  }
+  return update_general(x);
 }
 
 double Hysteresis::update_general(double x) {
   core::require_finite("displacement", x);
   const int d = sign_of(x - x_);
   if (d == 0) return Q_;
-  if (direction_ != 0 && d != direction_) {
+  if (direction_ != 0.0 && d != direction_) {
     // A reversal at the current point: its force Q_ is known and the stack is already
     // pruned to the active branch by the previous step.
     if (rule_ == MemoryRule::reset_at_reversal) {
@@ -206,11 +242,14 @@ double Hysteresis::update_force(double Q) {
   core::require_finite("force", Q);
   const int d = sign_of(Q - Q_);
   if (d == 0) return x_;
-  if (direction_ != 0 && d != direction_) {
-    // Reversal in force at the current point.
-    const int current = direction_;
-    if (rule_ == MemoryRule::reset_at_reversal) stack_.clear();
-    push_reversal(x_, Q_, -current);
+  if (direction_ != 0.0 && d != direction_) {
+    // Reversal in force at the current point (under Eq. 7.10 as in commit_reversal: the
+    // branch restarts from the backbone value at the reversal displacement).
+    if (rule_ == MemoryRule::reset_at_reversal) {
+      commit_reversal(x_);
+    } else {
+      push_reversal(x_, Q_, d);
+    }
   }
   direction_ = d;
   const std::size_t k = active_branch_force(Q);

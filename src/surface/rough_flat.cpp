@@ -265,12 +265,18 @@ double RoughFlat::separation_star(double P_star) const {
   }
   const double d_min = kMinSeparationSigmaA * s_a_;
   const double P_max = normal_load_star(d_min);
+  // In newtons too when the flat was built from dimensional inputs.
+  auto in_newtons = [&](double P) {
+    return scales_ ? fmt::format(" (P = {} N)", core::format_value(P * scales_->force))
+                   : std::string();
+  };
   if (P_star > P_max) {
     throw InvalidInput(fmt::format(
-        "normalized preload P* = {} is more than this rough flat can carry in the "
+        "normalized preload P* = {}{} is more than this rough flat can carry in the "
         "Greenwood-Williamson model: at separation d* = {} (5 sigma_a below the mean asperity "
-        "height) P* = {}; reduce the preload or enlarge the nominal area",
-        core::format_value(P_star), core::format_value(d_min), core::format_value(P_max)));
+        "height) P* = {}{}; reduce the preload or enlarge the nominal area",
+        core::format_value(P_star), in_newtons(P_star), core::format_value(d_min),
+        core::format_value(P_max), in_newtons(P_max)));
   }
   const double target = std::log(P_star);
   auto g = [&](double d) {
@@ -290,7 +296,18 @@ double RoughFlat::separation_star(double P_star) const {
           fmt::format("separation for P* = {}: no bracket found", core::format_value(P_star)));
     }
   }
-  return core::find_root(g, lo, hi, "separation for a preload (Eq. 4.4)", 50);
+  const double d = core::find_root(g, lo, hi, "separation for a preload (Eq. 4.4)", 50);
+  // The sum treats asperities as independent contacts on a nominal area A0: a real contact
+  // area beyond A0 is outside the model (GW's assumptions fail well before).
+  const double area_ratio = contact_area_ratio(d);
+  if (area_ratio >= 1.0) {
+    throw InvalidInput(fmt::format(
+        "normalized preload P* = {}{} would make the real contact area larger than the nominal "
+        "area (A_r/A0 = {:.3g} at d* = {:.4g}), which the Greenwood-Williamson sum of independent "
+        "asperities cannot describe; reduce the preload or enlarge the nominal area",
+        core::format_value(P_star), in_newtons(P_star), area_ratio, d));
+  }
+  return d;
 }
 
 double RoughFlat::loading_force_star(double delta_star, double d_star) const {

@@ -87,26 +87,62 @@ def main():
             return fail("Q_max != mu P")
         return 0
     if case in ("history_star", "history_si"):
+        # A virgin ramp to the amplitude, then two full cycles, then the same negated: the
+        # forces must equal the loading curve at the amplitude (the --json value of the
+        # same table), close the loop, stay within Q_max, and be odd in the history.
         hist = os.path.join(tmp, "h.csv")
         out = os.path.join(tmp, "out.csv")
-        xs = [0.5 * math.sin(2 * math.pi * k / 50) * (1 + k / 200) for k in range(400)]
+        amp = 0.6 if case == "history_star" else 1.0  # delta* or um
+        ramp = [amp * k / 100 for k in range(1, 101)]
+        cycle = [amp * math.cos(math.pi * k / 100) for k in range(1, 201)]
+        xs = ramp + cycle + cycle
         if case == "history_star":
-            write(hist, "delta_star\n" + "\n".join(f"{x:.10g}" for x in xs) + "\n")
-            r = run(exe, NORMALIZED + ["--history", hist, "--out", out])
+            base = NORMALIZED
+            col, amp_flag, q_key, qmax_key = "delta_star", f"--delta-star-max={amp}", "Q_at_delta_max_star", "Q_max_star"
         else:
-            write(hist, "delta[um]\n" + "\n".join(f"{x:.10g}" for x in xs) + "\n")
-            r = run(exe, DIMENSIONAL + ["--history", hist, "--out", out])
+            base = DIMENSIONAL
+            col, amp_flag, q_key, qmax_key = "delta[um]", f"--delta-max={amp}um", "Q_at_delta_max", "Q_max"
+        j = check_json(exe, base + [amp_flag], [q_key, qmax_key])
+        if not isinstance(j, dict):
+            return 1
+        results = []
+        for sign in (1, -1):
+            write(hist, col + "\n" + "\n".join(f"{sign * x:.17g}" for x in xs) + "\n")
+            r = run(exe, base + ["--history", hist, "--out", out])
+            if r.returncode != 0:
+                return fail(r.stderr)
+            with open(out) as f:
+                rows = list(csv.reader(f))
+            expected_header = ["delta_star", "Q_star"] if case == "history_star" else ["delta[m]", "Q[N]"]
+            if rows[0] != expected_header or len(rows) != len(xs) + 1:
+                return fail(f"header {rows[0]}, {len(rows)} rows")
+            results.append([float(r[1]) for r in rows[1:]])
+        Q, Qn = results
+        tol = 2e-11 * j[qmax_key]  # one table for all runs; the CSV carries 12 digits
+        if abs(Q[99] - j[q_key]) > tol:
+            return fail(f"Q at the amplitude {Q[99]} != loading curve {j[q_key]}")
+        if abs(Q[-1] - Q[99]) > tol or abs(Q[299] - Q[99]) > tol:
+            return fail("the cycle does not close on the loading curve's end")
+        if max(abs(q) for q in Q) > j[qmax_key] * (1 + 1e-12):
+            return fail("|Q| exceeds Q_max")
+        if any(abs(a + b) > tol for a, b in zip(Q, Qn)):
+            return fail("the response is not odd")
+        return 0
+    if case == "loop_not_written_on_bad_history":
+        hist = os.path.join(tmp, "h.csv")
+        loop = os.path.join(tmp, "loop.csv")
+        write(hist, "delta_star\n0.1\nnan\n")
+        r = run(exe, NORMALIZED + ["--delta-star-max=0.6", "--loop", loop, "--history", hist,
+                                   "--out", os.path.join(tmp, "out.csv")])
+        if r.returncode != 2 or os.path.exists(loop) or os.path.exists(os.path.join(tmp, "out.csv")):
+            return fail(f"exit {r.returncode}, files {os.listdir(tmp)}: {r.stderr}")
+        return 0
+    if case == "near_maximum_load":
+        # CEB at 99.8 % of the largest load it can carry (the table build aborted here once).
+        r = run(exe, ["flat", "--beta=0.04", "--psi=0.5", "--nu=0.3", "--P-star=0.646",
+                      "--model=ceb", "--delta-star-max=0.01", "--json"])
         if r.returncode != 0:
             return fail(r.stderr)
-        with open(out) as f:
-            rows = list(csv.reader(f))
-        expected_header = ["delta_star", "Q_star"] if case == "history_star" else ["delta[m]", "Q[N]"]
-        if rows[0] != expected_header or len(rows) != len(xs) + 1:
-            return fail(f"header {rows[0]}, {len(rows)} rows")
-        Q = [float(r[1]) for r in rows[1:]]
-        # Odd history start: Q has the sign of delta on the virgin branch, and |Q| is bounded.
-        if not all(math.isfinite(q) for q in Q) or Q[1] <= 0:
-            return fail("forces not finite or wrong sign")
         return 0
     if case == "loop_and_plot":
         loop = os.path.join(tmp, "loop.csv")
@@ -134,12 +170,15 @@ def main():
         "bad_input.mixed_inputs": (NORMALIZED + ["--sigma=2um"], "mixing"),
         "bad_input.unknown_model": (["flat", "--beta=0.04", "--psi=0.5", "--nu=0.3", "--P-star=1e-3", "--model=xyz"], "xyz"),
         "bad_input.cfc_without_mu": (["flat", "--beta=0.04", "--psi=0.5", "--nu=0.3", "--P-star=1e-3", "--model=cfc"], "--mu-cfc"),
+        "bad_input.contact_area_beyond_nominal": (["flat", "--beta=0.2", "--psi=8", "--nu=0.3", "--P-star=30", "--model=cfc", "--mu-cfc=0.3"], "real contact area"),
+        "bad_input.same_output_file": (NORMALIZED + ["--delta-star-max=0.6", "--loop", "/tmp/x.csv", "--plot", "/tmp/x.csv"], "both name"),
     }
     history_cases = {
         "bad_input.history_not_a_number": ("delta_star\n0.1\nabc\n", "abc"),
         "bad_input.history_nan": ("delta_star\n0.1\nnan\n", "finite"),
         "bad_input.history_missing_column": ("x\n0.1\n", "delta_star"),
         "bad_input.history_wrong_unit": ("delta[N]\n0.1\n", "length"),
+        "bad_input.history_two_columns": ("delta_star,delta[um]\n0.1,0.2\n", "both"),
     }
     if case in cases:
         argv, text = cases[case]

@@ -61,18 +61,23 @@ TEST(FrictionModelTest, HysteresisFrictionFollowsMasingAndCommitsReversals) {
 }
 
 TEST(FrictionModelTest, ReversalRuleOfEq710ForgetsOlderLoops) {
-  // Masing memory closes an inner loop and continues on the outer branch; Eq. 7.10
-  // restarts every branch at the last reversal from the backbone value there.
-  auto bb = std::make_shared<hysteresis::FunctionBackbone>(
-      [](double x) { return 1.0 - std::exp(-x); }, 1.0, 1.0);
+  // Masing memory keeps the outer loop; Eq. 7.10 restarts at the last reversal from the
+  // backbone value there, as after a virgin loading to it (masing.hpp).
+  auto Ql = [](double x) { return 1.0 - std::exp(-x); };
+  auto bb = std::make_shared<hysteresis::FunctionBackbone>(Ql, 1.0, 1.0);
   HysteresisFriction masing(bb), reset(bb, hysteresis::MemoryRule::reset_at_reversal);
   for (auto* m : {&masing, &reset}) {
     m->commit_reversal(2.0);
-    m->commit_reversal(1.0);
+    m->commit_reversal(-1.0);
   }
-  // Back past 2.0: Masing rejoins the virgin curve, Eq. 7.10 does not.
-  EXPECT_NEAR(masing.force(3.0, 1.0, {}), 1.0 - std::exp(-3.0), 1e-12);
-  EXPECT_GT(std::abs(reset.force(3.0, 1.0, {}) - (1.0 - std::exp(-3.0))), 1e-3);
+  // Masing: the reloading branch from (-1, Q_l(2) - 2 Q_l(1.5)), closing at 2.
+  const double Q_r = Ql(2.0) - 2.0 * Ql(1.5);
+  EXPECT_NEAR(masing.force(0.5, 1.0, {}), Q_r + 2.0 * Ql(0.75), 1e-12);
+  EXPECT_NEAR(masing.force(1.5, 1.0, {}), Q_r + 2.0 * Ql(1.25), 1e-12);
+  // Eq. 7.10 with u_max = 1: -Q(-u, u_max) = -Q_l(1) + 2 Q_l((1 + u)/2) on [-1, 1], then
+  // the virgin curve.
+  EXPECT_NEAR(reset.force(0.5, 1.0, {}), -Ql(1.0) + 2.0 * Ql(0.75), 1e-12);
+  EXPECT_NEAR(reset.force(1.5, 1.0, {}), Ql(1.5), 1e-12);
 }
 
 // Segalman (2005), J. Appl. Mech. 72:752-760, Eq. 20-23: phi_max, R, S from

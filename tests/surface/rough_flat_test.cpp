@@ -114,7 +114,7 @@ TEST_P(RoughFlatModels, TableWithinOneEMinus8OfQuadratureOverTheWholeRange) {
   const auto flat = fig44(GetParam());
   const double d = flat.separation_star(1e-3);
   const auto table = flat.backbone(d);
-  EXPECT_LE(table->verified_error(), 1e-9);
+  EXPECT_LE(table->verified_error(), 2e-9);  // reference (1e-9) + fast cells (1e-9)
   // The table's fixed-rule sum and the adaptive quadrature agree to ~1e-11; 1e-10 leaves
   // an order of margin below the table's 1e-9 target.
   EXPECT_LT(rel(table->limit(), flat.static_friction_star(d)), 1e-10);
@@ -132,8 +132,81 @@ TEST_P(RoughFlatModels, TableWithinOneEMinus8OfQuadratureOverTheWholeRange) {
     EXPECT_LT(rel(table->force(table->displacement(Q)), Q), 1e-12);
   }
   for (double x : {0.05, 0.6, 3.0}) {
+    // W = 8 Int Q_l - 4 x Q_l(x) cancels for small x (W ~ x^3, each term ~ x^2): the
+    // table's relative error (< 1e-8, above) is amplified by (8 Int Q_l + 4 x Q_l)/W.
+    const double Q = table->force(x);
+    const double I = table->integral(x);
     const double w_table = hysteresis::energy_per_cycle(*table, x);
-    EXPECT_LT(rel(w_table, flat.energy_star(x, d)), 1e-7) << x;
+    const double amplification = (8.0 * I + 4.0 * x * Q) / w_table;
+    EXPECT_LT(rel(w_table, flat.energy_star(x, d)), 1e-8 * amplification) << x;
+  }
+}
+
+// The table against the adaptive quadrature of Eq. 4.10 over random parameters (wider
+// than any example: beta from just above 0.01928, psi from 0.1 to 10) and loads P* from
+// 1e-9 to 0.9 P*_max, each over delta* from 1e-8 of the table's end to twice beyond it.
+TEST_P(RoughFlatModels, TableWithinOneEMinus8OverParametersAndLoads) {
+  std::mt19937_64 rng(2024 + static_cast<int>(GetParam()));
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  int built = 0;
+  for (int trial = 0; trial < 8; ++trial) {
+    const RoughFlat flat(RoughFlatParameters{.model = GetParam(),
+                                             .beta = 0.0195 + 0.1 * uni(rng),
+                                             .psi = std::pow(10.0, -1.0 + 2.0 * uni(rng)),
+                                             .nu = 0.15 + 0.3 * uni(rng),
+                                             .G_over_E = 0.15 + 0.2 * uni(rng),
+                                             .friction = {.mu_cfc = 0.1 + 0.5 * uni(rng)}});
+    const double P_max = flat.max_load_star();
+    const double P = std::exp(std::log(1e-9) + (std::log(0.9 * P_max) - std::log(1e-9)) * uni(rng));
+    const double d = flat.separation_star(P);
+    if (flat.static_friction_star(d) == 0.0) {
+      // CEB/KE with every contacting asperity yielded: no friction, and no table.
+      EXPECT_THROW((void)flat.backbone(d), InvalidInput);
+      continue;
+    }
+    const auto table = flat.backbone(d);
+    ++built;
+    EXPECT_LE(table->verified_error(), 2e-9);  // reference (1e-9) + fast cells (1e-9)
+    EXPECT_LT(rel(table->limit(), flat.static_friction_star(d)), 1e-11);
+    EXPECT_LT(rel(table->initial_stiffness(), flat.stiffness_star(d)), 1e-11);
+    double worst = 0.0;
+    for (int i = 0; i <= 40; ++i) {
+      const double x = table->table_end() * std::pow(10.0, -8.0 + 8.3 * i / 40.0);
+      worst = std::max(worst, rel(table->force(x), flat.loading_force_star(x, d)));
+    }
+    EXPECT_LE(worst, 1e-8) << "beta " << flat.parameters().beta << " psi " << flat.parameters().psi
+                           << " nu " << flat.parameters().nu << " P* " << P;
+  }
+  EXPECT_GE(built, 4);
+}
+
+// Inputs that made the earlier fixed-rule sum miss 1e-8 or abort the table build
+// (audit of issue 3): a load near P*_max, high plasticity indices, nu = 0.2.
+TEST(RoughFlat, TableBuildsAndHoldsItsBoundWhereAnEarlierRuleFailed) {
+  struct Case {
+    ModelName model;
+    double beta, psi, nu, P_fraction_or_P;
+    bool fraction_of_max;
+  };
+  const Case cases[] = {{ModelName::ceb, 0.04, 0.5, 0.3, 0.5, true},
+                        {ModelName::ceb, 0.04, 0.5, 0.3, 0.998, true},
+                        {ModelName::ceb, 0.092, 3.22, 0.2, 5.11e-4, false},
+                        {ModelName::bke, 0.03091, 8.45, 0.2, 2.47e-9, false},
+                        {ModelName::bke, 0.03091, 8.45, 0.3, 2.47e-9, false},
+                        {ModelName::bke, 0.03091, 8.45, 0.4, 2.47e-9, false}};
+  for (const auto& c : cases) {
+    const RoughFlat flat(RoughFlatParameters{
+        .model = c.model, .beta = c.beta, .psi = c.psi, .nu = c.nu, .G_over_E = 0.7 / 3.4});
+    const double P =
+        c.fraction_of_max ? c.P_fraction_or_P * flat.max_load_star() : c.P_fraction_or_P;
+    const double d = flat.separation_star(P);
+    const auto table = flat.backbone(d);
+    double worst = 0.0;
+    for (int i = 0; i <= 40; ++i) {
+      const double x = table->table_end() * std::pow(10.0, -8.0 + 8.3 * i / 40.0);
+      worst = std::max(worst, rel(table->force(x), flat.loading_force_star(x, d)));
+    }
+    EXPECT_LE(worst, 1e-8) << contact::to_string(c.model) << " psi " << c.psi << " P* " << P;
   }
 }
 
@@ -150,55 +223,76 @@ TEST_P(RoughFlatModels, SeparationRoundTripsOverTheLoadRange) {
 }
 
 TEST_P(RoughFlatModels, RandomHistoriesThroughTheTable) {
-  // |Q| <= Q_max, odd response, non-negative dissipation on closed cycles, for random
-  // parameters and histories.
+  // Over random parameters, loads and histories (small steps, and jumps across several
+  // reversal points at once): |Q| <= Q_max, the response is odd, continuous (Lipschitz
+  // with the reversal stiffness: Q_l is concave, so no branch is steeper), and the work
+  // done on the contact over every closed cycle is >= 0.
   std::mt19937_64 rng(99 + static_cast<int>(GetParam()));
   std::uniform_real_distribution<double> uni(0.0, 1.0);
-  for (int trial = 0; trial < 3; ++trial) {
+  int runs = 0;
+  for (int trial = 0; trial < 6; ++trial) {
     const RoughFlat flat(RoughFlatParameters{.model = GetParam(),
-                                             .beta = 0.025 + 0.04 * uni(rng),
-                                             .psi = 0.3 + 1.5 * uni(rng),
-                                             .nu = 0.2 + 0.2 * uni(rng),
-                                             .G_over_E = 0.15 + 0.1 * uni(rng),
+                                             .beta = 0.0195 + 0.1 * uni(rng),
+                                             .psi = std::pow(10.0, -1.0 + 1.5 * uni(rng)),
+                                             .nu = 0.15 + 0.3 * uni(rng),
+                                             .G_over_E = 0.15 + 0.2 * uni(rng),
                                              .friction = {.mu_cfc = 0.1 + 0.5 * uni(rng)}});
-    const double d = flat.separation_star(std::pow(10.0, -5.0 + 2.5 * uni(rng)));
-    std::shared_ptr<const RoughFlatBackbone> table;
-    try {
-      table = flat.backbone(d);
-    } catch (const InvalidInput&) {
-      // CEB/KE at high plasticity: no asperity carries friction. Then mu_flat = 0.
-      EXPECT_EQ(flat.static_friction_star(d), 0.0);
-      continue;
-    }
+    const double d = flat.separation_star(std::pow(10.0, -8.0 + 6.0 * uni(rng)));
+    if (flat.static_friction_star(d) == 0.0) continue;  // CEB/KE fully yielded: no table
+    const auto table = flat.backbone(d);
+    ++runs;
     hysteresis::Hysteresis h(table);
-    const double scale = 2.0 * table->limit() / table->initial_stiffness();
+    const double Q_max = table->limit();
+    const double k0 = table->initial_stiffness();
+    const double scale = 2.0 * Q_max / k0;
     std::vector<double> xs;
+    std::vector<char> jump;  // the step into xs[i] is one large jump
     double x = 0.0;
-    for (int i = 0; i < 30; ++i) {
+    for (int i = 0; i < 40; ++i) {
       const double target = scale * (2.0 * uni(rng) - 1.0);
-      for (int k = 1; k <= 40; ++k) xs.push_back(x + (target - x) * k / 40.0);
+      const int steps = (i % 5 == 4) ? 1 : 30;
+      for (int k = 1; k <= steps; ++k) {
+        xs.push_back(x + (target - x) * k / steps);
+        jump.push_back(steps == 1);
+      }
       x = target;
     }
-    for (int rep = 0; rep < 2; ++rep) {
+    // Three identical cycles at the end: the last two are closed.
+    for (int rep = 0; rep < 3; ++rep) {
       for (int k = 1; k <= 400; ++k) xs.push_back(x + (0.8 * scale - x) * k / 400.0);
       x = 0.8 * scale;
       for (int k = 1; k <= 400; ++k) xs.push_back(x + (-0.6 * scale - x) * k / 400.0);
       x = -0.6 * scale;
     }
+    jump.resize(xs.size(), 0);
     const auto Q = h.forces(xs);
     std::vector<double> neg(xs.size());
     for (std::size_t i = 0; i < xs.size(); ++i) neg[i] = -xs[i];
     const auto Qn = h.forces(neg);
-    double work = 0.0;
     for (std::size_t i = 0; i < xs.size(); ++i) {
-      ASSERT_LE(std::abs(Q[i]), table->limit() * (1 + 1e-12));
+      ASSERT_LE(std::abs(Q[i]), Q_max);
       ASSERT_EQ(Qn[i], -Q[i]);
-      if (i + 800 >= xs.size() && i + 800 < xs.size() + 800 && i >= xs.size() - 800) {
-        work += 0.5 * (Q[i] + Q[i - 1]) * (xs[i] - xs[i - 1]);
+      const double prev_x = i ? xs[i - 1] : 0.0;
+      const double prev_Q = i ? Q[i - 1] : 0.0;
+      // The table's slope may exceed k0 by its interpolation error (< 1e-8 relative on Q).
+      if (!jump[i]) {
+        ASSERT_LE(std::abs(Q[i] - prev_Q), k0 * std::abs(xs[i] - prev_x) + 4e-8 * Q_max) << i;
       }
     }
-    EXPECT_GT(work, 0.0);
+    const std::size_t n = xs.size();
+    auto cycle_work = [&](std::size_t begin, std::size_t end) {
+      double w = 0.0;
+      for (std::size_t i = begin + 1; i <= end; ++i)
+        w += 0.5 * (Q[i] + Q[i - 1]) * (xs[i] - xs[i - 1]);
+      return w;
+    };
+    const double last = cycle_work(n - 801, n - 1);
+    const double previous = cycle_work(n - 1601, n - 801);
+    EXPECT_GT(last, 0.0);
+    // The same closed cycle twice: the same loop (Masing memory), to round-off.
+    EXPECT_NEAR(last, previous, 1e-12 * Q_max * scale * 800);
   }
+  EXPECT_GE(runs, 3);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllModels, RoughFlatModels,
@@ -224,14 +318,13 @@ TEST(RoughFlat, CfcLargeAmplitudeApproachesCoulombRectangle) {
 TEST(RoughFlat, ContactAreaAndCount) {
   const auto flat = fig44(ModelName::cfc);
   const double d = flat.separation_star(1e-3);
-  // Fraction of asperities in contact: the Gaussian tail above d* (Eq. 4.1).
-  EXPECT_NEAR(flat.contact_fraction(d),
-              0.5 * std::erfc(d / (flat.sigma_a_over_sigma() * std::sqrt(2.0))), 1e-15);
   // Hertz: A_r/A0 = pi beta omega_c* Int w phi and P* = (2 pi/3) beta omega_c* Int w^1.5 phi.
-  // Independent check by direct Gauss-Kronrod in z*.
+  // Independent checks by direct Gauss-Kronrod in z* of the Gaussian of Eq. 4.2.
   const double s = flat.sigma_a_over_sigma();
   const double wc = flat.omega_c_star();
   auto phi = [&](double z) { return std::exp(-0.5 * z * z / (s * s)) / (std::sqrt(2 * M_PI) * s); };
+  // Fraction of asperities in contact: the tail of phi* above d* (Eq. 4.1).
+  EXPECT_LT(rel(flat.contact_fraction(d), core::integrate(phi, d, d + 40 * s, 1e-14).value), 1e-12);
   const double area =
       M_PI * 0.04 * wc *
       core::integrate([&](double z) { return (z - d) / wc * phi(z); }, d, d + 20 * s, 1e-13).value;
@@ -255,6 +348,21 @@ TEST(RoughFlat, BadInputIsRejectedWithTheFieldName) {
   const auto flat = make(0.04, 0.5);
   EXPECT_THROW((void)flat.loading_force_star(-0.1, 1.0), InvalidInput);
   EXPECT_THROW((void)flat.unloading_force_star(0.5, 0.2, 1.0), InvalidInput);
+  // A load below P*_max whose real contact area would exceed the nominal one (audit of
+  // issue 3: A_r/A0 = 2.67 was accepted).
+  const RoughFlat dense(RoughFlatParameters{.model = ModelName::cfc,
+                                            .beta = 0.2,
+                                            .psi = 8.0,
+                                            .nu = 0.3,
+                                            .G_over_E = 0.2,
+                                            .friction = {.mu_cfc = 0.3}});
+  ASSERT_LT(30.0, dense.max_load_star());
+  try {
+    (void)dense.separation_star(30.0);
+    FAIL() << "A_r > A0 accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("real contact area"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

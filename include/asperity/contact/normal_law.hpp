@@ -20,6 +20,10 @@ struct BkeConstants {
   double delta_c = 0.0;  ///< 6.82 nu - 7.83 (nu^2 + 0.0586)
   double alpha = 0.0;    ///< 0.174 + 0.08 nu
   double gamma = 0.0;    ///< 0.25 + 0.125 nu
+  // Derived once, for the statistical sums' inner loops:
+  double load_scale = 0.0;     ///< l_c / delta_c^{3/2} (B.4)
+  double delta_c_alpha = 0.0;  ///< delta_c^alpha (B.4)
+  double delta_c_gamma = 0.0;  ///< delta_c^gamma (B.8)
   /// Throws InvalidInput when nu gives l_c <= 0 or delta_c <= 0.
   static BkeConstants for_poisson(double nu);
 };

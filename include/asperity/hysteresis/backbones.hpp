@@ -49,6 +49,9 @@ class ScaledBackbone final : public Backbone {
   [[nodiscard]] double limit() const override;
   [[nodiscard]] double initial_stiffness() const override;
   [[nodiscard]] double integral(double x) const override;
+  [[nodiscard]] const Backbone& inner() const { return *inner_; }
+  [[nodiscard]] double x_scale() const { return x_scale_; }
+  [[nodiscard]] double Q_scale() const { return Q_scale_; }
 
  private:
   std::shared_ptr<const Backbone> inner_;

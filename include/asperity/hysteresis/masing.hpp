@@ -13,33 +13,22 @@
 //    the older branch; a path that passes the mirror image of the first reversal
 //    rejoins the virgin curve.
 // The thesis's Eq. 7.10 rule (reset u_max at every velocity reversal) is available as
-// MemoryRule::reset_at_reversal: every branch starts at the last reversal and nothing
-// is remembered before it.
+// MemoryRule::reset_at_reversal: at a reversal x_r the force restarts from Q_l(x_r) and
+// the history is replaced by a virgin loading to x_r. Moving towards the origin the
+// branch is the unloading from u_max = |x_r| (Eq. 4.12/4.13, which is what Eq. 7.10
+// writes), rejoining the virgin curve past -x_r; moving away from the origin the path
+// follows the virgin curve. (Eq. 7.10 in print defines the branch on [-u_max, u_max]
+// only; this completion keeps |Q| <= Q_max.) For steady symmetric cycles it equals
+// Masing's rules; for transients it does not (SEED_NOTES.md).
 #include <cmath>
 #include <memory>
 #include <span>
 #include <vector>
 
-namespace asperity::hysteresis {
+#include "asperity/hysteresis/backbone.hpp"
+#include "asperity/hysteresis/tabulated_backbone.hpp"
 
-/// The virgin loading curve Q_l(x) for x >= 0 (extended as an odd function):
-/// continuous, non-decreasing, Q_l(0) = 0, bounded by limit().
-class Backbone {
- public:
-  virtual ~Backbone() = default;
-  /// Q_l(x) for x >= 0.
-  [[nodiscard]] virtual double force(double x) const = 0;
-  /// Inverse: the x >= 0 with Q_l(x) = Q for 0 <= Q < limit(). Throws InvalidInput
-  /// for Q >= limit() (the contact slides: no finite displacement).
-  [[nodiscard]] virtual double displacement(double Q) const = 0;
-  /// sup Q_l: the static friction force.
-  [[nodiscard]] virtual double limit() const = 0;
-  /// dQ_l/dx at x = 0: the stiffness at every reversal.
-  [[nodiscard]] virtual double initial_stiffness() const = 0;
-  /// Integral of Q_l from 0 to x (x >= 0), for energy per cycle. Default: adaptive
-  /// quadrature of force().
-  [[nodiscard]] virtual double integral(double x) const;
-};
+namespace asperity::hysteresis {
 
 enum class MemoryRule {
   masing,             ///< reversal stack with loop closing (default)
@@ -75,29 +64,14 @@ class Hysteresis {
   /// motion along the newest branch short of its closing point, and for a reversal whose
   /// fresh branch does not close within the step.
   double update(double x) {
-    const double dx = x - x_;
-    const int d = (dx > 0.0) - (dx < 0.0);
-    // NaN and +-inf always leave through update_general (NaN gives d = 0; an infinite x
-    // passes every closing point), which rejects them.
-    if (d == direction_ && d != 0 && (x - top_.closes_at) * top_.direction < 0.0) {
-      Q_ = top_.Q + top_.direction * 2.0 * backbone_->force(std::abs(x - top_.x) * 0.5);
+    // NaN and +-inf always leave through update_slow (NaN fails every comparison; an
+    // infinite x passes every closing point), which rejects them.
+    if ((x - x_) * direction_ > 0.0 && (x - top_.closes_at) * top_.direction < 0.0) {
+      Q_ = top_.Q + top_.direction * 2.0 * backbone_force(std::abs(x - top_.x) * 0.5);
       x_ = x;
       return Q_;
     }
-    if (d == -direction_ && d != 0 && rule_ == MemoryRule::masing && std::isfinite(x)) {
-      // A reversal at the current point whose fresh branch does not close at once: the
-      // stack is already pruned to the active branch, so push and follow the new branch.
-      const double closes_at = stack_.empty() ? -x_ : stack_.back().x;
-      if ((x - closes_at) * d < 0.0) {
-        stack_.push_back({x_, Q_, static_cast<double>(d), closes_at});
-        top_ = stack_.back();
-        direction_ = d;
-        Q_ = top_.Q + top_.direction * 2.0 * backbone_->force(std::abs(x - top_.x) * 0.5);
-        x_ = x;
-        return Q_;
-      }
-    }
-    return update_general(x);
+    return update_slow(x);
   }
   /// Force-driven step: moves to force Q, returns the displacement. Throws
   /// InvalidInput if a branch would need |Q| beyond the static limit (gross slip
@@ -130,6 +104,7 @@ class Hysteresis {
   [[nodiscard]] std::vector<double> displacements(std::span<const double> Q_history) const;
 
  private:
+  double update_slow(double x);
   double update_general(double x);
   // Index of the active branch for motion to x: the number of stack entries that stay
   // after loop closing. Branch k >= 1 starts at stack_[k-1]; 0 is the virgin curve.
@@ -139,12 +114,24 @@ class Hysteresis {
   [[nodiscard]] double branch_displacement(std::size_t k, double Q) const;
   void move_to(std::size_t k, double x, double Q);
 
+  // Q_l(x) for finite x >= 0, inline when the backbone is a table (possibly scaled to SI).
+  [[nodiscard]] double backbone_force(double x) const {
+    if (table_) {
+      return table_scaled_ ? table_Q_scale_ * table_->evaluate_non_negative(x / table_x_scale_)
+                           : table_->evaluate_non_negative(x);
+    }
+    return backbone_->force(x);
+  }
+
   std::shared_ptr<const Backbone> backbone_;
   MemoryRule rule_;
+  const TabulatedBackbone* table_ = nullptr;  // backbone_ (or its inner one) when tabulated
+  bool table_scaled_ = false;  // a ScaledBackbone over a table: same arithmetic as its force()
+  double table_Q_scale_ = 1.0;
+  double table_x_scale_ = 1.0;
   void push_reversal(double x, double Q, int direction);
 
-  // Copy of the newest reversal for the inline fast path, its closing point moved to
-  // infinity under the Eq. 7.10 rule (no loop closing) and direction 0 when the stack is
+  // Copy of the newest reversal for the inline fast path; direction 0 when the stack is
   // empty (the fast path then never applies). Kept by refresh_top() after every change.
   void refresh_top();
   ReversalPoint top_{};
@@ -152,7 +139,7 @@ class Hysteresis {
   std::vector<ReversalPoint> stack_;
   double x_ = 0.0;
   double Q_ = 0.0;
-  int direction_ = 0;  // +1, -1, or 0 before the first motion
+  double direction_ = 0.0;  // +1, -1, or 0 before the first motion
 };
 
 }  // namespace asperity::hysteresis

@@ -13,6 +13,7 @@
 #include "asperity/contact/asperity_model.hpp"
 #include "asperity/contact/material.hpp"
 #include "asperity/hysteresis/masing.hpp"
+#include "asperity/hysteresis/tabulated_backbone.hpp"
 
 namespace asperity::surface {
 
@@ -76,9 +77,11 @@ class RoughFlat {
   /// P/(K H A0) at separation d* (Eq. 4.4).
   [[nodiscard]] double normal_load_star(double d_star) const;
   /// The separation d* carrying P* = P/(K H A0) (Eq. 4.4 inverted); P* from 1e-12 up to
-  /// the load at d* = -5 sigma_a/sigma_s. Throws InvalidInput beyond.
+  /// the load at d* = -5 sigma_a/sigma_s, and only while the real contact area stays below
+  /// the nominal one (A_r < A0). Throws InvalidInput beyond.
   [[nodiscard]] double separation_star(double P_star) const;
-  /// Largest P* accepted by separation_star.
+  /// P* at d* = -5 sigma_a/sigma_s: no larger load is accepted by separation_star (which
+  /// may refuse smaller ones too, where A_r/A0 >= 1).
   [[nodiscard]] double max_load_star() const;
   /// Static friction Q_max/(K H A0) at d* (Eq. 4.7).
   [[nodiscard]] double static_friction_star(double d_star) const;
@@ -121,51 +124,21 @@ class RoughFlat {
 };
 
 /// The virgin loading curve Q*_l(delta*) of a rough flat at one separation, tabulated
-/// once: Q_l = delta* G(sqrt(delta*)) with G a quintic Hermite interpolant, uniform in
-/// s = sqrt(delta*) on segments between knots placed where Q_l is less smooth (a slip
-/// boundary crossing a jump or extremum of the asperities' slip length); node values and
-/// first and second derivatives come from one fixed-rule quadrature pass per node. The grid is
-/// refined until the interpolant matches the quadrature at every interval midpoint to `rel_tol`
-/// (the verified error bound); beyond the table's end Q_l equals Q_max to < 1e-12 relative.
-/// Evaluation costs a square root, a segment search and a quintic (about one `tanh`;
-/// through the Masing engine about twice a regularized Coulomb law, bench/).
-class RoughFlatBackbone final : public hysteresis::Backbone {
+/// once (hysteresis::TabulatedBackbone: Q_l = delta* G(sqrt(delta*)), G piecewise quintic
+/// Hermite, bisected until it matches the sum at every interval midpoint to `rel_tol`, the
+/// verified error bound). Node values and first and second derivatives come from one
+/// fixed-rule Gauss-Legendre pass over the asperity heights per node; knots sit where Q_l
+/// is less smooth (a slip boundary crossing a jump or extremum of the asperities' slip
+/// length); beyond the table's end Q_l equals Q_max to < 1e-12 relative. A force costs a
+/// square root, a bucket look-up and a quintic (bench/: about a regularized Coulomb law).
+class RoughFlatBackbone final : public hysteresis::TabulatedBackbone {
  public:
   RoughFlatBackbone(const RoughFlat& flat, double d_star, double rel_tol = 1e-9);
 
-  [[nodiscard]] double force(double delta_star) const override;
-  [[nodiscard]] double displacement(double Q_star) const override;
-  [[nodiscard]] double limit() const override { return Q_max_; }
-  [[nodiscard]] double initial_stiffness() const override { return k0_; }
-  [[nodiscard]] double integral(double delta_star) const override;
-
   [[nodiscard]] double d_star() const { return d_star_; }
-  /// Largest relative difference between the table and the quadrature found at the
-  /// check points (interval midpoints) when the table was built.
-  [[nodiscard]] double verified_error() const { return verified_error_; }
-  [[nodiscard]] std::size_t intervals() const { return n_; }
-  [[nodiscard]] double table_end() const { return x_end_; }
 
  private:
   double d_star_;
-  double Q_max_;
-  double k0_;
-  double x_end_;       // delta* where the table ends
-  std::size_t n_ = 0;  // intervals over all segments
-  struct Segment {     // uniform in s = sqrt(delta*) between two knots
-    double s0;
-    double h;
-    double inv_h;
-    std::size_t n;
-    std::size_t offset;  // index of its first interval
-  };
-  [[nodiscard]] double partial_integral(const Segment& seg, std::size_t i, double fraction) const;
-  [[nodiscard]] std::pair<const Segment*, double> locate(double s) const;
-
-  std::vector<Segment> segments_;
-  std::vector<double> coef_;  // quintic in t per interval: G(s) = Q_l/delta*, s = sqrt(delta*)
-  std::vector<double> cumulative_;  // Int_0^{x_i} Q dx at nodes
-  double verified_error_ = 0.0;
 };
 
 }  // namespace asperity::surface
