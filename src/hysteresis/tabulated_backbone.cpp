@@ -68,6 +68,14 @@ void BackboneTabulation::validate() const {
   core::require_finite("backbone initial curvature", initial_curvature);
   core::require_positive("backbone limit", limit);
   core::require_positive("backbone table end x_end", x_end);
+  // The fast look-up reads cells off the exponent of x down to 2^-24 x_end: keep that
+  // range of normal doubles (tables of physical quantities in SI or scaled units do).
+  if (!(x_end >= 1e-280 && x_end <= 1e280)) {
+    throw InvalidInput(fmt::format(
+        "backbone table end x_end = {} is not allowed: it must lie in [1e-280, 1e280] (scale "
+        "the displacement)",
+        core::format_value(x_end)));
+  }
   if (!(rel_tol >= 1e-12 && rel_tol <= 1e-3)) {
     throw InvalidInput(
         fmt::format("table tolerance {} is not allowed: it must lie in [1e-12, 1e-3]",
