@@ -149,9 +149,12 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
           s.y.push_back(r.spectrum->power[i] / peak);
         }
       }
-      sp.series.push_back(std::move(s));
-      plot_png(dir.file("spectrum.png"), sp);
-      plots.push_back("spectrum.png");
+      // A response that never moves has no power to draw on a log axis: no plot.
+      if (!s.x.empty()) {
+        sp.series.push_back(std::move(s));
+        plot_png(dir.file("spectrum.png"), sp);
+        plots.push_back("spectrum.png");
+      }
     }
   }
   dir.commit();

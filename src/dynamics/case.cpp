@@ -720,10 +720,15 @@ CaseResult run_case(const DynamicsCase& c) {
     const double f_max = c.analysis.f_max > 0.0 ? c.analysis.f_max : std::min(0.5 / dt, 10.0);
     const double f_min = c.analysis.f_min > 0.0 ? c.analysis.f_min : 2.0 / sim.duration;
     r.spectrum = power_spectrum(p, f_min, f_max, c.analysis.bins);
-    try {
-      modal = modal_estimate(p, f_min, f_max, c.analysis.bins);
-    } catch (const NumericalError& e) {
-      spectrum_note = e.what();  // an overdamped response has no modal peak: report null
+    const bool moves = std::any_of(tr.u.begin(), tr.u.end(), [](double u) { return u != 0.0; });
+    if (!moves) {
+      spectrum_note = "the mass does not move (zero excitation and initial state): no modal peak";
+    } else {
+      try {
+        modal = modal_estimate(p, f_min, f_max, c.analysis.bins);
+      } catch (const NumericalError& e) {
+        spectrum_note = e.what();  // an overdamped response has no modal peak: report null
+      }
     }
   }
   auto or_null = [](const std::optional<double>& v) {
@@ -792,6 +797,16 @@ CaseResult run_case(const DynamicsCase& c) {
         "{} of {} steps were held by stability rather than accuracy (Dormand-Prince stiffness "
         "test): the problem is stiff ({}); the explicit integrator stays accurate but is slow",
         tr.stats.stiff_steps, tr.stats.steps, example));
+  } else if (tr.stats.steps > 100'000 && static_cast<double>(tr.stats.rejected_steps) >
+                                             0.2 * static_cast<double>(tr.stats.steps)) {
+    // Frequent rejections reset the stiffness test's run of 15 steps: a stiff or
+    // under-resolved problem can show up only here (Dankowicz delta = 1e-9 A: 2.5e6 steps,
+    // 6.3e5 rejected, no stiff step counted).
+    r.warnings.push_back(fmt::format(
+        "{} of {} steps were rejected: the step size is held by stability or by a motion "
+        "smaller than the absolute tolerance (the problem may be stiff, e.g. a Dankowicz "
+        "delta far below the amplitude); results below atol are noise",
+        tr.stats.rejected_steps, tr.stats.steps));
   }
 
   if (decays) {

@@ -509,6 +509,26 @@ def main():
         return 0
     if case == "figures":
         return figures(exe)
+    if case == "zero_response_with_plots":
+        # A valid case whose mass never moves: every output but the (empty) spectrum plot,
+        # exit 0, and a modal note saying why there is no modal peak.
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "case.toml")
+            with open(path, "w") as f:
+                f.write('[dynamics]\nexcitation = "impulse"\nduration = 50\n'
+                        '[dynamics.impulse]\namplitude = 0\n'
+                        '[dynamics.friction]\nmodel = "jenkins"\nF_max = 0.1\nstiffness = 100\n')
+            out = os.path.join(tmp, "out")
+            r = subprocess.run([exe, "dynamics", path, "--out", out], capture_output=True,
+                               text=True, timeout=60)
+            if r.returncode != 0:
+                return fail(f"exit {r.returncode}: {r.stderr}")
+            j = json.load(open(os.path.join(out, "summary.json")))
+            if j["modal_frequency"] is not None or "does not move" not in j.get("modal_note", ""):
+                return fail(f"modal fields: {j.get('modal_frequency')}, {j.get('modal_note')}")
+            if not os.path.exists(os.path.join(out, "response.png")):
+                return fail("response.png missing")
+        return 0
     if case == "joint_example":
         return joint_example(exe)
     if case == "joint_either_order":
