@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 #include "asperity/core/csv.hpp"
@@ -67,7 +68,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
   }
 
   const bool dimensional =
-      any_material_flag(o.materials) || o.sigma || o.eta || o.R || o.area || o.P;
+      any_material_flag(o.materials) || o.sigma || o.eta || o.R || o.area || o.P || o.delta_max;
   const bool normalized = o.beta || o.psi || o.nu || o.P_star || o.G_over_E || o.delta_star_max;
   if (dimensional && normalized) {
     throw InvalidInput(
@@ -138,6 +139,17 @@ void run_flat(const FlatOptions& o, std::string& out) {
                             {"--plot", o.plot_png.value_or("")},
                             {"--out", o.out_csv.value_or("")},
                             {"--history", o.history_csv.value_or("")}});
+  // Every output's directory must exist before anything is written (no output is left
+  // behind by a later one that cannot be written).
+  for (const auto& [flag, path] : {std::pair{"--loop", o.loop_csv}, std::pair{"--plot", o.plot_png},
+                                   std::pair{"--out", o.out_csv}}) {
+    if (!path) continue;
+    const auto dir = std::filesystem::absolute(*path).parent_path();
+    if (!std::filesystem::is_directory(dir)) {
+      throw InvalidInput(
+          fmt::format("{} {}: the directory \"{}\" does not exist", flag, *path, dir.string()));
+    }
+  }
   const auto& scales = flat->scales();
   std::vector<double> history_star;
   bool history_si = false;

@@ -68,11 +68,12 @@ void BackboneTabulation::validate() const {
   core::require_finite("backbone initial curvature", initial_curvature);
   core::require_positive("backbone limit", limit);
   core::require_positive("backbone table end x_end", x_end);
-  // The fast look-up reads cells off the exponent of x down to 2^-24 x_end: keep that
-  // range of normal doubles (tables of physical quantities in SI or scaled units do).
-  if (!(x_end >= 1e-280 && x_end <= 1e280)) {
+  // The nodes' derivatives divide by x^3, and the fast look-up reads cells off the exponent
+  // of x down to 2^-24 x_end: x_end within 1e+-100 keeps all of it in range (tables of
+  // physical quantities in SI or scaled units are).
+  if (!(x_end >= 1e-100 && x_end <= 1e100)) {
     throw InvalidInput(fmt::format(
-        "backbone table end x_end = {} is not allowed: it must lie in [1e-280, 1e280] (scale "
+        "backbone table end x_end = {} is not allowed: it must lie in [1e-100, 1e100] (scale "
         "the displacement)",
         core::format_value(x_end)));
   }
@@ -154,7 +155,12 @@ TabulatedBackbone::TabulatedBackbone(const BackboneTabulation& in)
   // Left to right: the stack is popped from its end.
   std::reverse(pending.begin(), pending.end());
 
-  // Bisect every interval whose midpoint misses the backbone by more than rel_tol.
+  // Bisect every interval whose quintic misses the backbone by more than rel_tol: at its
+  // midpoint, against the sample taken there, and at its quarter points, against the two
+  // halves' quintics (which use that sample too and are far more accurate: the error of
+  // quintic Hermite interpolation scales as h^6). The quarters catch an error that changes
+  // sign at the midpoint. An accepted interval is stored as its two halves, so the table
+  // is finer than the interpolant whose error was checked.
   while (!pending.empty()) {
     const Pending p = pending.back();
     pending.pop_back();
@@ -162,13 +168,21 @@ TabulatedBackbone::TabulatedBackbone(const BackboneTabulation& in)
     const double s_mid = p.a.s + 0.5 * h;
     const Node mid = node(s_mid, s_mid);
     const auto c = quintic(p.a, p.b);
-    const double error = std::abs(polynomial(c.data(), 0.5) - mid.G) / std::abs(mid.G);
+    const auto left = quintic(p.a, mid);
+    const auto right = quintic(mid, p.b);
+    auto relative = [](double a, double b) { return std::abs(a - b) / std::abs(b); };
+    const double error =
+        std::max({relative(polynomial(c.data(), 0.5), mid.G),
+                  relative(polynomial(c.data(), 0.25), polynomial(left.data(), 0.5)),
+                  relative(polynomial(c.data(), 0.75), polynomial(right.data(), 0.5))});
     if (error <= in.rel_tol) {
-      Cell cell;
-      cell.s0 = p.a.s;
-      cell.inv_h = 1.0 / h;
-      std::copy(c.begin(), c.end(), cell.c);
-      cells_.push_back(cell);
+      for (const auto& [start, coefficients] : {std::pair{p.a.s, left}, std::pair{s_mid, right}}) {
+        Cell cell;
+        cell.s0 = start;
+        cell.inv_h = 2.0 / h;
+        std::copy(coefficients.begin(), coefficients.end(), cell.c);
+        cells_.push_back(cell);
+      }
       verified_error_ = std::max(verified_error_, error);
       continue;
     }

@@ -84,7 +84,12 @@ class Kernel {
                              if (u <= 0.0) return 0.0;
                              const double m = mu(u);
                              if (m == 0.0) return 0.0;
-                             return m * load(u) * response(lambda(u)) * phi(u);
+                             // An asperity whose load or slip length underflows (u -> 0 with
+                             // the own-law scaling, lambda ~ f/a) carries no force.
+                             const double f = load(u);
+                             const double lam = lambda(u);
+                             if (f == 0.0 || !(lam > 0.0)) return 0.0;
+                             return m * f * response(lam) * phi(u);
                            },
                            slip_breaks);
   }
@@ -187,7 +192,15 @@ void RoughFlatParameters::validate() const {
   }
   core::require_positive("psi (plasticity index)", psi);
   core::require_in_half_open("nu", nu, 0.0, 0.5);
+  // Isotropic bodies give (1 - nu)/(2 (2 - nu)), 0.17-0.25, for each body and any pair;
+  // measured shear moduli may differ, but not by a factor of four.
   core::require_positive("G*/E*", G_over_E);
+  if (!(G_over_E < 1.0)) {
+    throw InvalidInput(
+        fmt::format("G*/E* = {} is not allowed: it must lie in (0, 1); isotropic materials give "
+                    "(1 - nu)/(2 (2 - nu)) = 0.17-0.25",
+                    core::format_value(G_over_E)));
+  }
   friction.validate();
 }
 

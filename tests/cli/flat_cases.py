@@ -137,6 +137,15 @@ def main():
         if r.returncode != 2 or os.path.exists(loop) or os.path.exists(os.path.join(tmp, "out.csv")):
             return fail(f"exit {r.returncode}, files {os.listdir(tmp)}: {r.stderr}")
         return 0
+    if case == "own_law_scaling":
+        # Eq. 4.8 with each law's own a/P: the same outputs, finite (a NaN once aborted it).
+        j = check_json(exe, NORMALIZED + ["--delta-star-max=0.6", "--slip-scaling=own-law"],
+                       norm_keys + amp_keys)
+        if not isinstance(j, dict):
+            return 1
+        if not (j["stiffness_star"] > 0 and j["energy_star"] > 0):
+            return fail(str(j))
+        return 0
     if case == "near_maximum_load":
         # CEB at 99.8 % of the largest load it can carry (the table build aborted here once).
         r = run(exe, ["flat", "--beta=0.04", "--psi=0.5", "--nu=0.3", "--P-star=0.646",
@@ -172,6 +181,9 @@ def main():
         "bad_input.cfc_without_mu": (["flat", "--beta=0.04", "--psi=0.5", "--nu=0.3", "--P-star=1e-3", "--model=cfc"], "--mu-cfc"),
         "bad_input.contact_area_beyond_nominal": (["flat", "--beta=0.2", "--psi=8", "--nu=0.3", "--P-star=30", "--model=cfc", "--mu-cfc=0.3"], "real contact area"),
         "bad_input.same_output_file": (NORMALIZED + ["--delta-star-max=0.6", "--loop", "/tmp/x.csv", "--plot", "/tmp/x.csv"], "both name"),
+        "bad_input.dimensional_amplitude_with_normalized": (NORMALIZED + ["--delta-max=1um"], "mixing"),
+        "bad_input.output_directory_missing": (NORMALIZED + ["--delta-star-max=0.6", "--loop", "/tmp/asperity-no-such-dir/l.csv"], "does not exist"),
+        "bad_input.G_over_E_too_large": (NORMALIZED + ["--G-over-E=5"], "G*/E*"),
     }
     history_cases = {
         "bad_input.history_not_a_number": ("delta_star\n0.1\nabc\n", "abc"),

@@ -148,6 +148,7 @@ TEST(TabulatedBackbone, BadInputIsRefused) {
   EXPECT_THROW(TabulatedBackbone(with([](auto& in) { in.x_end = std::nan(""); })), InvalidInput);
   EXPECT_THROW(TabulatedBackbone(with([](auto& in) { in.knots = {20.0}; })), InvalidInput);
   EXPECT_THROW(TabulatedBackbone(with([](auto& in) { in.x_end = 1e-300; })), InvalidInput);
+  EXPECT_THROW(TabulatedBackbone(with([](auto& in) { in.x_end = 1e150; })), InvalidInput);
   EXPECT_THROW(TabulatedBackbone(with([](auto& in) { in.rel_tol = 0.1; })), InvalidInput);
   // A sample that is not finite is a numerical failure, not a table.
   EXPECT_THROW(TabulatedBackbone(with([](auto& in) {

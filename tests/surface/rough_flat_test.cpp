@@ -180,6 +180,45 @@ TEST_P(RoughFlatModels, TableWithinOneEMinus8OverParametersAndLoads) {
   EXPECT_GE(built, 4);
 }
 
+// Eq. 4.8 with each law's own a(w) and P(w) (SlipScaling::own_law, not the thesis's
+// default): the same identities hold - table against quadrature, direct unloading against
+// the Masing construction, Eq. 4.14 against 8 Int Q_l - 4 dm Q_l - and the sums stay finite
+// where an asperity's load underflows next to u = 0 (it failed with a NaN there once).
+TEST_P(RoughFlatModels, OwnLawSlipScalingKeepsTheIdentities) {
+  for (double psi : {0.227, 0.5, 2.0}) {
+    const RoughFlat flat(RoughFlatParameters{.model = GetParam(),
+                                             .beta = 0.04,
+                                             .psi = psi,
+                                             .nu = 0.3,
+                                             .G_over_E = 0.7 / 3.4,
+                                             .friction = {.mu_cfc = 0.3},
+                                             .slip_scaling = SlipScaling::own_law});
+    const double d = flat.separation_star(1e-3);
+    const double Q_max = flat.static_friction_star(d);
+    if (Q_max == 0.0) continue;  // CEB/KE fully yielded at psi = 2
+    const double k = flat.stiffness_star(d);
+    ASSERT_TRUE(std::isfinite(k) && k > 0.0) << psi;
+    const auto table = flat.backbone(d);
+    EXPECT_LT(rel(table->initial_stiffness(), k), 1e-11) << psi;
+    double worst = 0.0;
+    for (int i = 0; i <= 40; ++i) {
+      const double x = table->table_end() * std::pow(10.0, -8.0 + 8.3 * i / 40.0);
+      worst = std::max(worst, rel(table->force(x), flat.loading_force_star(x, d)));
+    }
+    EXPECT_LE(worst, 1e-8) << psi;
+    const double dm = 0.5 * table->table_end();
+    const double Qm = flat.loading_force_star(dm, d);
+    for (double x : {0.5 * dm, -0.7 * dm}) {
+      EXPECT_NEAR(flat.unloading_force_star(x, dm, d),
+                  Qm - 2.0 * flat.loading_force_star((dm - x) / 2.0, d), 1e-9 * Qm);
+    }
+    const double integral =
+        core::integrate([&](double x) { return flat.loading_force_star(x, d); }, 0.0, dm, 1e-12, 12)
+            .value;
+    EXPECT_LT(rel(flat.energy_star(dm, d), 8.0 * integral - 4.0 * dm * Qm), 1e-9) << psi;
+  }
+}
+
 // Inputs that made the earlier fixed-rule sum miss 1e-8 or abort the table build
 // (audit of issue 3): a load near P*_max, high plasticity indices, nu = 0.2.
 TEST(RoughFlat, TableBuildsAndHoldsItsBoundWhereAnEarlierRuleFailed) {

@@ -9,9 +9,10 @@
 // as Q_l = k0 x + Q_l''(0) x^2/2 + O(x^{5/2}) (a rough flat, one Mindlin asperity) has
 // a G that is smooth in s with G(0) = k0, so the relative accuracy near the origin is
 // the same as elsewhere. Knots given by the caller (where Q_l is less smooth) are
-// interval ends; between them intervals are bisected until the interpolant matches
-// the sampled backbone at every interval midpoint to `rel_tol` (the midpoint is where
-// the error of quintic Hermite interpolation, proportional to t^3 (1-t)^3, peaks).
+// interval ends; between them intervals are bisected until each interval's quintic
+// matches the sample at its midpoint and its two halves' quintics at its quarter points
+// to `rel_tol`; the accepted interval is then stored as those two halves (quintic Hermite
+// error scales as h^6, so they are far more accurate than what was checked).
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -100,9 +101,10 @@ class TabulatedBackbone : public Backbone {
     return Q < limit_ ? Q : limit_;
   }
 
-  /// Verified error bound: the largest relative difference between the reference
-  /// interpolant and the sampled backbone at the check points (every interval's midpoint)
-  /// plus the largest between the fast cells and the reference at theirs.
+  /// Checked error bound: the largest relative error found while building the reference
+  /// (each accepted interval's quintic against the midpoint sample and against its halves
+  /// at the quarter points; the stored halves are finer still) plus the largest between
+  /// the fast cells and the reference at their check points.
   [[nodiscard]] double verified_error() const { return verified_error_ + fast_error_; }
   [[nodiscard]] std::size_t intervals() const { return cells_.size() - 1; }
   /// x where the table ends (Q_l = limit beyond).

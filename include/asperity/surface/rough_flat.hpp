@@ -32,7 +32,7 @@ struct RoughFlatParameters {
   double beta = 0.0;      ///< sigma_s R eta; must exceed 0.01928 (sigma_a real)
   double psi = 0.0;       ///< plasticity index on sigma_a, (2E*/(pi K H)) sqrt(sigma_a/R); > 0
   double nu = 0.3;        ///< Poisson's ratio of the softer material, [0, 0.5)
-  double G_over_E = 0.0;  ///< G*/E*, > 0 (0.2059 for identical materials with nu = 0.3)
+  double G_over_E = 0.0;  ///< G*/E*, in (0, 1) (0.2059 for identical materials, nu = 0.3)
   contact::FrictionParameters friction{};
   SlipScaling slip_scaling = SlipScaling::elastic;
 
@@ -130,7 +130,8 @@ class RoughFlat {
 /// fixed-rule Gauss-Legendre pass over the asperity heights per node; knots sit where Q_l
 /// is less smooth (a slip boundary crossing a jump or extremum of the asperities' slip
 /// length); beyond the table's end Q_l equals Q_max to < 1e-12 relative. A force costs a
-/// square root, a bucket look-up and a quintic (bench/: about a regularized Coulomb law).
+/// look-up by the bits of delta* and a quintic (bench/: 1.5 times a regularized Coulomb law
+/// through the Masing engine).
 class RoughFlatBackbone final : public hysteresis::TabulatedBackbone {
  public:
   RoughFlatBackbone(const RoughFlat& flat, double d_star, double rel_tol = 1e-9);
