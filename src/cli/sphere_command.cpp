@@ -292,6 +292,17 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     results.push_back(evaluate(pair, m, o, params, reading, P, w, delta_amp, force_amp, in));
   }
 
+  // The laws of chapter 3 are small-strain contact mechanics: a << R. Say so when a load
+  // pushes a model past it (the numbers are still what the equations give).
+  std::vector<std::string> warnings;
+  for (const auto& r : results) {
+    if (r.model.a() > 0.3 * pair.R) {
+      warnings.push_back(fmt::format(
+          "{}: contact radius a = {:.4g} mm is {:.3g} R: beyond the small-contact assumption "
+          "(a << R) of the asperity laws (B.1-B.8)",
+          to_string(r.model.model()), r.model.a() * 1e3, r.model.a() / pair.R));
+    }
+  }
   const char* reading_text =
       reading == contact::InterferenceReading::hertz
           ? "hertz (Hertz's interference and contact radius for every model, each with its own "
@@ -333,6 +344,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     }
     for (const auto& sk : skipped) jm[std::string(to_string(sk.model))] = {{"skipped", sk.reason}};
     j["models"] = jm;
+    j["warnings"] = warnings;
     out += j.dump(2) + "\n";
   } else {
     out += fmt::format(
@@ -421,6 +433,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     }
     write_file_atomically(*o.energy_csv, csv.str());
   }
+  for (const auto& text : warnings) fmt::print(stderr, "warning: {}\n", text);
 }
 
 }  // namespace

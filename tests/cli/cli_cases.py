@@ -329,6 +329,14 @@ def huge_load(exe):
             return fail(f"{name}: {m}")
         if m["P"] != 1e300:
             return fail(f"{name}: P = {m['P']}")
+    # Such a load is far outside small-strain contact (a >> R): said in JSON and on stderr.
+    warnings = json.loads(r.stdout)["warnings"]
+    if len(warnings) != 4 or "a << R" not in r.stderr:
+        return fail(f"warnings {warnings}, stderr {r.stderr!r}")
+    # The Table 3.2 load gives none.
+    r = run(exe, args({}, extra=["--json"]))
+    if r.returncode != 0 or json.loads(r.stdout)["warnings"] != []:
+        return fail(f"35 N: {r.returncode} {r.stdout[-300:]}")
     return 0
 
 
