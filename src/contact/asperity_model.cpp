@@ -91,6 +91,24 @@ double AsperityLaws::mu(double w) const {
   }
   return detail::friction_coefficient(friction_law_of(model_), w, nu_, bke_.delta_c, params_);
 }
+AsperityLaws::LoadAndFriction AsperityLaws::load_and_mu(double w) const {
+  if (model_ != ModelName::bke || !(w < 1e150)) {  // beyond: B.4's logarithmic form
+    return {detail::normal_load_star(normal_law_of(model_), w, K_, bke_),
+            detail::friction_coefficient(friction_law_of(model_), w, nu_, bke_.delta_c, params_)};
+  }
+  // B.4 and B.13 with w^alpha and (w/delta_c)^0.46 from one log w (as the separate
+  // functions compute them, to round-off).
+  const double log_w = std::log(w);
+  const double elastic = bke_.load_scale * w * std::sqrt(w);
+  double load = elastic;
+  if (w > bke_.delta_c) {
+    const double gap = std::exp(bke_.alpha * log_w) - bke_.delta_c_alpha;
+    if (gap > 0.0) load = elastic * -std::expm1(-bke_.delta_c_alpha / gap);
+  }
+  const double mu = 0.26 / std::tanh(0.27 * std::exp(0.46 * (log_w - std::log(bke_.delta_c))));
+  return {load, mu};
+}
+
 double AsperityLaws::interference_star(double P_star) const {
   return contact::interference_star(normal_law_of(model_), P_star, nu_);
 }

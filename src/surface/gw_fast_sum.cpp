@@ -150,8 +150,7 @@ FastLoadingSum::Point FastLoadingSum::point(double u) const {
   if (u <= 0.0) return {0.0, 0.0};
   const auto& laws = flat_.laws();
   const double w = u / wc_;
-  const double f = laws.load_star(w);
-  const double m = laws.mu(w);
+  const auto [f, m] = laws.load_and_mu(w);
   const double z = (d_ + u) / s_a_;
   const double W = norm_ * m * f * std::exp(-0.5 * z * z);
   double lambda = m * u;

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <string>
 
+#include "asperity/contact/asperity_model.hpp"
 #include "asperity/contact/friction_law.hpp"
 #include "asperity/contact/normal_law.hpp"
 #include "asperity/core/error.hpp"
@@ -186,6 +187,29 @@ TEST(FrictionLaw, ParseNames) {
   EXPECT_NE(msg.find("cfc, ceb, ke, bke"), std::string::npos) << msg;
   EXPECT_THROW((void)parse_friction_law(""), InvalidInput);
   EXPECT_THROW((void)parse_friction_law("Bke"), InvalidInput);
+}
+
+}  // namespace
+}  // namespace asperity::contact
+
+namespace asperity::contact {
+namespace {
+
+// The fused evaluation of the statistical sums' inner loop gives what B.1-B.4 and
+// B.10-B.13 give separately (BKE computes w^alpha and (w/delta_c)^0.46 from one log w:
+// the same to a few ulp).
+TEST(AsperityLaws, LoadAndMuTogetherEqualTheSeparateLaws) {
+  for (auto model : kAllModels) {
+    for (double nu : {0.2, 0.3, 0.45}) {
+      const AsperityLaws laws(model, nu, FrictionParameters{.mu_cfc = 0.3});
+      for (int i = 0; i <= 200; ++i) {
+        const double w = std::pow(10.0, -6.0 + 9.0 * i / 200.0);
+        const auto both = laws.load_and_mu(w);
+        EXPECT_NEAR(both.load_star, laws.load_star(w), 1e-14 * laws.load_star(w)) << w;
+        EXPECT_NEAR(both.mu, laws.mu(w), 1e-14 * laws.mu(w) + 1e-300) << w;
+      }
+    }
+  }
 }
 
 }  // namespace

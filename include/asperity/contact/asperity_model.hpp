@@ -48,6 +48,13 @@ class AsperityLaws {
   [[nodiscard]] double radius_star(double w) const;             ///< a/a_c (B.5-B.8)
   [[nodiscard]] double mu(double w) const;                      ///< B.10-B.13
   [[nodiscard]] double interference_star(double P_star) const;  ///< inverse of load_star
+  /// P/P_c and mu together at w > 0 (finite, not checked): the statistical sums' inner
+  /// loop. BKE shares one logarithm between B.4 and B.13.
+  struct LoadAndFriction {
+    double load_star;
+    double mu;
+  };
+  [[nodiscard]] LoadAndFriction load_and_mu(double w) const;
   /// Interferences w where the laws switch branch (kinks or jumps of P, a or mu):
   /// CEB 1; KE 1, 6, 6.2, 110; BKE delta_c; none for CFC/Hertz. Quadratures split here.
   [[nodiscard]] std::vector<double> break_points() const;
