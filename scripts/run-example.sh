@@ -8,9 +8,26 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-bash scripts/setup.sh >/dev/null
-cmake --preset default -DPython3_EXECUTABLE="$PWD/.venv/bin/python" >/dev/null
-cmake --build --preset default -j 2 >/dev/null
+# Each step's output goes to a log: quiet when it works; when a step fails, its last
+# lines (the compiler's or cmake's message) are printed and the whole log is kept.
+log=$(mktemp "${TMPDIR:-/tmp}/asperity-run-example.XXXXXX.log")
+step() {
+  local what=$1
+  shift
+  local rc=0
+  "$@" >>"$log" 2>&1 || rc=$?
+  if ((rc != 0)); then
+    echo "run-example.sh: $what failed (exit $rc); the last lines of its output:" >&2
+    tail -n 60 "$log" >&2
+    echo "run-example.sh: full log: $log" >&2
+    exit "$rc"
+  fi
+}
+step "setup (scripts/setup.sh)" bash scripts/setup.sh
+step "configure (cmake --preset default)" \
+  cmake --preset default -DPython3_EXECUTABLE="$PWD/.venv/bin/python"
+step "build (cmake --build --preset default)" cmake --build --preset default -j 2
+rm -f "$log"
 
 mkdir -p out
 ./build/release/src/cli/asperity predict examples/joints/steel420_two_bolts.toml --out out/steel420

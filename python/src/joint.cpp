@@ -7,6 +7,7 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -61,6 +62,18 @@ nb::dict prediction_dict(const JointCase& c, const JointPrediction& p, std::size
   r["R"] = p.R;
   r["beta"] = p.beta;
   r["psi"] = p.psi;
+  nb::list halves;  // per half: where the roughness came from and its parameters
+  for (const auto& h : c.halves) {
+    nb::dict hd;
+    hd["source"] = h.roughness.profiles.empty() ? "parameters" : "profiles";
+    hd["profiles"] = h.roughness.profiles;
+    hd["directions"] = h.roughness.directions;
+    hd["sigma"] = h.roughness.moments.sigma();
+    hd["eta"] = h.roughness.moments.eta();
+    hd["R"] = h.roughness.moments.R();
+    halves.append(hd);
+  }
+  r["halves"] = halves;
   out["roughness"] = r;
   std::vector<double> P, mu, k, Qm, d;
   nb::list loads;
@@ -80,7 +93,8 @@ nb::dict prediction_dict(const JointCase& c, const JointPrediction& p, std::size
     nb::list regimes, loops;
     for (const auto& am : l.amplitudes) {
       a.push_back(am.delta_max);
-      imp.push_back(am.imposed);
+      // NaN: the joint amplitude was given directly (no imposed PZT amplitude).
+      imp.push_back(am.imposed.value_or(std::numeric_limits<double>::quiet_NaN()));
       q.push_back(am.Q_peak);
       e.push_back(am.energy);
       regimes.append(am.regime);
@@ -126,10 +140,13 @@ void bind_joint(nb::module_& m) {
       },
       "case_path"_a, "loop_points"_a = 100,
       "Predictions for a joint case file (TOML, see docs/joints.md): a dict with name, model, "
-      "area, roughness {sigma, eta, R, beta, psi}, arrays preload, mu, stiffness, Q_max, "
+      "area, roughness {sigma, eta, R, beta, psi, halves: per half {source, profiles, "
+      "directions, sigma, eta, R}}, arrays preload, mu, stiffness, Q_max, "
       "separation (one entry per load case), and loads: a list of dicts per load case with "
-      "the same scalars, arrays delta_max, Q_peak, energy, a list regime, loops (dicts of "
-      "arrays delta, Q: steady loops per amplitude) and backbone (SI). SI units.");
+      "the same scalars, arrays delta_max, Q_peak, energy, imposed (the PZT tip amplitude "
+      "each delta_max came from; NaN where the amplitude was given directly), a list regime, "
+      "loops (dicts of arrays delta, Q: steady loops per amplitude) and backbone (SI). SI "
+      "units.");
   m.def(
       "predict_case_text",
       [](const std::string& text, const std::string& base_dir, std::size_t loop_points) {

@@ -22,6 +22,7 @@ void add_validate_command(CLI::App& app, std::function<int()>& action);
 namespace asperity::joint {
 struct JointCase;
 struct JointPrediction;
+struct NamedInput;
 class StagedDirectory;
 }  // namespace asperity::joint
 
@@ -40,5 +41,9 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
                                                 const joint::JointPrediction& p,
                                                 joint::StagedDirectory& dir, bool plots, bool data,
                                                 const std::string& prefix);
+
+/// The profile files a case reads (its halves' scans), as inputs an --out directory must
+/// not hold (predict, analyze --model).
+std::vector<joint::NamedInput> profile_inputs(const joint::JointCase& c);
 
 }  // namespace asperity::cli

@@ -11,7 +11,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <new>
 #include <sstream>
+#include <stdexcept>
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
@@ -310,6 +312,22 @@ int run_guarded(const std::function<void(std::string& out)>& body) {
     return 3;
   } catch (const Error& e) {
     std::cerr << "asperity: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    // Memory exhausted: the input asked for more than this machine holds, which the user
+    // fixes like bad input (a smaller problem): exit 2 (README).
+    std::cerr << "asperity: error: out of memory: the input asks for more memory than is "
+                 "available; make the problem smaller (fewer samples, points or load cases)\n";
+    return 2;
+  } catch (const std::length_error& e) {
+    // A container asked for more elements than it can hold: the same cause as bad_alloc.
+    std::cerr << "asperity: error: the input asks for a container larger than this machine "
+                 "allows ("
+              << e.what() << "); make the problem smaller\n";
+    return 2;
+  } catch (const std::exception& e) {
+    // Anything else (a defect of asperity, not of the input): a message, never an abort.
+    std::cerr << "asperity: error: unexpected failure: " << e.what() << "\n";
     return 1;
   }
   std::cout << out << std::flush;

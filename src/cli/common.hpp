@@ -87,7 +87,9 @@ struct PlotSpec {
 void plot_png(const std::string& path, const PlotSpec& spec);
 
 /// Runs a subcommand body, mapping errors to a one-line message on stderr and exit
-/// codes (2 bad input, 3 numerical failure). `out` is printed only on success.
+/// codes (2 bad input, including a problem too large for the memory: std::bad_alloc and
+/// std::length_error; 3 numerical failure; 1 any other exception). It never lets an
+/// exception escape (no abort). `out` is printed only on success.
 int run_guarded(const std::function<void(std::string& out)>& body);
 
 }  // namespace asperity::cli

@@ -32,7 +32,7 @@ Json amplitude_json(const joint::AmplitudePrediction& a) {
          {"energy", a.energy},
          {"Q_peak_over_Q_max", a.Q_ratio},
          {"regime", a.regime}};
-  if (a.imposed > 0.0) j["imposed"] = a.imposed;
+  if (a.imposed) j["imposed"] = *a.imposed;
   return j;
 }
 
@@ -54,6 +54,53 @@ Json load_json(const joint::LoadPrediction& l) {
   return j;
 }
 
+bool from_profiles(const joint::JointCase& c) {
+  return !c.halves[0].roughness.profiles.empty() || !c.halves[1].roughness.profiles.empty();
+}
+
+// Where each half's roughness came from (parameters, or scans and their directions) and
+// the resulting parameters.
+Json halves_json(const joint::JointCase& c) {
+  Json halves = Json::array();
+  for (const auto& h : c.halves) {
+    const auto& r = h.roughness;
+    Json j{{"source", r.profiles.empty() ? "parameters" : "profiles"}};
+    if (!r.profiles.empty()) {
+      Json scans = Json::array();
+      for (std::size_t i = 0; i < r.profiles.size(); ++i) {
+        scans.push_back(Json{{"file", r.profiles[i]},
+                             {"direction", i < r.directions.size() ? r.directions[i] : ""}});
+      }
+      j["profiles"] = scans;
+    }
+    j["sigma"] = r.moments.sigma();
+    j["eta"] = r.moments.eta();
+    j["R"] = r.moments.R();
+    j["m0"] = r.moments.m0;
+    j["m2"] = r.moments.m2;
+    j["m4"] = r.moments.m4;
+    halves.push_back(j);
+  }
+  return halves;
+}
+
+// How scans were turned into moments (the settings of [profiles], docs/roughness.md).
+Json processing_json(const joint::ProfileSettings& s) {
+  const auto cutoff = [](double v) { return v > 0.0 ? Json(v) : Json("none"); };
+  Json j{{"level", std::string(surface::to_string(s.level))},
+         {"filter", s.filter.lc > 0.0 || s.filter.ls > 0.0 ? "ISO 16610-21 Gaussian" : "none"},
+         {"lc", cutoff(s.filter.lc)},
+         {"ls", cutoff(s.filter.ls)},
+         {"end", std::string(surface::to_string(s.filter.end))},
+         {"truncation", s.filter.truncation},
+         {"rule", std::string(surface::to_string(s.rule))},
+         {"rule_applies_to",
+          "two scans of a half (max- and min-slope directions): m2, m4 of the equivalent "
+          "isotropic surface by this mean, m0 by the arithmetic mean (Eq. 5.1)"}};
+  if (s.dx) j["dx"] = *s.dx;
+  return j;
+}
+
 }  // namespace
 
 Json prediction_json(const joint::JointCase& c, const joint::JointPrediction& p) {
@@ -66,6 +113,9 @@ Json prediction_json(const joint::JointCase& c, const joint::JointPrediction& p)
   j["roughness"] = Json{{"sigma", p.sigma},    {"eta", p.eta},       {"R", p.R},
                         {"beta", p.beta},      {"psi", p.psi},       {"m0", p.combined.m0},
                         {"m2", p.combined.m2}, {"m4", p.combined.m4}};
+  j["roughness"]["halves"] = halves_json(c);
+  j["roughness"]["combined_by"] = "Eq. 5.1: the halves' spectral moments m0, m2, m4 added";
+  if (from_profiles(c)) j["roughness"]["processing"] = processing_json(c.profile_settings);
   j["force_scale_KHA0"] = p.force_scale;
   if (!c.imposed.empty()) {
     j["apparatus"] = Json{{"pzt_stiffness", c.apparatus.pzt_stiffness},
@@ -90,6 +140,25 @@ std::string prediction_summary(const joint::JointCase& c, const joint::JointPred
       "R = {:.4g} um, beta = {:.4f}, psi = {:.4g}\n",
       contact::to_string(c.model), c.area * 1e6, p.sigma * 1e6, p.eta * 1e-12, p.R * 1e6, p.beta,
       p.psi);
+  if (from_profiles(c)) {
+    const auto& ps = c.profile_settings;
+    const auto cut = [](double v, double scale, const char* unit) {
+      return v > 0.0 ? fmt::format("{:.4g} {}", v * scale, unit) : std::string("none");
+    };
+    for (std::size_t i = 0; i < 2; ++i) {
+      const auto& r = c.halves[i].roughness;
+      std::string files;
+      for (const auto& f : r.profiles) files += (files.empty() ? "" : ", ") + f;
+      s += fmt::format("half {}: sigma = {:.4g} um, eta = {:.4g} um^-2, R = {:.4g} um ({})\n",
+                       i + 1, r.moments.sigma() * 1e6, r.moments.eta() * 1e-12, r.moments.R() * 1e6,
+                       files.empty() ? "given as parameters" : files);
+    }
+    s += fmt::format(
+        "scans: level {}, Gaussian filter lc = {}, ls = {} (end effects {}), rule {} (Eq. "
+        "5.1)\n",
+        surface::to_string(ps.level), cut(ps.filter.lc, 1e3, "mm"), cut(ps.filter.ls, 1e6, "um"),
+        surface::to_string(ps.filter.end), surface::to_string(ps.rule));
+  }
   const bool torques = c.bolts.has_value();
   s += fmt::format("\n{:>11} {}{:>10} {:>10} {:>8} {:>10} {:>10} {:>9}\n", "preload[N]",
                    torques ? fmt::format("{:>14} ", "torque/bolt[Nm]") : "", "p[MPa]", "d[um]",
@@ -107,7 +176,7 @@ std::string prediction_summary(const joint::JointCase& c, const joint::JointPred
   for (const auto& l : p.loads) {
     if (l.amplitudes.empty()) continue;
     const bool imposed = std::any_of(l.amplitudes.begin(), l.amplitudes.end(),
-                                     [](const auto& a) { return a.imposed > 0.0; });
+                                     [](const auto& a) { return a.imposed.has_value(); });
     s += fmt::format("\nP = {:.4g} N (gross slip from delta_max = {:.3g} um):\n", l.preload,
                      l.gross_slip_amplitude * 1e6);
     s += fmt::format("{:>14}{}{:>14} {:>10} {:>14} {:>9}  {}\n", "",
@@ -115,8 +184,8 @@ std::string prediction_summary(const joint::JointCase& c, const joint::JointPred
                      "Q_peak[N]", "energy[uJ]", "Q/Q_max", "regime");
     for (const auto& a : l.amplitudes) {
       s += fmt::format("{:>14}{}{:>14.4g} {:>10.4g} {:>14.5g} {:>9.5f}  {}\n", "",
-                       imposed ? (a.imposed > 0.0 ? fmt::format("{:>13.4g} ", a.imposed * 1e6)
-                                                  : fmt::format("{:>13} ", "-"))
+                       imposed ? (a.imposed ? fmt::format("{:>13.4g} ", *a.imposed * 1e6)
+                                            : fmt::format("{:>13} ", "-"))
                                : "",
                        a.delta_max * 1e6, a.Q_peak, a.energy * 1e6, a.Q_ratio, a.regime);
     }
@@ -182,7 +251,11 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
   };
   if (data) write_file_atomically(file("summary.json"), prediction_json(c, p).dump(2) + "\n");
   // loops.csv: steady loops for every preload and amplitude (long format).
-  std::vector<std::vector<double>> lc(4), ec(7);
+  std::vector<std::vector<double>> lc(4);
+  // energy.csv: numbers with 12 digits, and an empty imposed[um] field where the joint
+  // amplitude was given directly (no PZT amplitude to report).
+  std::string energy_csv =
+      "preload[N],delta_max[um],Q_peak[N],energy[J],Q_peak_over_Q_max,gross_slip,imposed[um]\n";
   for (const auto& l : p.loads) {
     for (const auto& a : l.amplitudes) {
       const auto [x, Q] = joint::steady_loop(*l.backbone, a.delta_max, 100);
@@ -192,23 +265,17 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
         lc[2].push_back(x[i] * 1e6);
         lc[3].push_back(Q[i]);
       }
-      ec[0].push_back(l.preload);
-      ec[1].push_back(a.delta_max * 1e6);
-      ec[2].push_back(a.Q_peak);
-      ec[3].push_back(a.energy);
-      ec[4].push_back(a.Q_ratio);
-      ec[5].push_back(a.regime == "gross slip" ? 1.0 : 0.0);
-      ec[6].push_back(a.imposed * 1e6);
+      energy_csv += fmt::format("{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{},{}\n", l.preload,
+                                a.delta_max * 1e6, a.Q_peak, a.energy, a.Q_ratio,
+                                a.regime == "gross slip" ? 1 : 0,
+                                a.imposed ? fmt::format("{:.12g}", *a.imposed * 1e6) : "");
     }
   }
   const bool amplitudes = !lc[0].empty();
   if (data && amplitudes) {
     core::write_csv_table(file("loops.csv"), {"preload[N]", "delta_max[um]", "delta[um]", "Q[N]"},
                           lc);
-    core::write_csv_table(file("energy.csv"),
-                          {"preload[N]", "delta_max[um]", "Q_peak[N]", "energy[J]",
-                           "Q_peak_over_Q_max", "gross_slip", "imposed[um]"},
-                          ec);
+    write_file_atomically(file("energy.csv"), energy_csv);
   }
   if (!plots) return written;
   const bool sweep = p.loads.size() > 1;
@@ -288,6 +355,15 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
   return written;
 }
 
+std::vector<joint::NamedInput> profile_inputs(const joint::JointCase& c) {
+  std::vector<joint::NamedInput> in;
+  for (std::size_t h = 0; h < 2; ++h) {
+    for (const auto& f : c.halves[h].roughness.profiles)
+      in.push_back({fmt::format("a profile of half {} of the case", h + 1), f});
+  }
+  return in;
+}
+
 void add_predict_command(CLI::App& app, std::function<int()>& action) {
   auto o = std::make_shared<PredictOptions>();
   auto* cmd = app.add_subcommand(
@@ -304,9 +380,13 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
   cmd->callback([o, &action] {
     action = [o] {
       return run_guarded([o](std::string& out) {
-        // Refuse a foreign --out directory before the work.
-        if (o->out) joint::require_replaceable_output(*o->out, *o->out);
+        // Refuse an --out that is or holds an input, or a foreign directory, before the work.
+        if (o->out) {
+          joint::require_output_apart_from_inputs(*o->out, {{"the case file", o->case_file}});
+          joint::require_replaceable_output(*o->out, *o->out);
+        }
         const auto c = joint::read_case_file(o->case_file);
+        if (o->out) joint::require_output_apart_from_inputs(*o->out, profile_inputs(c));
         std::vector<std::string> written;
         const bool bar = c.preloads.size() > 1 && isatty(STDERR_FILENO);
         const auto progress = [&](std::size_t i, std::size_t n) {

@@ -5,6 +5,7 @@
 
 #include <toml++/toml.h>
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -51,7 +52,7 @@ HalfRoughness half_roughness_from_files(const std::vector<std::string>& files,
   std::array<surface::SpectralMoments, 2> m{};
   std::size_t count = 0;
   for (const auto& f : files) {
-    const auto map = surface::read_height_file(f);
+    const auto map = surface::read_height_file(f, {.dx = settings.dx});
     if (!map.is_profile()) {
       throw InvalidInput(
           fmt::format("{}: areal files are not supported in case files; give line "
@@ -189,13 +190,34 @@ class Reader {
     return *t;
   }
 
+  // What to write instead of a string for a dimensionless key: the number it starts
+  // with, if any, without quotes and without the unit.
+  static std::string dimensionless_advice(const std::string& name, const std::string& text) {
+    const auto first = text.find_first_not_of(" \t");
+    const char* begin = text.data() + (first == std::string::npos ? text.size() : first);
+    const char* end = text.data() + text.size();
+    double x = 0.0;
+    const auto [ptr, ec] = std::from_chars(begin, end, x);
+    if (ec != std::errc() || !std::isfinite(x)) {
+      return fmt::format(
+          "{} is dimensionless: write a bare number without quotes or unit, e.g. {} = 0.3", name,
+          name);
+    }
+    const std::string rest(ptr, end);
+    if (rest.find_first_not_of(" \t") == std::string::npos) {
+      return fmt::format("a dimensionless value is a bare number, not a string: write {} = {}",
+                         name, std::string(begin, ptr));
+    }
+    return fmt::format(
+        "{} is dimensionless and takes no unit: write {} = {} (no quotes, no \"{}\")", name, name,
+        std::string(begin, ptr), rest.substr(rest.find_first_not_of(" \t")));
+  }
+
   // A quantity: a string with units, or a bare number for dimensionless ones.
   double quantity(const toml::node& n, core::Dimension d, const std::string& key) const {
     if (const auto s = n.value<std::string>(); s && d == dim::dimensionless) {
-      // One spelling for dimensionless values: a bare number (nu = 0.24).
-      fail_value(&n, key,
-                 fmt::format("a dimensionless value is a bare number, not a string: write {} = {}",
-                             key.substr(key.rfind('.') + 1), *s));
+      // One spelling for dimensionless values: a bare number (nu = 0.24), without a unit.
+      fail_value(&n, key, dimensionless_advice(key.substr(key.rfind('.') + 1), *s));
     }
     try {
       if (n.is_floating_point() || n.is_integer()) {
@@ -287,6 +309,21 @@ class Reader {
   std::string base_;
 };
 
+// The profile processing's messages suggest `asperity roughness` flags; in a case file
+// the same settings are keys of [profiles].
+std::string case_file_hint(std::string msg) {
+  const std::pair<std::string_view, std::string_view> flags[] = {
+      {"--end regression", "end = \"regression\" in [profiles]"},
+      {"(--dx, e.g. 0.5um)", "(dx = \"0.5 um\" in [profiles])"},
+      {"so --dx must not be given", "so [profiles] dx must not be given"},
+      {"a shorter --lc", "a shorter lc in [profiles]"}};
+  for (const auto& [flag, key] : flags) {
+    for (auto at = msg.find(flag); at != std::string::npos; at = msg.find(flag, at + key.size()))
+      msg.replace(at, flag.size(), key);
+  }
+  return msg;
+}
+
 contact::Material parse_material(const Reader& r, const toml::node& n, const std::string& where) {
   const auto* t = n.as_table();
   if (!t)
@@ -341,7 +378,7 @@ HalfRoughness parse_roughness(const Reader& r, const toml::table& half, const st
   try {
     return half_roughness_from_files(files, settings);
   } catch (const InvalidInput& e) {
-    r.fail(prof, w, e.what());
+    r.fail(prof, w, case_file_hint(e.what()));
   }
 }
 
@@ -398,7 +435,7 @@ JointCase parse_case(std::string_view text, const std::string& source,
   if (const auto* p = root.get("profiles")) {
     const auto* t = p->as_table();
     if (!t) r.fail(p, "profiles", "must be a table");
-    r.check_keys(*t, "profiles", {"lc", "ls", "rule", "level"});
+    r.check_keys(*t, "profiles", {"lc", "ls", "end", "truncation", "rule", "level", "dx"});
     try {
       if (const auto* n = t->get("lc")) {
         const auto s = n->value<std::string>();
@@ -409,6 +446,19 @@ JointCase parse_case(std::string_view text, const std::string& source,
         const auto s = n->value<std::string>();
         c.profile_settings.filter.ls =
             (s && *s == "none") ? 0.0 : r.quantity(*n, dim::length, "profiles.ls");
+      }
+      if (t->get("end")) {
+        c.profile_settings.filter.end =
+            surface::parse_end_effects(r.string(*t, "end", "profiles", ""), "profiles.end");
+      }
+      if (const auto* n = t->get("dx")) {
+        const double dx = r.quantity(*n, dim::length, "profiles.dx");
+        if (!(dx > 0.0) || !std::isfinite(dx)) r.fail_value(n, "profiles.dx", "must be > 0");
+        c.profile_settings.dx = dx;
+      }
+      if (const auto* n = t->get("truncation")) {
+        c.profile_settings.filter.truncation =
+            r.quantity(*n, dim::dimensionless, "profiles.truncation");
       }
       c.profile_settings.filter.validate();
       if (t->get("rule")) {

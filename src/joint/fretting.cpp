@@ -847,8 +847,24 @@ FrettingData synthetic_experiment(std::shared_ptr<const hysteresis::Backbone> ba
       !(o.noise_delta >= 0.0) || !(o.noise_Q >= 0.0)) {
     throw InvalidInput("synthetic experiment: sample rate and stiffnesses must be > 0, noise >= 0");
   }
+  const double per_period = o.sample_rate / o.excitation.frequency;
+  if (!(per_period >= kMinSamplesPerPeriod)) {
+    throw InvalidInput(fmt::format(
+        "synthetic experiment: sample_rate = {:.6g} Hz gives {:.3g} samples per period at "
+        "frequency = {:.6g} Hz; at least {:.0f} are needed for the analysis to resolve the "
+        "loop (sample_rate >= {:.6g} Hz)",
+        o.sample_rate, per_period, o.excitation.frequency, kMinSamplesPerPeriod,
+        kMinSamplesPerPeriod * o.excitation.frequency));
+  }
+  const double samples = std::floor(o.excitation.duration() * o.sample_rate) + 1.0;
+  if (!(samples <= kMaxSyntheticSamples)) {
+    throw InvalidInput(fmt::format(
+        "synthetic experiment: {:.4g} samples (sample_rate = {:.6g} Hz over (cycles + 1)/frequency "
+        "= {:.6g} s) exceed the limit of {:.0e}; lower the sample rate or the number of cycles",
+        samples, o.sample_rate, o.excitation.duration(), kMaxSyntheticSamples));
+  }
   const double compliance = 1.0 / o.pzt_stiffness + 1.0 / o.load_cell_stiffness;
-  const auto n = static_cast<std::size_t>(std::floor(o.excitation.duration() * o.sample_rate)) + 1;
+  const auto n = static_cast<std::size_t>(samples);
   FrettingData d;
   d.source = "synthetic";
   d.t.resize(n);

@@ -34,6 +34,54 @@ void require_replaceable_output(const fs::path& dir, const std::string& given) {
       given, kOutputMarker));
 }
 
+namespace {
+
+// The path absolute and normalized as written, and with symbolic links resolved.
+std::vector<fs::path> path_forms(const std::string& p) {
+  std::error_code ec;
+  auto lexical = fs::absolute(fs::path(p), ec).lexically_normal();
+  if (ec) lexical = fs::path(p).lexically_normal();
+  while (!lexical.has_filename() && lexical.has_relative_path()) lexical = lexical.parent_path();
+  std::vector<fs::path> forms{lexical};
+  const auto canonical = fs::weakly_canonical(lexical, ec);
+  if (!ec && canonical != lexical) forms.push_back(canonical);
+  return forms;
+}
+
+// True when `inner` is `outer` or lies below it (component-wise, not by text prefix).
+bool within(const fs::path& inner, const fs::path& outer) {
+  auto i = inner.begin();
+  for (auto o = outer.begin(); o != outer.end(); ++o, ++i) {
+    if (i == inner.end() || *i != *o) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void require_output_apart_from_inputs(const std::string& dir,
+                                      const std::vector<NamedInput>& inputs) {
+  const auto out_forms = path_forms(dir);
+  for (const auto& in : inputs) {
+    if (in.path.empty()) continue;
+    for (const auto& i : path_forms(in.path)) {
+      for (const auto& o : out_forms) {
+        if (i == o) {
+          throw InvalidInput(
+              fmt::format("--out \"{}\" names {} \"{}\": give the output directory its own name",
+                          dir, in.what, in.path));
+        }
+        if (within(i, o)) {
+          throw InvalidInput(fmt::format(
+              "--out \"{}\" holds {} \"{}\": asperity replaces its output directory as a "
+              "whole, which would delete the input; choose another --out or move the input",
+              dir, in.what, in.path));
+        }
+      }
+    }
+  }
+}
+
 StagedDirectory::StagedDirectory(const std::string& final_dir, const std::string& what)
     : given_(final_dir) {
   if (final_dir.empty()) throw InvalidInput("--out: empty directory name");

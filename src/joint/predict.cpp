@@ -50,11 +50,12 @@ LoadPrediction predict_load(const surface::RoughFlat& flat, double preload,
   out.backbone = std::make_shared<hysteresis::ScaledBackbone>(table, s->sigma, s->force);
   // Gross slip: beyond the table's end every asperity slips (Q_l = Q_max to < 1e-12).
   out.gross_slip_amplitude = table->table_end() * s->sigma;
-  std::vector<std::pair<double, double>> cases;  // (delta_max, imposed)
-  for (double a : amplitudes) cases.emplace_back(a, 0.0);
+  std::vector<std::pair<double, std::optional<double>>> cases;  // (delta_max, imposed)
+  for (double a : amplitudes) cases.emplace_back(a, std::nullopt);
   for (double D : imposed)
     cases.emplace_back(joint_amplitude(*out.backbone, D, apparatus_compliance), D);
-  std::stable_sort(cases.begin(), cases.end());
+  std::stable_sort(cases.begin(), cases.end(),
+                   [](const auto& l, const auto& r) { return l.first < r.first; });
   for (const auto& [a, D] : cases) {
     AmplitudePrediction p;
     p.delta_max = a;

@@ -227,6 +227,151 @@ elif case == "analyze_runs_power_law":
     out = os.path.join(tmp, "pl")
     run("analyze", *files, "--P", "526N", "--out", out)
     check(os.path.getsize(os.path.join(out, "energy_vs_force.png")) > 0, "no energy plot")
+elif case == "outputs_apart_from_inputs":
+    # An output never names an input (nor holds one): exit 2, the input untouched.
+    import shutil
+    case_file = os.path.join(tmp, "c.toml")
+    shutil.copy(os.path.join(ex, "steel420_two_bolts.toml"), case_file)
+    original = open(case_file).read()
+
+    def refused(args, needle):
+        p = run(*args, code=2)
+        check(needle in p.stderr, f"{args}: stderr lacks {needle!r}: {p.stderr}")
+        check(p.stdout == "", p.stdout)
+        check(open(case_file).read() == original, f"{args}: the case file was changed")
+
+    refused(["synthesize", case_file, "--imposed", "6.75um", "--out", case_file],
+            "the case file and --out both name")
+    # The same file through another spelling of its path.
+    refused(["synthesize", case_file, "--imposed", "6.75um", "--out",
+             os.path.join(tmp, "sub", "..", "c.toml")], "both name")
+    refused(["predict", case_file, "--out", case_file], 'names the case file')
+    data = os.path.join(tmp, "d.csv")
+    run("synthesize", case_file, "--imposed", "6.75um", "--out", data)
+    data_text = open(data).read()
+    refused(["analyze", data, "--P", "234N", "--out", data], "names the data file")
+    refused(["analyze", data, "--P", "234N", "--model", case_file, "--out", case_file],
+            "names the --model case file")
+    check(open(data).read() == data_text, "the data file was changed")
+    # An earlier asperity output that holds an input would be replaced as a whole.
+    out = os.path.join(tmp, "out")
+    run("predict", case_file, "--out", out, "--no-plots")
+    inner = os.path.join(out, "c.toml")
+    shutil.copy(case_file, inner)
+    p = run("predict", inner, "--out", out, "--no-plots", code=2)
+    check("holds the case file" in p.stderr and os.path.exists(inner), p.stderr)
+    shutil.copy(data, os.path.join(out, "d.csv"))
+    p = run("analyze", os.path.join(out, "d.csv"), "--P", "234N", "--out", out, code=2)
+    check("holds the data file" in p.stderr and os.path.exists(os.path.join(out, "d.csv")), p.stderr)
+    # A scan the case reads is an input too.
+    scans = os.path.join(tmp, "scans")
+    os.makedirs(scans)
+    for f in ["pzt_max.csv", "pzt_min.csv", "lc_max.csv", "lc_min.csv"]:
+        shutil.copy(os.path.join(src, "examples", "roughness", f), scans)
+    prof = write_case(open(os.path.join(ex, "steel420_profiles.toml")).read().replace(
+        "../roughness/", "scans/"), "prof.toml")
+    scan = os.path.join(scans, "pzt_max.csv")
+    scan_text = open(scan).read()
+    p = run("synthesize", prof, "--imposed", "6.75um", "--out", scan, code=2)
+    check("a profile of half 1 of the case and --out both name" in p.stderr, p.stderr)
+    run("predict", prof, "--out", scans, code=2)
+    check(open(scan).read() == scan_text, "a scan was changed")
+elif case == "synthesize_limits":
+    cf = os.path.join(ex, "steel420_two_bolts.toml")
+    out = os.path.join(tmp, "s.csv")
+    # 1e15 samples: refused at once with the flags and the limit named (was: bad_alloc, 134).
+    p = run("synthesize", cf, "--imposed", "6.75um", "--rate", "1e9Hz", "--cycles", "1000000",
+            "--out", out, code=2)
+    check("--rate = 1e9Hz" in p.stderr and "--cycles = 1000000" in p.stderr and
+          "limit of 1e+07" in p.stderr, p.stderr)
+    # 1 sample per period (was: 12 samples written): at least 50 per period.
+    p = run("synthesize", cf, "--imposed", "6.75um", "--rate", "1Hz", "--out", out, code=2)
+    check("--rate = 1Hz gives 1 samples per period at --frequency = 1Hz" in p.stderr and
+          "--rate >= 50 Hz" in p.stderr, p.stderr)
+    run("synthesize", cf, "--imposed", "6.75um", "--rate", "49Hz", "--out", out, code=2)
+    check(not os.path.exists(out), "a file was written on error")
+    # The bound itself: 50 Hz at 1 Hz, 11 s -> 551 samples, which analyze can read.
+    p = run("synthesize", cf, "--imposed", "6.75um", "--rate", "50Hz", "--out", out)
+    check("551 samples" in p.stdout, p.stdout)
+    run("analyze", out, "--P", "234N")
+    for flag, value in [("--frequency", "0Hz"), ("--preload", "-1N"), ("--imposed", "0um"),
+                        ("--cycles", "0")]:
+        p = run("synthesize", cf, "--imposed", "6.75um", flag, value, "--out", out, code=2)
+        check(flag in p.stderr, p.stderr)
+elif case == "out_of_memory":
+    # Memory exhausted (address space limited to 200 MB; 9e6 samples need 4 x 72 MB):
+    # a message and exit 2 (README), not an abort; nothing written.
+    import resource
+
+    def limit():
+        resource.setrlimit(resource.RLIMIT_AS, (200 << 20, 200 << 20))
+
+    out = os.path.join(tmp, "big.csv")
+    p = subprocess.run([exe, "synthesize", os.path.join(ex, "steel420_two_bolts.toml"),
+                        "--imposed", "6.75um", "--rate", "818kHz", "--out", out],
+                       capture_output=True, text=True, preexec_fn=limit)
+    check(p.returncode == 2 and "out of memory" in p.stderr,
+          f"exit {p.returncode}: {p.stderr}")
+    check(not os.path.exists(out) and os.listdir(tmp) == [], os.listdir(tmp))
+elif case == "analyze_power_law_note":
+    # Noise-free runs at 526 N, all in partial slip by the model (Q/Q_s 0.59-1.0): the
+    # exponent is above 3 as the model's is near saturation; no run is called gross slip.
+    cf = os.path.join(ex, "steel420_two_bolts.toml")
+    files = [synth(f"q{a}.csv", "--imposed", f"{a}um", "--preload", "526N", "--noise-delta",
+                   "0um", "--noise-Q", "0N") for a in (3, 5, 8, 12)]
+    p = run("analyze", *files[:3], "--P", "526N", "--model", cf, "--json")
+    j = json.loads(p.stdout)
+    check(all(r["model"]["regime"] == "partial slip" for r in j["runs"]), j["runs"])
+    law = j["power_law"]
+    check(law["exponent"] > 3 and "at or above 3" in law["note"] and "Q_s" in law["note"], law)
+    check(j["warnings"] == [] and "gross slip" not in p.stderr, (j["warnings"], p.stderr))
+    p = run("analyze", *files[:3], "--P", "526N")
+    check("note: n = " in p.stdout and "warning" not in p.stdout, p.stdout)
+    # With a run the model puts in gross slip (12 um imposed): a warning naming it.
+    p = run("analyze", *files[1:], "--P", "526N", "--model", cf, "--json")
+    j = json.loads(p.stdout)
+    check(any(files[3] in w and "gross slip" in w for w in j["warnings"]), j["warnings"])
+    check(files[3] in p.stderr, p.stderr)
+elif case == "predict_energy_csv_imposed":
+    # Amplitudes given directly have no imposed value: an empty field, not 0; the JSON
+    # leaves the key out.
+    out = os.path.join(tmp, "ss")
+    run("predict", os.path.join(ex, "steel_smooth.toml"), "--out", out, "--no-plots")
+    rows = open(os.path.join(out, "energy.csv")).read().splitlines()
+    check(rows[0].endswith(",imposed[um]"), rows[0])
+    cells = [r.split(",") for r in rows[1:]]
+    check(all(len(c) == 7 for c in cells), rows)
+    direct = [c for c in cells if c[6] == ""]
+    imposed = [c for c in cells if c[6] != ""]
+    check(len(direct) == 3 * 4 and len(imposed) == 3 * 8, (len(direct), len(imposed)))
+    check(all(float(c[6]) > 0 for c in imposed), imposed)
+    s = json.load(open(os.path.join(out, "summary.json")))
+    amps = s["loads"][0]["amplitudes"]
+    check(sum("imposed" in a for a in amps) == 8, amps)
+elif case == "predict_profile_provenance":
+    # summary.json of a case from scans records the files, the processing and each half's
+    # parameters; the halves' m0 add to the combined one (Eq. 5.1).
+    out = os.path.join(tmp, "prof")
+    p = run("predict", os.path.join(ex, "steel420_profiles.toml"), "--out", out, "--no-plots")
+    check("half 1: sigma = 1.763 um" in p.stdout and "pzt_max.csv" in p.stdout, p.stdout)
+    r = json.load(open(os.path.join(out, "summary.json")))["roughness"]
+    h = r["halves"]
+    check([x["source"] for x in h] == ["profiles", "profiles"], h)
+    check([os.path.basename(f["file"]) for f in h[0]["profiles"]] == ["pzt_max.csv", "pzt_min.csv"]
+          and [os.path.basename(f["file"]) for f in h[1]["profiles"]] == ["lc_max.csv", "lc_min.csv"], h)
+    check({f["direction"] for f in h[0]["profiles"]} == {"max_slope", "min_slope"}, h)
+    proc = r["processing"]
+    check(proc["level"] == "line" and proc["rule"] == "geometric" and proc["end"] == "discard"
+          and abs(proc["lc"] - 0.8e-3) < 1e-12 and abs(proc["ls"] - 20e-6) < 1e-12, proc)
+    # Table 5.4: PZT half 1.763 um, load-cell half 2.015 um (the scans reproduce it to 0.3 %).
+    check(abs(h[0]["sigma"] - 1.763e-6) < 3e-3 * 1.763e-6 and
+          abs(h[1]["sigma"] - 2.015e-6) < 3e-3 * 2.015e-6, h)
+    for m in ["m0", "m2", "m4"]:  # Eq. 5.1: moments add (round-off only)
+        check(abs(h[0][m] + h[1][m] - r[m]) < 1e-12 * r[m], (m, r))
+    # A case from parameters says so and has no processing block.
+    s = json.loads(run("predict", os.path.join(ex, "steel420_two_bolts.toml"), "--json").stdout)
+    check([x["source"] for x in s["roughness"]["halves"]] == ["parameters"] * 2 and
+          "processing" not in s["roughness"], s["roughness"])
 elif case == "validate_report":
     out = os.path.join(tmp, "val")
     p = run("validate", "--out", out)
@@ -259,6 +404,25 @@ elif case == "bad.no_partial_output":
 elif case == "bad.nu_string":
     bad_case(BASE.replace("nu = 0.24, G", 'nu = "0.24", G', 1),
              'case.toml:12: joint.half[1].material.nu = "0.24": a dimensionless value is a bare number')
+elif case == "bad.nu_with_unit":
+    # A unit on a dimensionless value: drop it (not "write nu = 0.24 GPa").
+    bad_case(BASE.replace("nu = 0.24, G", 'nu = "0.24 GPa", G', 1),
+             'joint.half[1].material.nu = "0.24 GPa": nu is dimensionless and takes no unit: '
+             'write nu = 0.24 (no quotes, no "GPa")')
+elif case == "bad.profile_too_short":
+    # The hint names the case file's key, not `asperity roughness`'s --end flag.
+    rows = open(os.path.join(src, "examples", "roughness", "pzt_max.csv")).read().splitlines()[:1200]
+    with open(os.path.join(tmp, "short.csv"), "w") as f:
+        f.write("\n".join(rows) + "\n")
+    text = open(os.path.join(ex, "steel420_profiles.toml")).read().replace(
+        '"../roughness/pzt_max.csv", "../roughness/pzt_min.csv"', '"short.csv"').replace(
+        "../roughness/", os.path.join(src, "examples", "roughness") + "/")
+    p = run("predict", write_case(text), code=2)
+    check('end = "regression" in [profiles]' in p.stderr and "--end" not in p.stderr, p.stderr)
+    s = json.loads(run("predict", write_case(text.replace('rule = "geometric"',
+                                                          'rule = "geometric"\nend = "regression"')),
+                       "--json").stdout)
+    check(s["roughness"]["processing"]["end"] == "regression", s["roughness"])
 elif case.startswith("bad.data"):
     rows = [(i * 0.01, 1e-6 * math.sin(2 * math.pi * i * 0.01), 100 * math.sin(2 * math.pi * i * 0.01))
             for i in range(500)]

@@ -218,6 +218,14 @@ TEST(JointCase, MessagesNameTheKeyAndEchoTheValue) {
                    "a bare number"),
             std::string::npos)
       << e;
+  // A unit on a dimensionless value: the advice drops the unit (not "write nu = 0.24 GPa").
+  e = error_of(replaced(kCase, "nu = 0.24, G", "nu = \"0.24 GPa\", G"));
+  EXPECT_NE(e.find("joint.half[1].material.nu = \"0.24 GPa\": nu is dimensionless and takes "
+                   "no unit: write nu = 0.24 (no quotes, no \"GPa\")"),
+            std::string::npos)
+      << e;
+  e = error_of(replaced(kCase, "nu = 0.24, G", "nu = \"abc\", G"));
+  EXPECT_NE(e.find("nu is dimensionless: write a bare number"), std::string::npos) << e;
   // Grammar of the half count.
   const std::string k(kCase);
   const auto second = k.find("[[joint.half]]", k.find("[[joint.half]]") + 1);
@@ -279,11 +287,16 @@ TEST(JointCase, ImposedAmplitudesThroughTheApparatus) {
   for (std::size_t i = 1; i < l.amplitudes.size(); ++i)
     EXPECT_LE(l.amplitudes[i - 1].delta_max, l.amplitudes[i].delta_max);
   const double comp = 1.0 / 40e6 + 1.0 / 1462e6;
+  std::size_t given = 0;
   for (const auto& a : l.amplitudes) {
-    if (a.imposed == 0.0) continue;
+    if (!a.imposed) {  // given directly: no PZT amplitude (not a 0 that reads as one)
+      ++given;
+      continue;
+    }
     // Fig. 5.7: the springs in series, delta + c Q_l(delta) = imposed (root to 50 bits).
-    EXPECT_LT(rel(a.delta_max + comp * a.Q_peak, a.imposed), 1e-12);
+    EXPECT_LT(rel(a.delta_max + comp * a.Q_peak, *a.imposed), 1e-12);
   }
+  EXPECT_EQ(given, 2U);
 }
 
 TEST(JointCase, TorqueSweepAndPerBoltTorque) {
@@ -307,6 +320,55 @@ TEST(JointCase, ProfilesGiveTable54) {
   EXPECT_LT(rel(m.R(), 30.14e-6), 1e-3);
   EXPECT_EQ(c.halves[0].roughness.directions.size(), 2U);
   EXPECT_LT(rel(c.preloads[0], 526.0), 1e-3);
+}
+
+TEST(JointCase, ProfileSettingsAreThoseOfTheRoughnessCommand) {
+  // [profiles] takes the settings of `asperity roughness` (--end, --truncation, --dx too),
+  // and its errors suggest those keys, not the command's flags.
+  namespace fs = std::filesystem;
+  const auto c = parse_case(std::string(kCase) +
+                                "[profiles]\nend = \"regression\"\ntruncation = 2\ndx = "
+                                "\"0.5 um\"\nlevel = \"mean\"\nrule = \"arithmetic\"\n",
+                            "case.toml");
+  EXPECT_EQ(c.profile_settings.filter.end, surface::EndEffects::regression);
+  EXPECT_DOUBLE_EQ(c.profile_settings.filter.truncation, 2.0);
+  ASSERT_TRUE(c.profile_settings.dx.has_value());
+  EXPECT_DOUBLE_EQ(*c.profile_settings.dx, 0.5e-6);
+  EXPECT_EQ(c.profile_settings.level, surface::Levelling::mean);
+  EXPECT_EQ(c.profile_settings.rule, surface::IsotropicRule::arithmetic);
+  auto e = error_of(std::string(kCase) + "[profiles]\ntruncation = 5\n");
+  EXPECT_NE(e.find("truncation"), std::string::npos) << e;
+  e = error_of(std::string(kCase) + "[profiles]\ndx = \"-1 um\"\n");
+  EXPECT_NE(e.find("profiles.dx = \"-1 um\": must be > 0"), std::string::npos) << e;
+  // A scan shorter than the default filter (lc = 0.8 mm discards 0.8 mm at each end):
+  // 1.2 mm of the shipped 4 mm scan.
+  const auto dir = fs::temp_directory_path() / "asperity_joint_short_scan";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  {
+    std::ifstream in(kExamples + "../roughness/pzt_max.csv");
+    std::ofstream out(dir / "short.csv");
+    std::string line;
+    for (int i = 0; i < 1200 && std::getline(in, line); ++i) out << line << "\n";
+  }
+  const std::string scans = "profiles = [\"short.csv\"]";
+  const auto text = replaced(kCase,
+                             "roughness = { sigma = \"1.763 um\", eta = \"3.34e-4 um^-2\", R = "
+                             "\"40.76 um\" }",
+                             scans);
+  try {
+    (void)parse_case(text, "case.toml", dir.string());
+    FAIL() << "a scan shorter than the filter was accepted";
+  } catch (const InvalidInput& ex) {
+    const std::string m = ex.what();
+    EXPECT_NE(m.find("end = \"regression\" in [profiles]"), std::string::npos) << m;
+    EXPECT_EQ(m.find("--"), std::string::npos) << m;  // no command-line flag
+  }
+  const auto ok =
+      parse_case(text + "[profiles]\nend = \"regression\"\n", "case.toml", dir.string());
+  EXPECT_GT(ok.halves[0].roughness.moments.sigma(), 0.0);
+  EXPECT_EQ(ok.halves[0].roughness.profiles.size(), 1U);
+  fs::remove_all(dir);
 }
 
 // ---------------------------------------------------------------- predictions
@@ -422,6 +484,46 @@ TEST(JointOutput, StagedDirectoryNeverTouchesForeignFiles) {
                           std::filesystem::directory_iterator{}),
             4);  // precious, late, empty, file: no temporary siblings left
   std::filesystem::remove_all(base);
+}
+
+TEST(JointOutput, OutputDirectoryNeverIsOrHoldsAnInput) {
+  namespace fs = std::filesystem;
+  const auto base = fs::temp_directory_path() / "asperity_joint_inputs_test";
+  fs::remove_all(base);
+  fs::create_directories(base / "out" / "sub");
+  std::ofstream(base / "case.toml") << "x";
+  std::ofstream(base / "out" / "sub" / "data.csv") << "x";
+  const auto b = base.string();
+  const auto message = [](const std::string& dir, const std::vector<NamedInput>& in) {
+    try {
+      require_output_apart_from_inputs(dir, in);
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  // Equal (also through "." and ".."), and holding an input at any depth: refused,
+  // naming the input.
+  EXPECT_NE(
+      message(b + "/case.toml", {{"the case file", b + "/case.toml"}}).find("names the case file"),
+      std::string::npos);
+  EXPECT_NE(message(b + "/out/../case.toml", {{"the case file", b + "/./case.toml"}})
+                .find("names the case file"),
+            std::string::npos);
+  EXPECT_NE(message(b + "/out/", {{"the data file", b + "/out/sub/data.csv"}})
+                .find("holds the data file"),
+            std::string::npos);
+  EXPECT_NE(message(b, {{"the data file", b + "/out/sub/data.csv"}}).find("holds"),
+            std::string::npos);
+  // Through a symbolic link to the output directory.
+  fs::create_directory_symlink(base / "out", base / "link");
+  EXPECT_NE(message(b + "/out", {{"the data file", b + "/link/sub/data.csv"}}).find("holds"),
+            std::string::npos);
+  // Siblings and a common text prefix ("out" and "out2/...") are not inside.
+  EXPECT_EQ(message(b + "/out2", {{"the data file", b + "/out/sub/data.csv"}}), "");
+  EXPECT_EQ(message(b + "/ou", {{"the data file", b + "/out/sub/data.csv"}}), "");
+  EXPECT_EQ(message(b + "/out/sub/new", {{"the case file", b + "/case.toml"}}), "");
+  fs::remove_all(base);
 }
 
 TEST(JointPredict, RegimeFromTheBackbone) {
@@ -764,6 +866,33 @@ TEST(AnalyzeFretting, BadDataIsRejected) {
               std::string::npos)
         << e.what();
   }
+}
+
+TEST(AnalyzeFretting, SyntheticExperimentLimits) {
+  // Fewer than kMinSamplesPerPeriod samples per period, or more than kMaxSyntheticSamples
+  // in all: InvalidInput naming the fields, before anything is allocated (a 1e15-sample
+  // request returns at once instead of exhausting the memory).
+  const auto backbone = std::make_shared<hysteresis::JenkinsBackbone>(1e6, 1.0);
+  SyntheticOptions o;
+  o.excitation = {.amplitude = 1e-6, .frequency = 1.0, .cycles = 10};
+  const auto message = [&](double rate, int cycles) {
+    o.sample_rate = rate;
+    o.excitation.cycles = cycles;
+    try {
+      (void)synthetic_experiment(backbone, o);
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message(1.0, 10).find("sample_rate = 1 Hz gives 1 samples per period"),
+            std::string::npos);
+  EXPECT_NE(message(49.0, 10).find("at least 50"), std::string::npos);
+  EXPECT_EQ(message(kMinSamplesPerPeriod, 10), "");  // the bound itself is allowed
+  EXPECT_NE(message(1e9, 1000000).find("exceed the limit of 1e+07"), std::string::npos);
+  // Just above: (cycles + 1)/f x rate + 1 = 10 s x 1 MHz + 1 = 1e7 + 1 samples.
+  EXPECT_NE(message(1e6, 9).find("exceed the limit"), std::string::npos);
+  EXPECT_EQ(message(1e4, 2), "");
 }
 
 TEST(AnalyzeFretting, Eq53Excitation) {

@@ -91,10 +91,15 @@ def test_power_law_exponent_and_imposed_amplitudes():
     r = asperity.predict(os.path.join(EX, "steel_smooth.toml"))
     ld = r["loads"][0]
     c = 1 / 38e6 + 1 / 1462e6
-    imposed = ld["imposed"] > 0
-    assert imposed.sum() == 8
+    # NaN marks the 4 amplitudes given directly (no PZT amplitude), never 0.
+    imposed = ~np.isnan(ld["imposed"])
+    assert imposed.sum() == 8 and len(ld["imposed"]) == 12
+    assert np.all(ld["imposed"][imposed] > 0)
     np.testing.assert_allclose(ld["delta_max"][imposed] + c * ld["Q_peak"][imposed],
                                ld["imposed"][imposed], rtol=1e-12)
+    # Where the roughness came from: both halves given as parameters here.
+    assert [h["source"] for h in r["roughness"]["halves"]] == ["parameters", "parameters"]
+    assert r["roughness"]["halves"][0]["sigma"] == pytest.approx(0.387e-6, rel=1e-9)  # Table 6.2
     gross = ld["delta_max"] >= ld["gross_slip_amplitude"]
     assert [g == (reg == "gross slip") for g, reg in zip(gross, ld["regime"])] == [True] * len(gross)
 
@@ -124,3 +129,15 @@ def test_plot_helpers(tmp_path):
     # resolved runs, the left-out one, the fit, two guides
     assert len(ax.lines) == 5
     ax.figure.savefig(tmp_path / "r.png")
+
+
+def test_synthetic_experiment_limits():
+    # At least 50 samples per period, at most 1e7 samples (fretting.hpp): refused before
+    # anything is allocated, naming the fields.
+    case = os.path.join(EX, "steel420_two_bolts.toml")
+    with pytest.raises(asperity.InvalidInput, match=r"gives 10 samples per period.*at least 50"):
+        asperity.synthetic_experiment(case, 526.0, 6.75e-6, sample_rate=10.0)
+    with pytest.raises(asperity.InvalidInput, match=r"exceed the limit of 1e\+07"):
+        asperity.synthetic_experiment(case, 526.0, 6.75e-6, sample_rate=1e9, cycles=1000000)
+    d = asperity.synthetic_experiment(case, 526.0, 6.75e-6, sample_rate=50.0)
+    assert len(d["t"]) == 551  # the bound itself: 11 s at 50 Hz, both ends

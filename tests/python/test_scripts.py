@@ -32,3 +32,47 @@ def test_figures_ch4_script(tmp_path):
     assert "Table 4.1" in out
     for fig in ("4_4", "4_5", "4_6", "4_7"):
         assert (tmp_path / f"fig_{fig}.png").stat().st_size > 10_000
+
+
+def _fake_tree(tmp_path, cmake_body):
+    """A copy of scripts/run-example.sh with stand-ins for setup.sh, cmake and the CLI."""
+    import shutil
+    (tmp_path / "scripts").mkdir()
+    shutil.copy(ROOT / "scripts" / "run-example.sh", tmp_path / "scripts")
+    (tmp_path / "scripts" / "setup.sh").write_text("echo setting up\n")
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    cmake = bin_dir / "cmake"
+    cmake.write_text("#!/bin/sh\n" + cmake_body)
+    cmake.chmod(0o755)
+    cli = tmp_path / "build" / "release" / "src" / "cli"
+    cli.mkdir(parents=True)
+    (cli / "asperity").write_text("#!/bin/sh\necho predicted\n")
+    (cli / "asperity").chmod(0o755)
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    env = {"PATH": f"{bin_dir}:/usr/bin:/bin", "TMPDIR": str(logs)}
+    return subprocess.run(["bash", str(tmp_path / "scripts" / "run-example.sh")],
+                          capture_output=True, text=True, env=env), logs
+
+
+def test_run_example_is_quiet_when_the_build_works(tmp_path):
+    p, logs = _fake_tree(tmp_path, "echo configured; echo '[66/66] Linking'\n")
+    assert p.returncode == 0, p.stderr
+    assert p.stdout == "predicted\n" and p.stderr == ""
+    assert list(logs.iterdir()) == []  # the log is removed on success
+
+
+def test_run_example_shows_the_compiler_error_when_the_build_fails(tmp_path):
+    # The build's own message reaches the terminal, not just ninja's "subcommand failed".
+    p, logs = _fake_tree(tmp_path, 'if [ "$1" = "--build" ]; then\n'
+                         '  echo "src/joint/case.cpp:12:3: error: expected ; before }"\n'
+                         '  echo "ninja: build stopped: subcommand failed."; exit 1\nfi\n'
+                         "echo configured\n")
+    assert p.returncode == 1
+    assert "build (cmake --build --preset default) failed (exit 1)" in p.stderr
+    assert "src/joint/case.cpp:12:3: error: expected ; before }" in p.stderr
+    assert "predicted" not in p.stdout  # stopped before running the example
+    kept = list(logs.iterdir())
+    assert len(kept) == 1 and str(kept[0]) in p.stderr  # the full log is kept and named
+    assert "setting up" in kept[0].read_text()

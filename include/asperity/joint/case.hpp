@@ -47,11 +47,15 @@ struct Half {
   HalfRoughness roughness;
 };
 
-/// How profile files are turned into moments (docs/roughness.md).
+/// How profile files are turned into moments (docs/roughness.md): the settings of
+/// `asperity roughness` (--level, --lc, --ls, --end, --truncation, --rule, --dx), set in a
+/// case file's [profiles] table.
 struct ProfileSettings {
   surface::Levelling level = surface::Levelling::line;
   surface::GaussianFilter filter{};
   surface::IsotropicRule rule = surface::IsotropicRule::geometric;
+  /// Sampling interval [m] of single-column (z only) scans; unset for files with x.
+  std::optional<double> dx;
 };
 
 /// Moments of one joint half from its scans: one scan is taken as isotropic, two as

@@ -152,6 +152,20 @@ struct Eq53Excitation {
   [[nodiscard]] double operator()(double t) const;
 };
 
+/// Fewest samples per period of Eq. 5.3 a synthetic experiment takes. analyze_fretting
+/// smooths over 1/50 period and fits the reversal stiffness on the samples within
+/// AnalysisOptions::stiffness_window of each reversal (about 1/5 period at the default
+/// 0.35), which needs degree + 3 = 5 samples: below 25 samples per period the analysis
+/// cannot fit it at all, and at 25 the trapezoidal energy per cycle is already 1 % low
+/// on noise-free data of the ch. 5 joint (0.26 % at 50, 0.06 % at 100). 50 keeps the
+/// moving average at least one sample wide and the error of the energy below 0.3 %.
+inline constexpr double kMinSamplesPerPeriod = 50.0;
+/// Most samples a synthetic experiment writes: 1e7 rows are ~500 MB of CSV and ~1 GB of
+/// memory while writing (4 columns of doubles plus the text), and 900 times the
+/// thesis's records (11 s at 1 kHz, section 5.3); more is a typing slip, not an
+/// experiment, and would exhaust the memory instead of failing clearly.
+inline constexpr double kMaxSyntheticSamples = 1e7;
+
 /// 1-DOF apparatus of Fig. 5.7 and the sensors of section 5.2.
 struct SyntheticOptions {
   Eq53Excitation excitation;
@@ -167,7 +181,9 @@ struct SyntheticOptions {
 /// `backbone`, SI) sits in series with the apparatus springs, so at each sample
 /// Delta = delta + Q(delta) (1/k_pzt + 1/k_lc) is solved for the joint displacement
 /// delta; Gaussian noise is added to the recorded delta and Q (seeded). Delta is
-/// recorded without noise (the PZT's strain gauge).
+/// recorded without noise (the PZT's strain gauge). Throws InvalidInput unless
+/// sample_rate / frequency >= kMinSamplesPerPeriod and the record (duration x
+/// sample_rate + 1 samples) holds at most kMaxSyntheticSamples.
 [[nodiscard]] FrettingData synthetic_experiment(
     std::shared_ptr<const hysteresis::Backbone> backbone, const SyntheticOptions& options);
 

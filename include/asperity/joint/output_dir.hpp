@@ -48,4 +48,17 @@ class StagedDirectory {
 /// exist, or it is a directory that is empty or carries the marker file.
 void require_replaceable_output(const std::filesystem::path& dir, const std::string& given);
 
+/// An input of a command: what it is ("the case file", "data file") and its path.
+struct NamedInput {
+  std::string what;
+  std::string path;
+};
+
+/// Throws InvalidInput when the output directory `dir` (the --out text) is one of the
+/// `inputs` or holds one of them at any depth: the directory is replaced as a whole, so
+/// the input would be deleted. Paths are compared absolute and normalized ("." and
+/// ".."), both as written and with symbolic links resolved.
+void require_output_apart_from_inputs(const std::string& dir,
+                                      const std::vector<NamedInput>& inputs);
+
 }  // namespace asperity::joint

@@ -5,6 +5,7 @@
 // fretting regime. SI units throughout.
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,10 +16,11 @@ namespace asperity::joint {
 
 struct AmplitudePrediction {
   double delta_max = 0.0;  ///< displacement amplitude of the joint [m]
-  double imposed = 0.0;    ///< PZT tip amplitude it came from [m] (0: given directly)
-  double Q_peak = 0.0;     ///< force at delta_max on the backbone [N]
-  double energy = 0.0;     ///< energy per symmetric cycle [J]
-  double Q_ratio = 0.0;    ///< Q_peak/Q_max
+  /// PZT tip amplitude it came from [m]; empty when the joint amplitude was given directly.
+  std::optional<double> imposed;
+  double Q_peak = 0.0;   ///< force at delta_max on the backbone [N]
+  double energy = 0.0;   ///< energy per symmetric cycle [J]
+  double Q_ratio = 0.0;  ///< Q_peak/Q_max
   /// "gross slip" when delta_max reaches LoadPrediction::gross_slip_amplitude (every
   /// asperity slips: Q_peak = Q_max to the backbone table's resolution), else "partial slip".
   std::string regime;
