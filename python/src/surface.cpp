@@ -193,7 +193,9 @@ void bind_surface(nb::module_& m) {
       },
       "z"_a, "dx"_a, "level"_a = "line", "lc"_a = 0.8e-3, "ls"_a = 20e-6, "truncation"_a = 1.0,
       "end"_a = "discard",
-      "The CLI's pipeline for one scan: level, Gaussian band-pass (None = no cut-off), moments.");
+      "The CLI's pipeline for one scan: level, Gaussian band-pass (None = no cut-off), moments.\n"
+      "Raises InvalidInput when the scan is too short for the filter (naming the longest lc it\n"
+      "allows) or is flat after levelling/filtering (only round-off left, e.g. a straight line).");
   m.def(
       "areal_moments",
       [](const Array2& z, double dx, double dy, const std::string& level_how,

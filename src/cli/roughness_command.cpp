@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -87,12 +89,56 @@ std::string trim(std::string s) {
   return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
 }
 
+// A length as the user wrote it: "20um" is 20 x 1e-6 = 1.9999999999999998e-05 m after
+// the unit's scaling; rounded to 15 significant digits (any decimal of up to 15 digits
+// survives the trip through a double, DBL_DIG) it is the decimal 2e-05 m again, which
+// the JSON echoes. The change is below 1e-15 relative.
+double as_typed(double v) {
+  return std::strtod(fmt::format("{:.15g}", v).c_str(), nullptr);
+}
+
 // "none" or a length.
 double cutoff(const std::string& text, const std::string& flag) {
   if (text == "none" || text == "0") return 0.0;
-  const double v = core::parse_quantity(text, dim::length, flag);
+  const double v = as_typed(core::parse_quantity(text, dim::length, flag));
   if (!(v > 0.0)) throw InvalidInput(fmt::format("{} = \"{}\" must be > 0 (or none)", flag, text));
   return v;
+}
+
+// Before anything is read or computed: an output must not be a directory, must not
+// overwrite an input file (a --surface file), and outputs must not share a file.
+void check_output_paths(const RoughnessOptions& o) {
+  if (!o.plot) return;
+  const std::string& plot = *o.plot;
+  std::error_code ec;
+  if (std::filesystem::is_directory(plot, ec)) {
+    throw InvalidInput(fmt::format(
+        "--plot = \"{}\" is a directory: give the PNG file to write, e.g. --plot roughness.png",
+        plot));
+  }
+  if (std::filesystem::path(plot).filename().empty()) {
+    throw InvalidInput(fmt::format(
+        "--plot = \"{}\" names no file: give the PNG file to write, e.g. --plot roughness.png",
+        plot));
+  }
+  const std::vector<std::pair<std::string, std::string>> outputs = {{"--plot", plot}};
+  require_distinct_outputs(outputs);
+  for (std::size_t k = 0; k < o.surfaces.size(); ++k) {
+    for (auto f : split(o.surfaces[k], ',')) {
+      f = trim(f);
+      for (const std::string tag : {"@max", "@min"}) {
+        if (f.size() > tag.size() && f.ends_with(tag)) f.resize(f.size() - tag.size());
+      }
+      for (const auto& out : outputs) {
+        try {
+          require_distinct_outputs({{fmt::format("--surface #{}", k + 1), f}, out});
+        } catch (const InvalidInput& e) {
+          throw InvalidInput(
+              fmt::format("{} ({} would overwrite an input file)", e.what(), out.first));
+        }
+      }
+    }
+  }
 }
 
 SpectralMoments parse_params(const std::string& text, std::size_t index) {
@@ -106,12 +152,21 @@ SpectralMoments parse_params(const std::string& text, std::size_t index) {
     }
     const std::string key = trim(item.substr(0, eq));
     const std::string value = trim(item.substr(eq + 1));
+    // Each value must be > 0; the message names the flag occurrence and echoes the text.
+    auto positive = [&](core::Dimension d) {
+      const double v = core::parse_quantity(value, d, fmt::format("{} {}", flag, key));
+      if (!(std::isfinite(v) && v > 0.0)) {
+        throw InvalidInput(
+            fmt::format("{}: {} = \"{}\" is not allowed: it must be > 0", flag, key, value));
+      }
+      return v;
+    };
     if (key == "sigma") {
-      sigma = core::parse_quantity(value, dim::length, flag + " sigma");
+      sigma = positive(dim::length);
     } else if (key == "eta") {
-      eta = core::parse_quantity(value, dim::inverse_area, flag + " eta");
+      eta = positive(dim::inverse_area);
     } else if (key == "R") {
-      R = core::parse_quantity(value, dim::length, flag + " R");
+      R = positive(dim::length);
     } else {
       throw InvalidInput(fmt::format("{}: unknown key \"{}\": use sigma, eta and R", flag, key));
     }
@@ -267,6 +322,18 @@ AnalysedSurface analyse_files(const std::string& list, std::size_t index, const 
                                                 surface::average_moments(mn, wn), s.rule);
   }
   return out;
+}
+
+// A number right-aligned in a table column of `width` characters: fixed with
+// `digits` decimals (or scientific), scientific when fixed would print a non-zero value
+// as 0, with fewer digits when it would not leave one blank before it, so that huge or
+// tiny values keep the columns.
+std::string cell(double v, std::size_t width, int digits, bool scientific = false) {
+  scientific = scientific || (v != 0.0 && std::abs(v) < 0.5 * std::pow(10.0, -digits));
+  std::string s =
+      scientific ? fmt::format("{:.{}e}", v, digits) : fmt::format("{:.{}f}", v, digits);
+  for (int d = digits; s.size() + 1 > width && d >= 0; --d) s = fmt::format("{:.{}e}", v, d);
+  return fmt::format("{:>{}}", s, width);
 }
 
 Json nullable(std::optional<double> v) {
@@ -551,8 +618,9 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
         fmt::format("--filter = \"{}\" is not allowed: use gaussian or none", o.filter));
   }
   s.filter.validate();
+  check_output_paths(o);
   if (o.dx) {
-    s.text.dx = core::parse_quantity(*o.dx, dim::length, "--dx");
+    s.text.dx = as_typed(core::parse_quantity(*o.dx, dim::length, "--dx"));
     if (!(*s.text.dx > 0.0)) throw InvalidInput(fmt::format("--dx = \"{}\" must be > 0", *o.dx));
   }
   const auto pair = material_pair(o);
@@ -655,10 +723,11 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
                     "eta[um^-2]", "R[um]", "beta", "alpha", "sigma_a[um]", pair ? "      psi" : "");
     auto row = [&](const std::string& name, const SpectralMoments& m) {
       const auto sa = try_sigma_a(m);
-      out += fmt::format("{:<12}{:>11.4f}{:>14.4e}{:>11.4f}{:>8.4f}{:>8.3f}{:>13}{}\n", name,
-                         m.sigma() * 1e6, m.eta() * 1e-12, m.R() * 1e6, m.beta(), m.alpha(),
-                         sa ? fmt::format("{:.4f}", *sa * 1e6) : "-",
-                         pair ? fmt::format("{:>9.4f}", surface::plasticity_index(*pair, m)) : "");
+      out += fmt::format("{:<12}{}{}{}{}{}{}{}\n", name, cell(m.sigma() * 1e6, 11, 4),
+                         cell(m.eta() * 1e-12, 14, 4, true), cell(m.R() * 1e6, 11, 4),
+                         cell(m.beta(), 8, 4), cell(m.alpha(), 8, 3),
+                         sa ? cell(*sa * 1e6, 13, 4) : fmt::format("{:>13}", "-"),
+                         pair ? cell(surface::plasticity_index(*pair, m), 9, 4) : "");
     };
     for (std::size_t k = 0; k < surfaces.size(); ++k)
       row(fmt::format("{}", k + 1), surfaces[k].moments);

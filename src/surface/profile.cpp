@@ -128,6 +128,10 @@ Profile HeightMap::as_profile() const {
         fmt::format("{}: an areal map ({} x {}) is not a single profile", source, nx, ny));
   }
   auto r = rows(2);
+  if (invalid_count() == z.size()) {
+    throw InvalidInput(
+        fmt::format("{}: the file holds no valid points (all {} are invalid)", source, z.size()));
+  }
   if (r.empty()) {
     throw InvalidInput(
         fmt::format("{}: the profile has fewer than 2 consecutive valid points", source));

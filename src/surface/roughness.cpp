@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
@@ -258,6 +259,59 @@ std::size_t GaussianFilter::min_points(double dx) const {
   return n;
 }
 
+double GaussianFilter::longest_lc(std::size_t n, double dx) const {
+  if (n < 2 || !(dx > 0.0)) return 0.0;
+  // min_points() = ceil(lc/dx) + 1 [+ 2 floor(ct lc/dx) + 2 floor(ct ls/dx) with discard]
+  // <= n: solved for lc with one point to spare for the ceiling, then rounded down to 3
+  // significant digits (a value to type) and checked.
+  GaussianFilter f = *this;
+  const double hs = (end == EndEffects::discard && ls > 0.0)
+                        ? static_cast<double>(half_width(ls, truncation, dx))
+                        : 0.0;
+  const double per_lc = end == EndEffects::discard ? 1.0 + 2.0 * truncation : 1.0;
+  const double room = (static_cast<double>(n) - 2.0 - 2.0 * hs) * dx;
+  if (!(room > 0.0)) return 0.0;
+  const double estimate = room / per_lc;
+  const double step = std::pow(10.0, std::floor(std::log10(estimate)) - 2.0);
+  // Checked a hair above the value, so that the decimal a user types back fits too.
+  for (auto digits = static_cast<long>(std::floor(estimate / step)); digits > 0; --digits) {
+    const double v = static_cast<double>(digits) * step;
+    if (!(v > ls)) return 0.0;  // no lc above ls fits (ls < lc is required)
+    f.lc = v * (1.0 + 1e-9);
+    if (f.min_points(dx) <= n) return v;
+  }
+  return 0.0;
+}
+
+std::string GaussianFilter::shorter_lc_advice(std::size_t n, double dx) const {
+  // The ISO 3274 / ISO 4288 series of cut-off wavelengths.
+  constexpr double kStandard[] = {8e-3, 2.5e-3, 0.8e-3, 0.25e-3, 0.08e-3};
+  const double best = longest_lc(n, dx);
+  std::string advice;
+  if (best > 0.0) {
+    advice = fmt::format("a shorter lc (--lc): this profile allows up to {:.3g} mm", best * 1e3);
+    for (double c : kStandard) {
+      if (c <= best && c > ls) {
+        advice += fmt::format(" (the largest standard cut-off below it: {:.3g} mm)", c * 1e3);
+        break;
+      }
+    }
+  } else {
+    advice = fmt::format("a shorter ls (--ls): no lc above ls = {:.6g} um fits in this profile",
+                         ls * 1e6);
+  }
+  if (end == EndEffects::discard) {
+    GaussianFilter r = *this;
+    r.end = EndEffects::regression;
+    const double reg = r.longest_lc(n, dx);
+    if (reg > 0.0) {
+      advice +=
+          fmt::format("; or --end regression (no run-in/run-out: lc up to {:.3g} mm)", reg * 1e3);
+    }
+  }
+  return advice;
+}
+
 Profile GaussianFilter::apply(const Profile& profile) const {
   validate();
   profile.validate();
@@ -275,11 +329,10 @@ Profile GaussianFilter::apply(const Profile& profile) const {
   if (profile.z.size() < need) {
     throw InvalidInput(fmt::format(
         "{}: the profile ({} points, {:.6g} mm) is shorter than the filter needs ({} points, "
-        "{:.6g} mm for lc = {:.6g} mm, ls = {:.6g} um, end effects '{}'): use a longer scan or a "
-        "shorter lc{}",
+        "{:.6g} mm for lc = {:.6g} mm, ls = {:.6g} um, end effects '{}'): use a longer scan or {}",
         name, profile.z.size(), profile.length() * 1e3, need,
         static_cast<double>(need - 1) * profile.dx * 1e3, lc * 1e3, ls * 1e6, to_string(end),
-        end == EndEffects::discard ? " (or --end regression)" : ""));
+        shorter_lc_advice(profile.z.size(), profile.dx)));
   }
   Profile r = profile;
   if (lc > 0.0) {
@@ -320,12 +373,55 @@ SpectralMoments spectral_moments(const Profile& profile) {
           s4 / (static_cast<double>(n - 2) * dx * dx * dx * dx)};
 }
 
+namespace {
+
+// Refuses a processed profile whose heights, slopes or curvatures are at round-off
+// level. Levelling and filtering compute each height from sums of the raw heights, so
+// a height left over carries an error of a few eps |z| (eps = 2.2e-16), growing like
+// sqrt(n) eps for the sums over n points (2e-13 at 1e6 points); the differences behind
+// m2 and m4 carry the same. The rms of the raw heights about zero, S, is the scale of
+// that error: a straight line or a constant levelled away leaves only it, and m0, m2, m4
+// of round-off give absurd parameters (R = 4.6e17 um for z = 0.001 x). Measured heights
+// resolve at best ~1e-9 of their magnitude (24-bit converters; float32 storage: 6e-8),
+// so rms heights, differences (m2 dx^2) and second differences (m4 dx^4) below 1e-12 S
+// are taken as round-off: three orders of magnitude from either side.
+constexpr double kRoundOffLevel = 1e-12;
+
+void refuse_round_off(const Profile& raw, const ProcessedProfile& p, Levelling levelling,
+                      const GaussianFilter& filter) {
+  double ss = 0.0;
+  for (double v : raw.z) ss += v * v;
+  const double scale = std::sqrt(ss / static_cast<double>(raw.z.size()));
+  const double dx = p.filtered.dx;
+  const struct {
+    const char* what;
+    double rms;
+  } left[] = {{"rms height", std::sqrt(p.moments.m0)},
+              {"rms difference of neighbouring heights (m2)", std::sqrt(p.moments.m2) * dx},
+              {"rms second difference of the heights (m4)", std::sqrt(p.moments.m4) * dx * dx}};
+  for (const auto& l : left) {
+    if (!(l.rms <= kRoundOffLevel * scale)) continue;  // NaN is left to validate()
+    std::string steps;
+    if (levelling != Levelling::none) steps = fmt::format("levelling ({})", to_string(levelling));
+    if (!filter.is_none()) steps += steps.empty() ? "filtering" : " and filtering";
+    throw InvalidInput(fmt::format(
+        "{}: the profile is flat{}: its {} is {:.3g} m, at round-off level (below {:g} of the "
+        "raw heights' rms {:.6g} m), so there is no roughness to analyse (a straight line or a "
+        "constant?)",
+        source_name(raw), steps.empty() ? "" : " after " + steps, l.what, l.rms, kRoundOffLevel,
+        scale));
+  }
+}
+
+}  // namespace
+
 ProcessedProfile process_profile(const Profile& raw, Levelling levelling,
                                  const GaussianFilter& filter) {
   ProcessedProfile p;
   p.levelled = level(raw, levelling);
   p.filtered = filter.is_none() ? p.levelled : filter.apply(p.levelled);
   p.moments = spectral_moments(p.filtered);
+  refuse_round_off(raw, p, levelling, filter);
   p.moments.validate(source_name(raw));
   return p;
 }
@@ -338,23 +434,43 @@ DirectionalMoments areal_moments(const HeightMap& map, Levelling levelling,
         fmt::format("{}: a profile has no second direction; give two scans", map.source));
   }
   filter.validate();
+  const std::size_t invalid = map.invalid_count();
+  if (invalid == map.z.size()) {
+    throw InvalidInput(fmt::format("{}: the file holds no valid points (all {} x {} are invalid)",
+                                   map.source, map.nx, map.ny));
+  }
   DirectionalMoments out;
   auto run = [&](const std::vector<Profile>& profiles, double spacing, const char* axis,
                  std::size_t& count) {
     const std::size_t min_pts = filter.is_none() ? 3 : filter.min_points(spacing);
     std::vector<SpectralMoments> m;
     std::vector<double> w;
+    std::size_t longest = 0;
     for (const auto& p : profiles) {
+      longest = std::max(longest, p.z.size());
       if (p.z.size() < min_pts) continue;
       const auto r = process_profile(p, levelling, filter);
       m.push_back(r.moments);
       w.push_back(static_cast<double>(r.filtered.z.size()));
     }
     if (m.empty()) {
+      const std::string cut =
+          invalid > 0 ? fmt::format(" ({} of the {} points are invalid)", invalid, map.z.size())
+                      : std::string();
+      const std::string runs = longest >= 2 ? fmt::format("the longest run has {}", longest)
+                                            : std::string("no 2 neighbours are valid");
+      if (filter.is_none()) {
+        throw InvalidInput(fmt::format(
+            "{}: no profile along {} has {} consecutive valid points, the least for the moments "
+            "({}){}",
+            map.source, axis, min_pts, runs, cut));
+      }
       throw InvalidInput(fmt::format(
-          "{}: no profile along {} is long enough for the filter ({} points of {:.6g} um needed, "
-          "the map has {} x {}): use a shorter --lc",
-          map.source, axis, min_pts, spacing * 1e6, map.nx, map.ny));
+          "{}: no profile along {} is long enough for the filter: {} consecutive valid points "
+          "({:.6g} mm at {:.6g} um) needed, {}{}; use {}",
+          map.source, axis, min_pts, static_cast<double>(min_pts - 1) * spacing * 1e3,
+          spacing * 1e6, runs, cut,
+          longest >= 2 ? filter.shorter_lc_advice(longest, spacing) : "another file"));
     }
     count = m.size();
     return average_moments(m, w);

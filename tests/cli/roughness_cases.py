@@ -160,6 +160,104 @@ def check(exe, src, case, tmp):
         return 0
     if case == "bad_params":
         return bad(exe, ["--params", "sigma=1um,eta=abc,R=40um"], "eta")
+    if case == "negative_params":
+        # The flag occurrence and the user's own text, not "sigma = -1e-06".
+        return bad(exe, ["--params", "sigma=1um,eta=3e-4um^-2,R=40um",
+                         "--params", "sigma=-1um,eta=3e-4um^-2,R=40um"],
+                   ["--params #2", 'sigma = "-1um"', "must be > 0"])
+    if case == "plot_overwrites_input":
+        # An output naming an input (plain, through "..", or with a @max tag) is refused
+        # before anything is written: the input is left as it was.
+        with open(f"{ex}/pzt_min.csv", "rb") as f:
+            original = f.read()
+        inp = write_bytes("pm.csv", original)
+        os.mkdir(os.path.join(tmp, "sub"))
+        for surfaces, plot, label in (
+                (["--surface", inp], inp, "--surface #1"),
+                (["--surface", f"{ex}/pzt_max.csv", "--surface", inp],
+                 os.path.join(tmp, "sub", "..", "pm.csv"), "--surface #2"),
+                (["--surface", f"{ex}/pzt_max.csv@max,{inp}@min"], inp, "--surface #1")):
+            if bad(exe, surfaces + ["--plot", plot], [label, "--plot", "would overwrite an input file"]):
+                return 1
+            with open(inp, "rb") as f:
+                if f.read() != original:
+                    return fail("the input file was changed")
+        return 0
+    if case == "plot_is_directory":
+        return bad(exe, ["--surface", f"{ex}/pzt_min.csv", "--plot", tmp],
+                   ["--plot", tmp, "is a directory"])
+    if case == "flat_profile":
+        # z = 0.001 x exactly (the heights are x scaled by 1e-3: x in mm, z in um): only
+        # round-off is left after levelling; it used to give R = 4.6e17 um.
+        path = write("line.csv", "x[mm],z[um]\n" + "".join(f"{i * 0.0003:.4f},{i * 0.0003:.4f}\n" for i in range(5000)))
+        for extra, step in ((["--filter", "none"], "flat after levelling (line)"),
+                            (["--lc", "0.25mm"], "flat after levelling (line) and filtering")):
+            if bad(exe, ["--surface", path] + extra, [path, step, "round-off"]):
+                return 1
+        return 0
+    if case == "dektak_default_filter":
+        # 1.5 mm is too short for lc = 0.8 mm; the message names the longest lc that fits
+        # (9600 points of 0.15625 um, ls = 20 um: 0.486 mm, see roughness_test.cpp) and the
+        # documented command works.
+        dektak = os.path.join(src, "tests", "data", "dektak-1.csv")
+        if bad(exe, ["--surface", dektak], [dektak, "shorter than the filter needs",
+                                            "a shorter lc (--lc): this profile allows up to 0.486 mm",
+                                            "0.25 mm"]):
+            return 1
+        for argv in (["--lc", "0.486mm"], ["--lc", "0.25mm", "--ls", "2.5um"]):
+            r = run(exe, ["--surface", dektak, "--json"] + argv)
+            if r.returncode != 0:
+                return fail(f"{argv}: {r.stderr}")
+        return 0
+    if case == "x3p_no_valid_points":
+        # Every point masked: said as such, also without a filter (it used to ask for a
+        # shorter --lc).
+        def all_masked(m):
+            m["bindata/valid.bin"] = b"\0\0"
+            m["main.xml"] = m["main.xml"].replace(fx.md5(fx.mask_bytes(15, fx.SUR_INVALID)).encode(),
+                                                  fx.md5(b"\0\0").encode())
+        members = dict(fx.sur_int32_mask())
+        all_masked(members)
+        path = x3p_file("masked.x3p", list(members.items()))
+        for extra in ([], ["--filter", "none"]):
+            if bad(exe, ["--surface", path] + extra, [path, "holds no valid points", "all 5 x 3 are invalid"]):
+                return 1
+            r = run(exe, ["--surface", path] + extra)
+            if "--lc" in r.stderr:
+                return fail(f"asks for a shorter --lc: {r.stderr}")
+        return 0
+    if case == "json_cutoffs_as_typed":
+        # The cut-offs are echoed as the decimals given (20um is 2e-05 m, not
+        # 1.9999999999999998e-05 m).
+        for argv, lc, ls in (([], 0.0008, 2e-05), (["--lc", "0.25mm", "--ls", "8um"], 0.00025, 8e-06),
+                             (["--lc", "800um", "--ls", "0.02mm"], 0.0008, 2e-05)):
+            r = run(exe, ["--surface", f"{ex}/pzt_min.csv", "--json"] + argv)
+            if r.returncode != 0:
+                return fail(r.stderr)
+            f = json.loads(r.stdout)["surfaces"][0]["filter"]
+            if repr(f["lc"]) != repr(lc) or repr(f["ls"]) != repr(ls):
+                return fail(f"{argv}: lc = {f['lc']!r}, ls = {f['ls']!r}")
+        return 0
+    if case == "table_alignment":
+        # Huge and tiny parameters keep the columns: every row as long as the header, and
+        # each column's values end where its title does.
+        r = run(exe, ["--params", "sigma=1e9um,eta=1e-20um^-2,R=1e12um",
+                      "--params", "sigma=1e-9um,eta=1e20um^-2,R=1e-12um",
+                      "--E", "200GPa", "--nu", "0.3", "--H", "1GPa"])
+        if r.returncode != 0:
+            return fail(r.stderr)
+        lines = r.stdout.splitlines()
+        header = lines[0]
+        ends = [header.index(t) + len(t) for t in header.split()[1:]]
+        for line in lines[1:4]:
+            if len(line) != len(header):
+                return fail(f"row {line!r} is not as long as the header {header!r}")
+            for e in ends:
+                if line[e - 1] == " " or (e < len(line) and line[e] != " "):
+                    return fail(f"row {line!r} does not end a value at column {e}")
+            if " 0.0000 " in line + " ":
+                return fail(f"a non-zero value printed as 0: {line!r}")
+        return 0
     return fail(f"unknown case {case}")
 
 

@@ -130,3 +130,18 @@ def test_text_reader_refuses_a_break_inside_the_data(tmp_path):
     p = asperity.read_profile(str(swapped))
     assert p["dx"] == 1e-6
     np.testing.assert_allclose(p["z"], [5e-6, 6e-6, 7e-6], rtol=1e-15)
+
+
+def test_a_profile_flat_after_levelling_is_refused():
+    # A straight line levelled leaves only round-off (m0 ~ 1e-45 m^2, which gave
+    # R = 4.6e17 um): refused, not turned into parameters.
+    line = np.arange(5000.0) * 1e-9
+    with pytest.raises(asperity.InvalidInput, match=r"flat after levelling \(line\) and filtering.*round-off"):
+        asperity.profile_moments(line, 1e-6)  # 5 mm at 1 um: the default filter fits
+    with pytest.raises(asperity.InvalidInput, match=r"flat after levelling \(line\):.*round-off"):
+        asperity.profile_moments(line, 1e-6, lc=None, ls=None)
+    # 1 nm of roughness on the same tilt is kept: a 20 um sine of amplitude 1 nm has
+    # sigma = 1 nm / sqrt(2) less the levelling line's share (250 periods: 5e-6).
+    x = np.arange(5000.0) * 1e-6
+    m = asperity.profile_moments(line + 1e-9 * np.sin(2 * np.pi * x / 20e-6), 1e-6, lc=None, ls=None)
+    assert m.sigma == pytest.approx(1e-9 / math.sqrt(2), rel=1e-4)

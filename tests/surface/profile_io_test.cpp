@@ -551,5 +551,43 @@ TEST(X3p, OversizedEntriesAreRefusedBeforeTheyAreRead) {
   }
 }
 
+TEST(X3p, FileWithoutValidPointsSaysSo) {
+  // Written with every point invalid (NaN in float64 data, and a mask of zeros for an
+  // integer type), read back: the file holds no valid points, whatever the filter.
+  for (const bool masked : {false, true}) {
+    auto m = test_map(9, 1, false);
+    m.valid.assign(m.z.size(), 0);
+    m.z[0] = 1e-6;  // one valid point, so that the writer has a range to scale
+    m.valid[0] = 1;
+    auto pkg = make_x3p_package(
+        m, {.type = masked ? X3pDataType::int32 : X3pDataType::float64, .inline_data = false});
+    if (masked) {
+      // Clear the last valid bit too and fix the mask's checksum in main.xml.
+      std::string& mask = pkg.file("bindata/valid.bin");
+      const std::string old_md5 = detail::md5_hex(mask);
+      mask.assign(mask.size(), '\0');
+      pkg.file("main.xml") = replace(pkg.file("main.xml"), old_md5, detail::md5_hex(mask));
+    } else {
+      std::string& data = pkg.file("bindata/data.bin");
+      const std::string old_md5 = detail::md5_hex(data);
+      const std::string nan_bytes = pkg.file("bindata/data.bin").substr(8, 8);  // point 1: NaN
+      data.replace(0, 8, nan_bytes);
+      pkg.file("main.xml") = replace(pkg.file("main.xml"), old_md5, detail::md5_hex(data));
+    }
+    pkg.update_main_checksum();
+    const auto read = parse_x3p(zip_x3p_package(pkg), "empty.x3p");
+    EXPECT_EQ(read.invalid_count(), 9u);
+    try {
+      (void)read.as_profile();
+      ADD_FAILURE() << "accepted a profile without valid points";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(
+                    "empty.x3p: the file holds no valid points (all 9 are invalid)"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace asperity::surface

@@ -283,7 +283,93 @@ TEST(RoughnessFilter, RefusesProfilesShorterThanTheFilterNeeds) {
   EXPECT_THROW((GaussianFilter{.lc = -1.0}.validate()), InvalidInput);
 }
 
+// The message of the InvalidInput that `f` throws ("" when it does not throw).
+template <class F>
+std::string refusal(F&& f) {
+  try {
+    f();
+  } catch (const InvalidInput& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RoughnessFilter, TooShortProfileGetsTheLongestLcItAllows) {
+  // The Dektak export's grid: 9600 points at 0.15625 um (1.49984 mm). With ls = 20 um
+  // (half width 128 points) and ct = 1, discard needs ceil(lc/dx) + 1 + 2 floor(lc/dx)
+  // + 256 points: lc = 0.486 mm needs 3111 + 1 + 6220 + 256 = 9588 <= 9600, lc = 0.487
+  // mm needs 3118 + 1 + 6234 + 256 = 9609 > 9600.
+  const double dx = 0.15625 * um;
+  const std::size_t n = 9600;
+  GaussianFilter f{};
+  EXPECT_NEAR(f.longest_lc(n, dx), 0.486 * mm, 1e-12 * mm);
+  GaussianFilter g = f;
+  g.lc = 0.486 * mm;
+  EXPECT_LE(g.min_points(dx), n);
+  g.lc = 0.487 * mm;
+  EXPECT_GT(g.min_points(dx), n);
+  const auto p = sampled(static_cast<double>(n - 1) * dx, dx,
+                         [](double x) { return 1e-8 * std::sin(x / (5 * um)); });
+  ASSERT_EQ(p.z.size(), n);
+  const std::string msg = refusal([&] { (void)f.apply(p); });
+  EXPECT_NE(msg.find("shorter than the filter needs"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("up to 0.486 mm"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("standard cut-off below it: 0.25 mm"), std::string::npos) << msg;
+  // regression needs ceil(lc/dx) + 1 points: lc <= 9599 dx = 1.49984 mm, 1.49 mm typed.
+  EXPECT_NE(msg.find("--end regression (no run-in/run-out: lc up to 1.49 mm)"), std::string::npos)
+      << msg;
+  // The suggested cut-off works.
+  g.lc = 0.486 * mm;
+  EXPECT_NO_THROW((void)g.apply(p));
+  // Too short for any lc above ls: the advice is a shorter ls.
+  const auto tiny = sampled(40 * um, 1 * um, [](double x) { return 1e-8 * std::sin(x / um); });
+  EXPECT_EQ(GaussianFilter{}.longest_lc(tiny.z.size(), tiny.dx), 0.0);
+  const std::string tiny_msg = refusal([&] { (void)GaussianFilter{}.apply(tiny); });
+  EXPECT_NE(tiny_msg.find("a shorter ls"), std::string::npos) << tiny_msg;
+}
+
 // ------------------------------------------------------------------ moments
+
+TEST(RoughnessMoments, ProfileFlatToRoundOffIsRefused) {
+  // z = 0.001 x exactly: levelling leaves only round-off (m0 ~ 1e-45 m^2, which gave
+  // R = 4.6e17 um). Refused, naming the profile and the step that flattened it.
+  const auto line = sampled(1.5 * mm, 0.3 * um, [](double x) { return 1e-3 * x; });
+  const std::string none =
+      refusal([&] { (void)process_profile(line, Levelling::line, GaussianFilter::none()); });
+  EXPECT_NE(none.find("synthetic: the profile is flat after levelling (line):"), std::string::npos)
+      << none;
+  EXPECT_NE(none.find("round-off"), std::string::npos) << none;
+  const GaussianFilter f{.lc = 0.25 * mm, .ls = 2.5 * um};
+  const std::string filtered = refusal([&] { (void)process_profile(line, Levelling::line, f); });
+  EXPECT_NE(filtered.find("flat after levelling (line) and filtering"), std::string::npos)
+      << filtered;
+  // Not levelled, not filtered: m0 and m2 are the line's own, but its second
+  // differences (m4) are round-off.
+  const std::string raw =
+      refusal([&] { (void)process_profile(line, Levelling::none, GaussianFilter::none()); });
+  EXPECT_NE(raw.find("synthetic: the profile is flat: its rms second difference"),
+            std::string::npos)
+      << raw;
+  // A constant is flat too (m0 = 0 exactly after levelling).
+  const auto constant = sampled(1 * mm, 1 * um, [](double) { return 3e-6; });
+  EXPECT_NE(refusal([&] {
+              (void)process_profile(constant, Levelling::mean, GaussianFilter::none());
+            }).find("flat after levelling (mean)"),
+            std::string::npos);
+  // Genuine roughness far below the tilt is kept: 1 nm on 1.5 um of tilt, and 1e-15 m,
+  // 1e-9 of the raw rms (the finest any instrument resolves): its second differences,
+  // a (k dx)^2 / sqrt(2) = 6.3e-18 m at 67 samples a wavelength, are 7e-12 of the raw
+  // rms, above the 1e-12 threshold.
+  for (const double a : {1e-9, 1e-15}) {
+    const auto rough = sampled(1.5 * mm, 0.3 * um, [a](double x) {
+      return 1e-3 * x + a * std::sin(2 * kPi * x / (20 * um));
+    });
+    const auto r = process_profile(rough, Levelling::line, GaussianFilter::none());
+    // Amplitude a: m0 = a^2/2 less the levelling line's share of the sine (75 whole
+    // periods: slope -12/(k L^2), 1.1e-4 of m0, so 5.5e-5 of sigma).
+    EXPECT_NEAR(r.moments.sigma() / (a / std::sqrt(2.0)), 1.0, 1e-3) << a;
+  }
+}
 
 struct Component {
   double amplitude, lambda, phase;
@@ -419,6 +505,29 @@ TEST(RoughnessMoments, ArealMapGivesBothDirections) {
   // taking up the cosines' small correlation with x and y).
   EXPECT_NEAR(two_cosines(400, 300).rms_height_about_plane(), 1.5810907358744405e-06,
               1e-12 * 1.58e-6);
+}
+
+TEST(RoughnessMoments, ArealMapWithoutValidPointsSaysSo) {
+  auto map = two_cosines(40, 30);
+  map.valid.assign(map.z.size(), 0);
+  for (const auto& f : {GaussianFilter::none(), GaussianFilter{}}) {
+    const std::string msg = refusal([&] { (void)areal_moments(map, Levelling::line, f); });
+    EXPECT_NE(msg.find("synthetic map: the file holds no valid points (all 40 x 30 are invalid)"),
+              std::string::npos)
+        << msg;
+  }
+  // Every third point (in data order) invalid: runs of at most 2 valid points along x
+  // (and y, 40 = 1 mod 3). Without a filter the message is about the runs, not about a
+  // cut-off.
+  for (std::size_t k = 0; k < map.z.size(); ++k) map.valid[k] = k % 3 != 2;
+  const std::string msg =
+      refusal([&] { (void)areal_moments(map, Levelling::line, GaussianFilter::none()); });
+  EXPECT_NE(msg.find("no profile along x (rows) has 3 consecutive valid points"), std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("(the longest run has 2) (400 of the 1200 points are invalid)"),
+            std::string::npos)
+      << msg;
+  EXPECT_EQ(msg.find("lc"), std::string::npos) << msg;
 }
 
 }  // namespace

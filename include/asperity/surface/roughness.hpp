@@ -4,6 +4,7 @@
 // parameters sigma, eta, R, the equivalent isotropic surface of an anisotropic scan
 // pair, the combination of two surfaces, and the plasticity index.
 // All quantities in SI units.
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -121,6 +122,13 @@ struct GaussianFilter {
   [[nodiscard]] double transmission(double lambda) const;
   /// Shortest profile (number of points) this filter accepts at spacing dx.
   [[nodiscard]] std::size_t min_points(double dx) const;
+  /// Longest long-wave cut-off (rounded down to 3 significant digits) that a profile of
+  /// n points at spacing dx admits with this filter's ls, ct and end effects; 0 when
+  /// none above ls does.
+  [[nodiscard]] double longest_lc(std::size_t n, double dx) const;
+  /// What to do about a profile of n points that is too short: the longest lc it
+  /// allows (and the largest standard cut-off below it), for the error message.
+  [[nodiscard]] std::string shorter_lc_advice(std::size_t n, double dx) const;
   /// Filters a profile. Throws InvalidInput (naming the profile's source) when the
   /// profile is shorter than the filter needs (with `discard`: 2 ct (lc + ls) plus
   /// one lc of evaluation length; with `regression`: lc) or when ls < 5 dx (the
