@@ -316,7 +316,9 @@ std::string case_file_hint(std::string msg) {
       {"--end regression", "end = \"regression\" in [profiles]"},
       {"(--dx, e.g. 0.5um)", "(dx = \"0.5 um\" in [profiles])"},
       {"so --dx must not be given", "so [profiles] dx must not be given"},
-      {"a shorter --lc", "a shorter lc in [profiles]"}};
+      {"a shorter --lc", "a shorter lc in [profiles]"},
+      {"a shorter lc (--lc)", "a shorter lc (lc in [profiles])"},
+      {"a shorter ls (--ls)", "a shorter ls (ls in [profiles])"}};
   for (const auto& [flag, key] : flags) {
     for (auto at = msg.find(flag); at != std::string::npos; at = msg.find(flag, at + key.size()))
       msg.replace(at, flag.size(), key);
