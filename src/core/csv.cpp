@@ -129,8 +129,7 @@ void write_file_atomically(const std::string& path, const std::string& content) 
     throw InvalidInput(fmt::format("output path \"{}\" names no file", path));
   }
   if (std::filesystem::is_directory(target)) {
-    throw InvalidInput(
-        fmt::format("output path \"{}\" is a directory: give a file name", path));
+    throw InvalidInput(fmt::format("output path \"{}\" is a directory: give a file name", path));
   }
   std::random_device rd;
   const auto tmp = target.parent_path() / fmt::format(".{}.tmp-{:08x}", target.filename().string(),
