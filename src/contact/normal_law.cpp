@@ -73,7 +73,8 @@ double bke_load(const BkeConstants& c, double w) {
   if (!(gap > 0.0)) return elastic;
   // 1 - exp(-x) as -expm1(-x): exact also where x = da/gap is below the round-off of 1.
   const double factor = -std::expm1(-c.delta_c_alpha / gap);
-  if (w > kBkeLogForm) return std::exp(std::log(c.load_scale) + 1.5 * std::log(w) + std::log(factor));
+  if (w > kBkeLogForm)
+    return std::exp(std::log(c.load_scale) + 1.5 * std::log(w) + std::log(factor));
   return elastic * factor;
 }
 

@@ -119,8 +119,8 @@ TEST(InterferenceReading, ParsesItsNames) {
   EXPECT_EQ(parse_interference_reading("hertz"), InterferenceReading::hertz);
   EXPECT_EQ(parse_interference_reading("own"), InterferenceReading::own);
   EXPECT_EQ(to_string(InterferenceReading::hertz), "hertz");
-  const auto msg = asperity::testing::invalid_input_message(
-      [] { (void)parse_interference_reading("Hertz"); });
+  const auto msg =
+      asperity::testing::invalid_input_message([] { (void)parse_interference_reading("Hertz"); });
   EXPECT_NE(msg.find("hertz, own"), std::string::npos) << msg;
 }
 
