@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Sets everything up on a fresh Debian machine and runs every test: the C++ suite
+# Sets everything up on a fresh Debian machine and runs every test: a clang-format check,
+# the C++ suite
 # (GoogleTest, CLI checks, examples, the downstream find_package check) with warnings as
 # errors, the GoogleTest suite and the C++ example again under AddressSanitizer and
 # UndefinedBehaviorSanitizer (the `debug` preset), a short libFuzzer smoke run of the
@@ -12,6 +13,9 @@ bash scripts/setup.sh
 py="$PWD/.venv/bin/python"
 started=$SECONDS
 stage() { echo "== [$((SECONDS - started)) s] $*"; }
+
+stage "C++ sources formatted as .clang-format says"
+git ls-files -z -- '*.cpp' '*.hpp' | xargs -0 clang-format --dry-run -Werror
 
 stage "C++: configure, build (warnings as errors), test"
 # The CLI tests run Python drivers: with the venv's interpreter, like everything else.
