@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "asperity/core/error.hpp"
 #include "asperity/dynamics/case.hpp"
@@ -23,7 +24,7 @@ using namespace asperity::dynamics;
 
 struct DynamicsOptions {
   std::string case_file;
-  std::string out_dir;
+  std::optional<std::string> out_dir;
   bool no_plots = false;
 };
 
@@ -49,115 +50,122 @@ Json to_json(const SummaryValue& v) {
 }
 
 void run_dynamics(const DynamicsOptions& o, std::string& out) {
-  {
-    const auto name = std::filesystem::path(o.out_dir).lexically_normal().filename().string();
-    if (o.out_dir.empty() || name == "." || name == ".." || name.empty()) {
+  const bool files = o.out_dir.has_value();
+  if (files) {
+    const auto name = std::filesystem::path(*o.out_dir).lexically_normal().filename().string();
+    if (o.out_dir->empty() || name == "." || name == ".." || name.empty()) {
       throw InvalidInput(fmt::format(
-          "--out \"{}\": name a directory to create (or replace whole), not . or ..", o.out_dir));
+          "--out \"{}\": name a directory to create (or replace whole), not . or ..", *o.out_dir));
     }
+    joint::require_output_apart_from_inputs(*o.out_dir, {{"the case file", o.case_file}});
+    joint::require_replaceable_output(*o.out_dir, *o.out_dir);
   }
   const DynamicsCase c = read_case_file(o.case_file);
   const CaseResult r = run_case(c);
   const Trajectory& tr = r.trajectory;
+  std::vector<std::string> plots;
 
   // Everything goes into a temporary sibling renamed to --out at the end: the directory
   // is written whole or not at all.
-  joint::StagedDirectory dir(o.out_dir);
-  {
-    const auto cols = time_history_columns(c, tr);
-    std::string csv;
-    for (std::size_t i = 0; i < cols.size(); ++i) csv += (i ? "," : "") + cols[i].name;
-    csv += '\n';
-    csv.reserve(tr.size() * 20 * cols.size());
-    for (std::size_t k = 0; k < tr.size(); ++k) {
-      for (std::size_t i = 0; i < cols.size(); ++i) {
-        if (i) csv += ',';
-        if (cols[i].name == "event") {
-          csv += cols[i].values[k] != 0.0 ? '1' : '0';
-        } else {
-          csv += fmt::format("{:.12g}", cols[i].values[k]);
-        }
-      }
+  std::optional<joint::StagedDirectory> staged;
+  if (files) staged.emplace(*o.out_dir);
+  if (files) {
+    auto& dir = *staged;
+    {
+      const auto cols = time_history_columns(c, tr);
+      std::string csv;
+      for (std::size_t i = 0; i < cols.size(); ++i) csv += (i ? "," : "") + cols[i].name;
       csv += '\n';
-    }
-    write_file_atomically(dir.file("timeseries.csv"), csv);
-  }
-  if (r.spectrum) {
-    std::string csv = "frequency,power\n";
-    for (std::size_t i = 0; i < r.spectrum->frequency.size(); ++i) {
-      csv += fmt::format("{:.10g},{:.10g}\n", r.spectrum->frequency[i], r.spectrum->power[i]);
-    }
-    write_file_atomically(dir.file("spectrum.csv"), csv);
-  }
-  write_file_atomically(dir.file("summary.json"), to_json(r.summary).dump(2) + "\n");
-
-  std::vector<std::string> plots;
-  if (!o.no_plots) {
-    const std::string label =
-        fmt::format("{} friction, {} excitation", tr.friction_model, c.excitation_name);
-    // Thin the series for plotting (gnuplot reads text).
-    const std::size_t stride = std::max<std::size_t>(1, tr.size() / 20000);
-    auto series = [&](const std::string& title, const std::vector<double>& x,
-                      const std::vector<double>& y, double t_from) {
-      Series s{.title = title};
-      for (std::size_t i = 0; i < tr.size(); i += stride) {
-        if (tr.tau[i] < t_from) continue;
-        s.x.push_back(x[i]);
-        s.y.push_back(y[i]);
+      csv.reserve(tr.size() * 20 * cols.size());
+      for (std::size_t k = 0; k < tr.size(); ++k) {
+        for (std::size_t i = 0; i < cols.size(); ++i) {
+          if (i) csv += ',';
+          if (cols[i].name == "event") {
+            csv += cols[i].values[k] != 0.0 ? '1' : '0';
+          } else {
+            csv += fmt::format("{:.12g}", cols[i].values[k]);
+          }
+        }
+        csv += '\n';
       }
-      return s;
-    };
-    PlotSpec resp{
-        .title = "Response (Fig. 7.5 style): " + label, .xlabel = "tau", .ylabel = "u = x/A"};
-    resp.series.push_back(series("mass u", tr.tau, tr.u, 0.0));
-    if (c.excitation_name != "free") resp.series.push_back(series("base y", tr.tau, tr.y, 0.0));
-    plot_png(dir.file("response.png"), resp);
-    plots.push_back("response.png");
-    // Phase portrait and friction loop: the steady part for harmonic input (Fig. 7.6-7.7).
-    double from = 0.0;
-    if (const auto* h = std::get_if<HarmonicExcitation>(&c.excitation)) {
-      from = std::max(0.0, c.simulation.duration - c.analysis.loop_cycles / h->frequency);
-    }
-    PlotSpec phase{.title = "Phase portrait (Fig. 7.6a-b / 7.7a-b style): " + label,
-                   .xlabel = "u",
-                   .ylabel = "u'"};
-    phase.series.push_back(series("mass", tr.u, tr.v, from));
-    plot_png(dir.file("phase.png"), phase);
-    plots.push_back("phase.png");
-    if (tr.friction_model != "none") {
-      PlotSpec loop{
-          .title = "Friction force vs displacement (Fig. 7.6c-d / 7.7c-d style): " + label,
-          .xlabel = "u",
-          .ylabel = "F_s = f_s/(k A)"};
-      loop.series.push_back(series("friction", tr.u, tr.friction, from));
-      plot_png(dir.file("friction_loop.png"), loop);
-      plots.push_back("friction_loop.png");
+      write_file_atomically(dir.file("timeseries.csv"), csv);
     }
     if (r.spectrum) {
-      // Normalised by its peak (the largest value in the range), so spectra of runs
-      // with different pulse amplitudes compare on one scale; half power is 0.5.
-      double peak = 0.0;
-      for (double p : r.spectrum->power) peak = std::max(peak, p);
-      PlotSpec sp{.title = "Power spectrum of u (Fig. 7.3-7.4 style): " + label,
-                  .xlabel = "frequency [cycles per unit tau]",
-                  .ylabel = "power / peak power",
-                  .logy = true};
-      Series s{.title = tr.friction_model};
+      std::string csv = "frequency,power\n";
       for (std::size_t i = 0; i < r.spectrum->frequency.size(); ++i) {
-        if (r.spectrum->power[i] > 0.0 && peak > 0.0) {
-          s.x.push_back(r.spectrum->frequency[i]);
-          s.y.push_back(r.spectrum->power[i] / peak);
+        csv += fmt::format("{:.10g},{:.10g}\n", r.spectrum->frequency[i], r.spectrum->power[i]);
+      }
+      write_file_atomically(dir.file("spectrum.csv"), csv);
+    }
+    write_file_atomically(dir.file("summary.json"), to_json(r.summary).dump(2) + "\n");
+
+    if (!o.no_plots) {
+      const std::string label =
+          fmt::format("{} friction, {} excitation", tr.friction_model, c.excitation_name);
+      // Thin the series for plotting (gnuplot reads text).
+      const std::size_t stride = std::max<std::size_t>(1, tr.size() / 20000);
+      auto series = [&](const std::string& title, const std::vector<double>& x,
+                        const std::vector<double>& y, double t_from) {
+        Series s{.title = title};
+        for (std::size_t i = 0; i < tr.size(); i += stride) {
+          if (tr.tau[i] < t_from) continue;
+          s.x.push_back(x[i]);
+          s.y.push_back(y[i]);
+        }
+        return s;
+      };
+      PlotSpec resp{
+          .title = "Response (Fig. 7.5 style): " + label, .xlabel = "tau", .ylabel = "u = x/A"};
+      resp.series.push_back(series("mass u", tr.tau, tr.u, 0.0));
+      if (c.excitation_name != "free") resp.series.push_back(series("base y", tr.tau, tr.y, 0.0));
+      plot_png(dir.file("response.png"), resp);
+      plots.push_back("response.png");
+      // Phase portrait and friction loop: the steady part for harmonic input (Fig. 7.6-7.7).
+      double from = 0.0;
+      if (const auto* h = std::get_if<HarmonicExcitation>(&c.excitation)) {
+        from = std::max(0.0, c.simulation.duration - c.analysis.loop_cycles / h->frequency);
+      }
+      PlotSpec phase{.title = "Phase portrait (Fig. 7.6a-b / 7.7a-b style): " + label,
+                     .xlabel = "u",
+                     .ylabel = "u'"};
+      phase.series.push_back(series("mass", tr.u, tr.v, from));
+      plot_png(dir.file("phase.png"), phase);
+      plots.push_back("phase.png");
+      if (tr.friction_model != "none") {
+        PlotSpec loop{
+            .title = "Friction force vs displacement (Fig. 7.6c-d / 7.7c-d style): " + label,
+            .xlabel = "u",
+            .ylabel = "F_s = f_s/(k A)"};
+        loop.series.push_back(series("friction", tr.u, tr.friction, from));
+        plot_png(dir.file("friction_loop.png"), loop);
+        plots.push_back("friction_loop.png");
+      }
+      if (r.spectrum) {
+        // Normalised by its peak (the largest value in the range), so spectra of runs
+        // with different pulse amplitudes compare on one scale; half power is 0.5.
+        double peak = 0.0;
+        for (double p : r.spectrum->power) peak = std::max(peak, p);
+        PlotSpec sp{.title = "Power spectrum of u (Fig. 7.3-7.4 style): " + label,
+                    .xlabel = "frequency [cycles per unit tau]",
+                    .ylabel = "power / peak power",
+                    .logy = true};
+        Series s{.title = tr.friction_model};
+        for (std::size_t i = 0; i < r.spectrum->frequency.size(); ++i) {
+          if (r.spectrum->power[i] > 0.0 && peak > 0.0) {
+            s.x.push_back(r.spectrum->frequency[i]);
+            s.y.push_back(r.spectrum->power[i] / peak);
+          }
+        }
+        // A response that never moves has no power to draw on a log axis: no plot.
+        if (!s.x.empty()) {
+          sp.series.push_back(std::move(s));
+          plot_png(dir.file("spectrum.png"), sp);
+          plots.push_back("spectrum.png");
         }
       }
-      // A response that never moves has no power to draw on a log axis: no plot.
-      if (!s.x.empty()) {
-        sp.series.push_back(std::move(s));
-        plot_png(dir.file("spectrum.png"), sp);
-        plots.push_back("spectrum.png");
-      }
     }
+    dir.commit();
   }
-  dir.commit();
 
   for (const auto& w : r.warnings) fmt::print(stderr, "warning: {}\n", w);
 
@@ -184,10 +192,14 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
         num(mf), num(summary.find("modal_frequency_undamped")), num(summary.find("modal_damping")));
   }
   out += fmt::format("energy balance error {:.3g} of the input work\n", tr.energy_balance_error());
-  out += fmt::format("wrote {}/summary.json, timeseries.csv{}", o.out_dir,
-                     r.spectrum ? ", spectrum.csv" : "");
-  for (const auto& p : plots) out += ", " + p;
-  out += "\n";
+  if (files) {
+    out += fmt::format("wrote {}/summary.json, timeseries.csv{}", *o.out_dir,
+                       r.spectrum ? ", spectrum.csv" : "");
+    for (const auto& p : plots) out += ", " + p;
+    out += "\n";
+  } else {
+    out += "no files written (--out DIR writes summary.json, the time history and plots)\n";
+  }
 }
 
 }  // namespace
@@ -205,8 +217,8 @@ void add_dynamics_command(CLI::App& app, std::function<int()>& action) {
          "TOML case file with a [dynamics] table (and optionally [joint], [load], [profiles])")
       ->required();
   cmd->add_option("--out", o->out_dir,
-                  "output directory, written whole (created, or replaced if it exists)")
-      ->required();
+                  "output directory, written whole (created; an existing one is replaced only "
+                  "if asperity wrote it); without it only the summary is printed");
   cmd->add_flag("--no-plots", o->no_plots, "skip the PNG plots (no gnuplot needed)");
   cmd->callback([o, &action] {
     action = [o] { return run_guarded([o](std::string& out) { run_dynamics(*o, out); }); };

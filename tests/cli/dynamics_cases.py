@@ -509,6 +509,27 @@ def main():
         return 0
     if case == "figures":
         return figures(exe)
+    if case == "without_out_prints_the_summary":
+        # --out is optional (issue 6: `asperity dynamics CASE.toml [--out DIR]`): the summary
+        # is printed and nothing is written.
+        with tempfile.TemporaryDirectory() as tmp:
+            r = subprocess.run([exe, "dynamics", os.path.join(EXAMPLES, "impulse_dankowicz.toml")],
+                               capture_output=True, text=True, timeout=120, cwd=tmp)
+            if r.returncode != 0 or "modal frequency" not in r.stdout or os.listdir(tmp):
+                return fail(f"exit {r.returncode}, {r.stdout!r}, {os.listdir(tmp)}")
+        return 0
+    if case == "out_refuses_a_foreign_directory":
+        with tempfile.TemporaryDirectory() as tmp:
+            keep = os.path.join(tmp, "mine")
+            os.mkdir(keep)
+            with open(os.path.join(keep, "notes.txt"), "w") as f:
+                f.write("not asperity's")
+            r = subprocess.run([exe, "dynamics", os.path.join(EXAMPLES, "impulse_dankowicz.toml"),
+                                "--out", keep, "--no-plots"], capture_output=True, text=True,
+                               timeout=120)
+            if r.returncode != 2 or os.listdir(keep) != ["notes.txt"]:
+                return fail(f"exit {r.returncode}: {r.stderr}; {os.listdir(keep)}")
+        return 0
     if case == "zero_response_with_plots":
         # A valid case whose mass never moves: every output but the (empty) spectrum plot,
         # exit 0, and a modal note saying why there is no modal peak.
