@@ -2,6 +2,8 @@
 // and properties over random histories.
 #include <gtest/gtest.h>
 
+#include "../support.hpp"
+
 #include <cmath>
 #include <memory>
 #include <random>
@@ -253,10 +255,7 @@ TEST_P(MasingProperties, HoldOnRandomHistories) {
   // is >= 0, and they are equal.
   const std::size_t n = xs.size();
   auto cycle_work = [&](std::size_t begin, std::size_t end) {
-    double w = 0.0;
-    for (std::size_t i = begin + 1; i <= end; ++i)
-      w += 0.5 * (Q[i] + Q[i - 1]) * (xs[i] - xs[i - 1]);
-    return w;
+    return asperity::testing::trapezoid_work(xs, Q, begin, end);
   };
   const double last = cycle_work(n - 4001, n - 1);
   const double previous = cycle_work(n - 8001, n - 4001);

@@ -320,10 +320,7 @@ TEST_P(RoughFlatModels, RandomHistoriesThroughTheTable) {
     }
     const std::size_t n = xs.size();
     auto cycle_work = [&](std::size_t begin, std::size_t end) {
-      double w = 0.0;
-      for (std::size_t i = begin + 1; i <= end; ++i)
-        w += 0.5 * (Q[i] + Q[i - 1]) * (xs[i] - xs[i - 1]);
-      return w;
+      return asperity::testing::trapezoid_work(xs, Q, begin, end);
     };
     const double last = cycle_work(n - 801, n - 1);
     const double previous = cycle_work(n - 1601, n - 801);
