@@ -265,20 +265,8 @@ P = "9 N"
 def warning_unresolved_dankowicz(exe):
     """A loose per-state atol on the Dankowicz state (0.1 >> delta = 0.011): z overshoots
     its bound; the run finishes (exit 0) with a warning on stderr and in summary.json."""
-    case = """[dynamics]
-excitation = "harmonic"
-duration = 20
-[dynamics.harmonic]
-frequency = 0.15
-amplitude = 20
-[dynamics.friction]
-model = "dankowicz"
-F_max = 1.5
-delta = 0.011
-[dynamics.integrator]
-rtol = 1e-3
-atol = [1e-4, 1e-4, 0.1, 1e-4, 1e-4, 1e-4]
-"""
+    with open(os.path.join(HERE, "..", "data", "dynamics", "unresolved_dankowicz.toml")) as f:
+        case = f.read()
     with tempfile.TemporaryDirectory() as tmp:
         r, out = run(exe, case, tmp)
         if r.returncode != 0:

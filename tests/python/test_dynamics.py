@@ -7,6 +7,7 @@ parameters of Table 7.2 (F~max = 1.5, k~tan = 6.32, delta~ = 0.011); issue 6's t
 (closed form to 1e-6, energy balance to 1e-6 of the input work, |F_s| <= F_max for
 Dankowicz)."""
 import math
+import os
 
 import numpy as np
 import pytest
@@ -449,20 +450,10 @@ delta = "0.2 um"
 
 def test_run_case_warns_when_the_integration_does_not_resolve_the_state():
     # A loose per-state atol for z (0.1 >> delta = 0.011): z overshoots its bound.
-    text = """[dynamics]
-excitation = "harmonic"
-duration = 20
-[dynamics.harmonic]
-frequency = 0.15
-amplitude = 20
-[dynamics.friction]
-model = "dankowicz"
-F_max = 1.5
-delta = 0.011
-[dynamics.integrator]
-rtol = 1e-3
-atol = [1e-4, 1e-4, 0.1, 1e-4, 1e-4, 1e-4]
-"""
+    path = os.path.join(os.path.dirname(__file__), "..", "data", "dynamics",
+                        "unresolved_dankowicz.toml")
+    with open(path) as f:
+        text = f.read()
     with pytest.warns(RuntimeWarning, match="overshoots"):
         r = asperity.dynamics.run_case_text(text)
     assert r["summary"]["warnings"] == r["warnings"] and len(r["warnings"]) == 1
