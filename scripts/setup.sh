@@ -11,7 +11,8 @@ cd "$(dirname "$0")/.."
 apt_packages=(
   build-essential cmake ninja-build pkg-config git
   libboost-dev                # Boost.Math (quadrature, roots), Boost.Odeint
-  libkissfft-dev              # FFT for spectra and filtering
+  libkissfft-dev              # FFT for spectra, filtering and harmonic balance (AFT)
+  libeigen3-dev               # linear algebra (vibration layer, fretting fits)
   libcli11-dev                # CLI parsing
   libtomlplusplus-dev         # case files
   nlohmann-json3-dev          # JSON output
