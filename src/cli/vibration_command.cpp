@@ -184,15 +184,18 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
       PlotSpec p{.title = fmt::format("Forced response of DOF {}: first-harmonic amplitude",
                                       c.output_dofs[o]),
                  .xlabel = "excitation frequency [Hz]",
-                 .ylabel = "amplitude [m]"};
+                 .ylabel = "amplitude [m]",
+                 .logy = true};
       for (std::size_t k = 0; k < r.frequency_response.size(); ++k) {
         const auto& cv = r.frequency_response[k];
         Series s{.title = fmt::format("curve {} (table {}, force scale {:.4g})", k + 1,
                                       r.frequency_response_table[k] + 1, cv.force_scale),
                  .style = "lines"};
         for (Eigen::Index i = 0; i < cv.omega.size(); ++i) {
+          const double y = cv.output_amplitude(i, static_cast<Eigen::Index>(o));
+          if (!(y > 0.0)) continue;  // a log axis: a DOF at rest has no point to draw
           s.x.push_back(cv.omega(i) / (2.0 * std::numbers::pi));
-          s.y.push_back(cv.output_amplitude(i, static_cast<Eigen::Index>(o)));
+          s.y.push_back(y);
         }
         p.series.push_back(std::move(s));
       }
