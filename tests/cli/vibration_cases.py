@@ -312,6 +312,90 @@ def without_out_prints_the_summary(exe):
     return 0
 
 
+TWO_DOF = """[structure]
+mass = [[1.0, 0.0], [0.0, 1.0]]
+stiffness = [[2.0, -1.0], [-1.0, 2.0]]
+rayleigh = { alpha = 0.01 }
+[harmonic_balance]
+max = 3
+time_points = 256
+[nonlinear_mode]
+log10_amplitude = { from = -2.0, to = 1.0 }
+"""
+
+
+def element_types(exe):
+    # Every element type of the issue parses and runs; parameters with units convert.
+    elements = {
+        "iwan4": 'type = "iwan4"\nT = [1.0, 0.0]\nF_S = "0.2 N"\nK_T = 0.25\nchi = -0.5\nbeta = 0.1',
+        "coulomb": 'type = "coulomb"\nT = [1.0, 0.0]\nF_s = 0.05\nk_tan = "100 s/m"',
+        "elastic_dry_friction_2d": 'type = "elastic_dry_friction_2d"\nT = [[1.0, 0.0], [0.0, 1.0]]\n'
+                                   'k_t = "0.25 N/m"\nk_n = 1.0\nmu = 0.3\nN0 = 0.5',
+        "jenkins": 'type = "jenkins"\nname = "left"\nT = [[1.0, -1.0]]\nk_t = 0.25\nF_s = 0.2',
+    }
+    for name, text in elements.items():
+        with tempfile.TemporaryDirectory() as tmp:
+            r, out = run(exe, TWO_DOF + "[[element]]\n" + text + "\n", tmp)
+            if r.returncode != 0:
+                return fail(f"{name}: exit {r.returncode}: {r.stderr}")
+            j = json.load(open(os.path.join(out, "summary.json")))
+            e = j["elements"][0]
+            if e["type"] != name or not j["solver"]["complete"]:
+                return fail(f"{name}: {e} {j['solver']}")
+            if name == "jenkins" and (e["name"] != "left" or e["T"] != [[1.0, -1.0]]):
+                return fail(f"element echo {e}")
+            # Parameters echoed in SI: "0.2 N" and "100 s/m" as given.
+            if name == "iwan4" and (e["F_S_N"] != 0.2 or e["chi"] != -0.5):
+                return fail(f"iwan4 echo {e}")
+            if name == "coulomb" and e["k_tan_s_per_m"] != 100.0:
+                return fail(f"coulomb echo {e}")
+    return 0
+
+
+def rough_flat_forms(exe):
+    # The same rough flat written dimensionally and normalized (beta = sigma R eta, psi on
+    # sigma_a = sigma sqrt(1 - 3.717e-4/beta^2), K = 0.454 + 0.41 nu, force scale K H A0,
+    # P* = P/(K H A0); rough_flat.hpp) gives the same Q_max and k_t to round-off.
+    E, G, H, nu, sig, R, eta, A0, P = 106e9, 22.9e9, 5.8e9, 0.3, 2.7e-6, 30.1e-6, 2.9e8, 1e-4, 500.0
+    K = 0.454 + 0.41 * nu
+    beta = sig * R * eta
+    sig_a = sig * math.sqrt(1 - 3.717e-4 / beta ** 2)
+    psi = 2 * E / (math.pi * K * H) * math.sqrt(sig_a / R)
+    fs = K * H * A0
+    base = """[structure]
+mass = [[1.0]]
+stiffness = [[1e8]]
+damping = [[20.0]]
+[harmonic_balance]
+max = 1
+time_points = 64
+[quasi_static_mode]
+amplitude = { from = 1e-9, to = 1e-7 }
+points = 4
+[[element]]
+type = "rough_flat"
+T = [[1.0]]
+"""
+    dim = (f'E_star = "106 GPa"\nG_star = "22.9 GPa"\nH = "5.8 GPa"\nnu = 0.3\nsigma = "2.7 um"\n'
+           f'R = "30.1 um"\neta = "2.9e8 m^-2"\nA0 = "1 cm^2"\nP = "500 N"\n')
+    nrm = (f"beta = {beta!r}\npsi = {psi!r}\nnu = 0.3\nG_over_E = {G / E!r}\nP_star = {P / fs!r}\n"
+           f"sigma = {sig!r}\nforce_scale = {fs!r}\n")
+    got = []
+    for text in [dim, nrm]:
+        with tempfile.TemporaryDirectory() as tmp:
+            r, out = run(exe, base + text, tmp)
+            if r.returncode != 0:
+                return fail(f"exit {r.returncode}: {r.stderr}")
+            got.append(json.load(open(os.path.join(out, "summary.json")))["elements"][0])
+    for k in ["Q_max_N", "k_t_N_per_m"]:
+        a, b = got[0][k], got[1][k]
+        if not (a > 0 and abs(a - b) < 1e-9 * a):
+            return fail(f"{k}: dimensional {a}, normalized {b}")
+    if got[0]["backbone"] != "dimensional" or got[1]["backbone"] != "normalized":
+        return fail(f"backbones {got[0]['backbone']} {got[1]['backbone']}")
+    return 0
+
+
 BAD = {
     "singular_mass": (JENKINS.replace("mass = [[1.0]]", "mass = [[0.0]]") + EPMC, "mass"),
     "singular_mass_2dof": (
@@ -371,6 +455,8 @@ def main():
         "matrix_market": matrix_market,
         "omega_in_hz": omega_in_hz,
         "without_out_prints_the_summary": without_out_prints_the_summary,
+        "element_types": element_types,
+        "rough_flat_forms": rough_flat_forms,
     }[case](exe)
 
 
