@@ -1042,32 +1042,35 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
 
   if (!c.frequency_responses.empty()) {
     SummaryArray curves;
+    std::size_t total_curves = 0, done_curves = 0;
+    for (const auto& fr : c.frequency_responses) total_curves += fr.options.force_scales.size();
     for (std::size_t k = 0; k < c.frequency_responses.size(); ++k) {
-      const auto before = counters();
-      const auto t0 = clock::now();
-      std::vector<FrequencyResponseCurve> cs;
-      try {
-        const double nk = static_cast<double>(c.frequency_responses.size());
-        cs = frequency_response(hb, c.frequency_responses[k].options, c.output_dofs,
-                                progress ? ProgressFunction([&](double x) {
-                                  progress("frequency_response", (static_cast<double>(k) + x) / nk);
-                                })
-                                         : ProgressFunction{});
-      } catch (const NumericalError& e) {
-        throw cannot_start(fmt::format("frequency_response[{}]", k), e);
-      }
-      const double wall = std::chrono::duration<double>(clock::now() - t0).count();
-      const WorkCounters after = counters();
-      for (std::size_t l = 0; l < cs.size(); ++l) {
-        FrequencyResponseCurve& cv = cs[l];
+      const FrequencyResponseOptions& all = c.frequency_responses[k].options;
+      for (const double scale : all.force_scales) {
+        // One curve per call, so that each has its own counters and wall time.
+        FrequencyResponseOptions one = all;
+        one.force_scales = {scale};
+        const auto before = counters();
+        const auto t0 = clock::now();
+        std::vector<FrequencyResponseCurve> cs;
+        try {
+          const double nk = static_cast<double>(total_curves);
+          const double d0 = static_cast<double>(done_curves);
+          cs = frequency_response(hb, one, c.output_dofs,
+                                  progress ? ProgressFunction([&](double x) {
+                                    progress("frequency_response", (d0 + x) / nk);
+                                  })
+                                           : ProgressFunction{});
+        } catch (const NumericalError& e) {
+          throw cannot_start(
+              fmt::format("frequency_response[{}] at force scale {}", k, core::format_value(scale)),
+              e);
+        }
+        ++done_curves;
+        FrequencyResponseCurve& cv = cs.front();
         Work w;
         add_continuation(w, cv.continuation);
-        // The table's work shared among its curves in proportion to their points.
-        if (l == 0) {
-          w.residuals = after.residual_evaluations - before.residual_evaluations;
-          w.jacobians = after.jacobian_evaluations - before.jacobian_evaluations;
-          w.wall = wall;
-        }
+        account(w, before, t0);
         r.warnings.insert(r.warnings.end(), cv.warnings.begin(), cv.warnings.end());
         SummaryArray ha;  // per point, per output, per harmonic
         for (Eigen::Index p = 0; p < cv.omega.size(); ++p) {
@@ -1083,18 +1086,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                         {"output_amplitude", rows(cv.output_amplitude)},
                         {"max_displacement", rows(cv.max_displacement)},
                         {"harmonic_amplitude", std::move(ha)}};
-        SummaryObject sv = solver_summary(w);
-        if (l > 0) {
-          // Counted with the first curve of the table (one harmonic-balance object).
-          sv.erase(std::remove_if(sv.begin(), sv.end(),
-                                  [](const auto& kv) {
-                                    return kv.first == "residual_evaluations" ||
-                                           kv.first == "jacobian_evaluations" ||
-                                           kv.first == "wall_time_s";
-                                  }),
-                   sv.end());
-        }
-        o.emplace_back("solver", std::move(sv));
+        o.emplace_back("solver", solver_summary(w));
         curves.emplace_back(std::move(o));
         total.points += w.points;
         total.newton += w.newton;
