@@ -339,6 +339,7 @@ void HarmonicBalance::nonlinear_force(const Eigen::VectorXd& U, double omega, Ei
       thread_local Eigen::MatrixXd W;
       slot.assign(static_cast<std::size_t>(cols), -1);
       touched.clear();
+      if (W.rows() != nc * dirs) W.resize(nc * dirs, 16);
       for (const HistoryTerm& t : resp.history) {
         const Eigen::Index col = static_cast<Eigen::Index>(t.j) + N * t.d_src;
         int& k = slot[static_cast<std::size_t>(col)];
