@@ -254,8 +254,9 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
   std::vector<std::vector<double>> lc(4);
   // energy.csv: numbers with 12 digits, and an empty imposed[um] field where the joint
   // amplitude was given directly (no PZT amplitude to report).
+  // Energy in uJ, as in the table and the plots (one unit per output).
   std::string energy_csv =
-      "preload[N],delta_max[um],Q_peak[N],energy[J],Q_peak_over_Q_max,gross_slip,imposed[um]\n";
+      "preload[N],delta_max[um],Q_peak[N],energy[uJ],Q_peak_over_Q_max,gross_slip,imposed[um]\n";
   for (const auto& l : p.loads) {
     for (const auto& a : l.amplitudes) {
       const auto [x, Q] = joint::steady_loop(*l.backbone, a.delta_max, 100);
@@ -266,7 +267,7 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
         lc[3].push_back(Q[i]);
       }
       energy_csv += fmt::format("{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{},{}\n", l.preload,
-                                a.delta_max * 1e6, a.Q_peak, a.energy, a.Q_ratio,
+                                a.delta_max * 1e6, a.Q_peak, a.energy * 1e6, a.Q_ratio,
                                 a.regime == "gross slip" ? 1 : 0,
                                 a.imposed ? fmt::format("{:.12g}", *a.imposed * 1e6) : "");
     }
@@ -374,19 +375,30 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option(
       "--out", o->out,
       "write summary.json, loops.csv, energy.csv and plots into DIR (a new directory, or "
-      "one asperity wrote before)");
+      "one asperity wrote before); a name ending in .json writes only that JSON file, - prints "
+      "it");
   cmd->add_flag("--json", o->json, "print summary.json instead of the table");
   cmd->add_flag("--no-plots", o->no_plots, "do not draw PNG plots (no gnuplot needed)");
   cmd->callback([o, &action] {
     action = [o] {
       return run_guarded([o](std::string& out) {
+        const OutKind kind = out_kind(o->out, ".json");
+        const bool to_dir = kind == OutKind::directory;
+        if (kind == OutKind::standard_output && o->json)
+          throw InvalidInput("--json and --out - both print the JSON: give one of them");
         // Refuse an --out that is or holds an input, or a foreign directory, before the work.
-        if (o->out) {
+        if (to_dir) {
           joint::require_output_apart_from_inputs(*o->out, {{"the case file", o->case_file}});
           joint::require_replaceable_output(*o->out, *o->out);
+        } else if (kind == OutKind::file) {
+          require_distinct_outputs({{"the case file", o->case_file}, {"--out", *o->out}});
         }
         const auto c = joint::read_case_file(o->case_file);
-        if (o->out) joint::require_output_apart_from_inputs(*o->out, profile_inputs(c));
+        if (to_dir) joint::require_output_apart_from_inputs(*o->out, profile_inputs(c));
+        if (kind == OutKind::file) {
+          for (const auto& in : profile_inputs(c))
+            require_distinct_outputs({{in.what, in.path}, {"--out", *o->out}});
+        }
         std::vector<std::string> written;
         const bool bar = c.preloads.size() > 1 && isatty(STDERR_FILENO);
         const auto progress = [&](std::size_t i, std::size_t n) {
@@ -397,16 +409,20 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
                     << (i == n ? "\n" : "") << std::flush;
         };
         const auto p = joint::predict(c, progress);
-        if (o->out) {
+        const bool stdout_is_data = o->json || kind == OutKind::standard_output;
+        if (to_dir) {
           joint::StagedDirectory dir(*o->out, "asperity predict");
           written = write_prediction_files(c, p, dir, !o->no_plots, true, "");
           dir.commit();
         }
-        out = o->json ? prediction_json(c, p).dump(2) + "\n" : prediction_summary(c, p);
-        if (o->out && !o->json) {
-          std::string list;
-          for (const auto& f : written) list += (list.empty() ? "" : ", ") + f;
-          out += fmt::format("\nwrote {}/ ({})\n", *o->out, list);
+        out = stdout_is_data ? prediction_json(c, p).dump(2) + "\n" : prediction_summary(c, p);
+        if (kind == OutKind::file) {
+          write_file_atomically(*o->out, prediction_json(c, p).dump(2) + "\n");
+          report_written({*o->out}, stdout_is_data, out);
+        }
+        if (to_dir) {
+          if (!stdout_is_data) out += "\n";
+          report_written_directory(*o->out, written, stdout_is_data, out);
         }
       });
     };
