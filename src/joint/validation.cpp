@@ -430,6 +430,10 @@ JointCase chapter5_joint() {
   }
   c.bolts = bolts;
   c.amplitudes = {0.05e-6, 0.1e-6, 0.25e-6, 0.5e-6, 1e-6, 2e-6, 4e-6};
+  // Section 5.3: the thesis's BKE mu at the four preloads (also a row of validation_rows).
+  c.reference = ReferenceMu{.source = "thesis section 5.3 (BKE)",
+                            .preloads = {234, 331, 526, 721},
+                            .mu = {0.354, 0.334, 0.335, 0.347}};
   return c;
 }
 
