@@ -387,6 +387,10 @@ elif case == "validate_docs_current":
           "`asperity validate > docs/validation.md`")
 elif case == "bad.unknown_key":
     bad_case(BASE.replace('model = "bke"', 'modle = "bke"'), "joint.modle", "unknown key", "case.toml:8:")
+elif case == "bad.reference_count":
+    # [reference] (published mu drawn on mu_vs_preload.png): one mu per preload.
+    bad_case(BASE.replace("mu = [0.354, 0.334, 0.335, 0.347]", "mu = [0.354, 0.334]"),
+             "reference.mu", "2 values for 4 preloads")
 elif case == "bad.wrong_unit":
     bad_case(BASE.replace('area = "170 mm^2"', 'area = "3 N"'), "joint.area", "case.toml:7:")
 elif case == "bad.missing_half":
