@@ -44,7 +44,7 @@ double number(const std::optional<std::string>& text, const std::string& flag) {
 }
 
 void run_flat(const FlatOptions& o, std::string& out) {
-  const auto model = contact::parse_model_name(o.model);
+  const auto model = contact::parse_model_name(lowercase(o.model));
   const std::string model_name(contact::to_string(model));
   contact::FrictionParameters friction;
   if (o.mu_cfc) {
@@ -58,9 +58,9 @@ void run_flat(const FlatOptions& o, std::string& out) {
     core::require_positive("--zeta", friction.zeta);
   }
   surface::SlipScaling scaling;
-  if (o.slip_scaling == "elastic") {
+  if (lowercase(o.slip_scaling) == "elastic") {
     scaling = surface::SlipScaling::elastic;
-  } else if (o.slip_scaling == "own-law") {
+  } else if (lowercase(o.slip_scaling) == "own-law") {
     scaling = surface::SlipScaling::own_law;
   } else {
     throw InvalidInput(fmt::format(

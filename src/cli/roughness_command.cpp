@@ -606,14 +606,14 @@ void draw_plot(const std::string& path, const std::vector<AnalysedSurface>& surf
 
 void run_roughness(const RoughnessOptions& o, std::string& out) {
   Settings s;
-  s.level = surface::parse_levelling(o.level, "--level");
-  s.rule = surface::parse_isotropic_rule(o.rule, "--rule");
-  if (o.filter == "none") {
+  s.level = surface::parse_levelling(lowercase(o.level), "--level");
+  s.rule = surface::parse_isotropic_rule(lowercase(o.rule), "--rule");
+  if (lowercase(o.filter) == "none") {
     s.filter = GaussianFilter::none();
-  } else if (o.filter == "gaussian") {
+  } else if (lowercase(o.filter) == "gaussian") {
     s.filter.lc = cutoff(o.lc, "--lc");
     s.filter.ls = cutoff(o.ls, "--ls");
-    s.filter.end = surface::parse_end_effects(o.end, "--end");
+    s.filter.end = surface::parse_end_effects(lowercase(o.end), "--end");
     s.filter.truncation = core::parse_quantity(o.truncation, dim::dimensionless, "--truncation");
   } else {
     throw InvalidInput(

@@ -158,7 +158,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
   if (o.R2) core::require_positive("--R2", R2);
   contact::InterferenceReading reading;
   try {
-    reading = contact::parse_interference_reading(o.interference);
+    reading = contact::parse_interference_reading(lowercase(o.interference));
   } catch (const InvalidInput& e) {
     throw InvalidInput(fmt::format("--interference: {}", e.what()));
   }
@@ -213,7 +213,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     }
   } else {
     try {
-      models.push_back(contact::parse_model_name(o.model));
+      models.push_back(contact::parse_model_name(lowercase(o.model)));
     } catch (const InvalidInput& e) {
       throw InvalidInput(fmt::format("--model: {} (or all)", e.what()));
     }

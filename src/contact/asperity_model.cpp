@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
 
 #include "asperity/core/error.hpp"
@@ -25,19 +23,9 @@ std::string_view to_string(ModelName m) {
   return "?";
 }
 
-namespace {
-// Case-insensitive (ASCII) equality: "BKE", "Bke" and "bke" name the same model.
-bool same_name(std::string_view a, std::string_view b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-           return std::tolower(static_cast<unsigned char>(x)) ==
-                  std::tolower(static_cast<unsigned char>(y));
-         });
-}
-}  // namespace
-
 ModelName parse_model_name(std::string_view name) {
   for (auto m : kAllModels) {
-    if (same_name(name, to_string(m))) return m;
+    if (name == to_string(m)) return m;
   }
   throw InvalidInput(fmt::format("model \"{}\" is unknown: allowed are cfc, ceb, ke, bke", name));
 }
@@ -47,8 +35,8 @@ std::string_view to_string(InterferenceReading r) {
 }
 
 InterferenceReading parse_interference_reading(std::string_view name) {
-  if (same_name(name, "hertz")) return InterferenceReading::hertz;
-  if (same_name(name, "own")) return InterferenceReading::own;
+  if (name == "hertz") return InterferenceReading::hertz;
+  if (name == "own") return InterferenceReading::own;
   throw InvalidInput(
       fmt::format("interference reading \"{}\" is unknown: allowed are hertz, own", name));
 }

@@ -18,7 +18,7 @@ inline constexpr std::array<ModelName, 4> kAllModels{ModelName::cfc, ModelName::
                                                      ModelName::bke};
 
 [[nodiscard]] std::string_view to_string(ModelName m);
-/// "cfc", "ceb", "ke" or "bke" in any letter case; throws InvalidInput listing the allowed names.
+/// "cfc", "ceb", "ke" or "bke"; throws InvalidInput listing the allowed names.
 [[nodiscard]] ModelName parse_model_name(std::string_view name);
 [[nodiscard]] NormalLaw normal_law_of(ModelName m);
 [[nodiscard]] FrictionLaw friction_law_of(ModelName m);
@@ -32,7 +32,7 @@ inline constexpr std::array<ModelName, 4> kAllModels{ModelName::cfc, ModelName::
 ///    2.77 um", section 3.5, and K_T = 8 G* a = 16.17 N/um for all).
 enum class InterferenceReading { own, hertz };
 [[nodiscard]] std::string_view to_string(InterferenceReading r);
-/// "own" or "hertz" in any letter case; throws InvalidInput listing the allowed names.
+/// "own" or "hertz"; throws InvalidInput listing the allowed names.
 [[nodiscard]] InterferenceReading parse_interference_reading(std::string_view name);
 
 /// A model's asperity laws in dimensionless form, validated once: P/P_c, a/a_c and mu
