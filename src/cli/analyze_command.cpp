@@ -270,13 +270,14 @@ PowerLaw power_law(const std::vector<Run>& runs) {
 // energy_vs_force.png of several runs: the runs (left-out ones marked), the fitted power
 // law and the slope-2 and slope-3 guides of Fig. 6.12-6.14.
 PlotSpec energy_plot(const std::vector<Run>& runs, const PowerLaw& law) {
-  PlotSpec e{"Energy per cycle against peak force",
+  PlotSpec e{fmt::format("Energy per cycle against peak force: {} runs at P = {:.4g} N",
+                         runs.size(), runs.front().a.P),
              "peak force [N]",
              "energy per cycle [µJ]",
              true,
              true,
              {},
-             "set key inside left top box opaque"};
+             "set key inside left top box opaque\n"};
   Series used{"runs", {}, {}, "points pt 7 ps 1.5 lc rgb '#1f4e9a'"};
   Series excl{
       "runs below the noise floor (left out)", {}, {}, "points pt 6 ps 1.5 lc rgb '#c0392b'"};
@@ -325,10 +326,32 @@ PlotSpec energy_plot(const std::vector<Run>& runs, const PowerLaw& law) {
     }
     e.series.push_back(fit);
   }
+  // Runs the --model prediction puts in gross slip, ringed (their Q_max is the static
+  // friction force).
+  Series gross{"gross slip (--model)", {}, {}, "points pt 6 ps 2.4 lc rgb 'black'"};
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const auto& m = runs[k].model;
+    if (m && m->amplitudes.front().regime == "gross slip") {
+      gross.x.push_back(runs[k].a.mean.Q_max);
+      gross.y.push_back(runs[k].a.mean.energy > 0.0 ? runs[k].a.mean.energy
+                                                    : runs[k].a.energy_noise_floor);
+    }
+  }
+  if (!gross.x.empty()) e.series.push_back(gross);
   add_power_guides(e, q0, e0, qmin, qmax);
+  double emin = 1e300, emax = 0.0;
   for (auto& sr : e.series) {
     for (double& y : sr.y) y *= 1e6;  // J -> µJ, the unit of the table
   }
+  for (const auto* sr : {&used, &excl}) {
+    for (double y : sr->y) {
+      if (y > 0.0) {
+        emin = std::min(emin, y * 1e6);
+        emax = std::max(emax, y * 1e6);
+      }
+    }
+  }
+  if (emin < 1e300) set_energy_force_ranges(e, qmin, qmax, emin, emax);
   return e;
 }
 

@@ -210,6 +210,22 @@ void add_power_guides(PlotSpec& spec, double q0, double e0, double qmin, double 
   }
 }
 
+void set_energy_force_ranges(PlotSpec& spec, double qmin, double qmax, double emin, double emax) {
+  if (!(qmin > 0.0 && qmax >= qmin && emin > 0.0 && emax >= emin)) return;
+  spec.extra += fmt::format("set xrange [{:.10g}:{:.10g}]\nset yrange [{:.10g}:{:.10g}]\n",
+                            qmin / 1.25, qmax * 1.25, emin / 2.0, emax * 2.0);
+  std::string tics;
+  for (double decade = std::pow(10.0, std::floor(std::log10(qmin / 1.25))); decade <= qmax * 1.25;
+       decade *= 10.0) {
+    for (double m : {1.0, 2.0, 5.0}) {
+      const double t = m * decade;
+      if (t >= qmin / 1.25 && t <= qmax * 1.25)
+        tics += fmt::format("{}{:.10g}", tics.empty() ? "" : ", ", t);
+    }
+  }
+  if (!tics.empty()) spec.extra += fmt::format("set format x '%g'\nset xtics ({})\n", tics);
+}
+
 namespace {
 
 // More load cases than this: colour by preload (a colour scale) instead of a legend entry
@@ -367,23 +383,7 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
     // Guides through the smallest-force point of the first preload.
     const auto& a0 = p.loads.front().amplitudes.front();
     add_power_guides(e, a0.Q_peak, a0.energy * 1e6, qmin, qmax);
-    // The axes span the data (a factor 1.25 in force, 2 in energy beyond it).
-    if (qmax > 0.0 && emax > 0.0 && emin < 1e300) {
-      e.extra += fmt::format("set xrange [{:.10g}:{:.10g}]\nset yrange [{:.10g}:{:.10g}]\n",
-                             qmin / 1.25, qmax * 1.25, emin / 2.0, emax * 2.0);
-      // Force ticks at 1, 2, 5 x 10^k as plain numbers: the data span about a decade,
-      // where decade ticks alone would leave one label.
-      std::string tics;
-      for (double decade = std::pow(10.0, std::floor(std::log10(qmin / 1.25)));
-           decade <= qmax * 1.25; decade *= 10.0) {
-        for (double m : {1.0, 2.0, 5.0}) {
-          const double t = m * decade;
-          if (t >= qmin / 1.25 && t <= qmax * 1.25)
-            tics += fmt::format("{}{:.10g}", tics.empty() ? "" : ", ", t);
-        }
-      }
-      if (!tics.empty()) e.extra += fmt::format("set format x '%g'\nset xtics ({})\n", tics);
-    }
+    if (emin < 1e300) set_energy_force_ranges(e, qmin, qmax, emin, emax);
     plot_png(file("energy_vs_force.png"), e);
   }
   if (sweep) {
