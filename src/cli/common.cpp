@@ -338,6 +338,10 @@ void plot_png(const std::string& path, const PlotSpec& spec) {
   gp << "set xlabel " << gnuplot_string(spec.xlabel) << " noenhanced\n";
   gp << "set ylabel " << gnuplot_string(spec.ylabel) << " noenhanced\n";
   gp << "set grid\nset key outside right top noenhanced\n";
+  // A margin inside the frame, so that loop tips and end points are not drawn on it
+  // (`extra` may set its own).
+  if (!spec.logx && !spec.logy)
+    gp << "set offsets graph 0.02, graph 0.02, graph 0.05, graph 0.05\n";
   if (spec.logx) gp << "set logscale x\nset format x '10^{%T}'\n";
   if (spec.logy) gp << "set logscale y\nset format y '10^{%T}'\n";
   gp << spec.extra << "\n";
