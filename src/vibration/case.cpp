@@ -787,41 +787,55 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     for (std::size_t k = 0; k < arr->size(); ++k) {
       const toml::table& t = *arr->get(k)->as_table();
       const std::string w = fmt::format("frequency_response[{}]", k);
-      check_keys(t, w, {"force_cos", "force_sin", "force_scales", "omega", "continuation"});
+      check_keys(t, w,
+                 {"force_cos", "force_sin", "force_per_omega_cos", "force_per_omega_sin",
+                  "force_per_omega2_cos", "force_per_omega2_sin", "force_scales", "omega",
+                  "continuation"});
       FrequencyResponseCase fr;
-      fr.force_cos = Eigen::MatrixXd::Zero(0, n);
-      fr.force_sin = Eigen::MatrixXd::Zero(0, n);
-      for (const char* key : {"force_cos", "force_sin"}) {
-        const auto* fnode = t.get(key);
-        if (!fnode) continue;
-        Eigen::MatrixXd m = matrix(*fnode, w + "." + key, false);
-        if (m.cols() != n) {
-          throw InvalidInput(fmt::format(
-              "{}.{} has {} column(s) but the structure has {} DOFs: one column per DOF{}", w, key,
-              m.cols(), n, at_line(*fnode)));
+      // One (cos, sin) pair of coefficient tables: rows harmonics, columns DOFs.
+      auto pair = [&](const std::string& prefix, Eigen::MatrixXd& cos_part,
+                      Eigen::MatrixXd& sin_part) {
+        cos_part = Eigen::MatrixXd::Zero(0, n);
+        sin_part = Eigen::MatrixXd::Zero(0, n);
+        for (const std::string kind : {"_cos", "_sin"}) {
+          const std::string key = prefix + kind;
+          const auto* fnode = t.get(key);
+          if (!fnode) continue;
+          Eigen::MatrixXd m = matrix(*fnode, w + "." + key, false);
+          if (m.cols() != n) {
+            throw InvalidInput(fmt::format(
+                "{}.{} has {} column(s) but the structure has {} DOFs: one column per DOF{}", w,
+                key, m.cols(), n, at_line(*fnode)));
+          }
+          if (static_cast<std::size_t>(m.rows()) > nh) {
+            throw InvalidInput(fmt::format(
+                "{}.{} has {} rows but {} harmonics are kept: one row per harmonic in the order "
+                "of harmonic_balance.harmonics{}",
+                w, key, m.rows(), nh, at_line(*fnode)));
+          }
+          if (kind == "_sin" && basis.harmonics().front() == 0 && m.rows() > 0 &&
+              m.row(0).cwiseAbs().maxCoeff() > 0.0) {
+            throw InvalidInput(fmt::format(
+                "{}.{}: the first row belongs to harmonic 0, which has no sine part: make it "
+                "zero{}",
+                w, key, at_line(*fnode)));
+          }
+          (kind == "_cos" ? cos_part : sin_part) = std::move(m);
         }
-        if (static_cast<std::size_t>(m.rows()) > nh) {
-          throw InvalidInput(fmt::format(
-              "{}.{} has {} rows but {} harmonics are kept: one row per harmonic in the order of "
-              "harmonic_balance.harmonics{}",
-              w, key, m.rows(), nh, at_line(*fnode)));
-        }
-        (std::string(key) == "force_cos" ? fr.force_cos : fr.force_sin) = std::move(m);
-      }
+        return force_vector(basis, n, cos_part, sin_part);
+      };
+      FrequencyResponseOptions& o = fr.options;
+      o.force = pair("force", fr.force_cos, fr.force_sin);
       if (!t.get("force_cos") && !t.get("force_sin")) {
         throw InvalidInput(
             fmt::format("{} needs force_cos and/or force_sin (rows: harmonics, columns: DOFs){}", w,
                         at_line(t)));
       }
-      if (basis.harmonics().front() == 0 && fr.force_sin.rows() > 0 &&
-          fr.force_sin.row(0).cwiseAbs().maxCoeff() > 0.0) {
-        throw InvalidInput(fmt::format(
-            "{}.force_sin: the first row belongs to harmonic 0, which has no sine part: make it "
-            "zero{}",
-            w, at_line(*t.get("force_sin"))));
-      }
-      FrequencyResponseOptions& o = fr.options;
-      o.force = force_vector(basis, n, fr.force_cos, fr.force_sin);
+      Eigen::MatrixXd c1, s1, c2, s2;
+      if (t.get("force_per_omega_cos") || t.get("force_per_omega_sin"))
+        o.force_per_omega = pair("force_per_omega", c1, s1);
+      if (t.get("force_per_omega2_cos") || t.get("force_per_omega2_sin"))
+        o.force_per_omega2 = pair("force_per_omega2", c2, s2);
       if (const auto* sn = t.get("force_scales")) {
         const auto* a = sn->as_array();
         if (!a || a->empty()) {

@@ -396,6 +396,38 @@ T = [[1.0]]
     return 0
 
 
+def base_excitation(exe):
+    # A linear SDOF (m = 1, k = 1, c = 0.1) on a base moving as y = Y sin(omega t),
+    # Y = 0.01: force_sin = k Y, force_per_omega_cos = c Y. Closed form (transmissibility):
+    # |X| = Y sqrt(k^2 + (c omega)^2) / sqrt((k - m omega^2)^2 + (c omega)^2).
+    case = """[structure]
+mass = [[1.0]]
+stiffness = [[1.0]]
+damping = [[0.1]]
+[harmonic_balance]
+max = 1
+time_points = 16
+[[frequency_response]]
+force_sin = [[0.0], [0.01]]
+force_per_omega_cos = [[0.0], [0.001]]
+omega = { from = 0.5, to = 2.0 }
+"""
+    with tempfile.TemporaryDirectory() as tmp:
+        r, out = run(exe, case, tmp)
+        if r.returncode != 0:
+            return fail(f"exit {r.returncode}: {r.stderr}")
+        c = json.load(open(os.path.join(out, "summary.json")))["frequency_response"][0]
+    Y, k, m, cc = 0.01, 1.0, 1.0, 0.1
+    for w, x in zip(c["omega_rad_s"], c["output_amplitude"]):
+        exact = Y * math.hypot(k, cc * w) / math.hypot(k - m * w * w, cc * w)
+        # A linear system: harmonic balance is exact up to the Newton tolerance (1e-9).
+        if abs(x[0] - exact) > 1e-7 * exact:
+            return fail(f"omega {w}: {x[0]} vs {exact}")
+    if len(c["omega_rad_s"]) < 10:
+        return fail(f"only {len(c['omega_rad_s'])} points")
+    return 0
+
+
 BAD = {
     "singular_mass": (JENKINS.replace("mass = [[1.0]]", "mass = [[0.0]]") + EPMC, "mass"),
     "singular_mass_2dof": (
@@ -456,6 +488,7 @@ def main():
         "omega_in_hz": omega_in_hz,
         "without_out_prints_the_summary": without_out_prints_the_summary,
         "element_types": element_types,
+        "base_excitation": base_excitation,
         "rough_flat_forms": rough_flat_forms,
     }[case](exe)
 

@@ -51,6 +51,10 @@
 //   [[frequency_response]]      # any number
 //   force_cos = [[0.0], [3.3]]  # rows: harmonics in `harmonics` order (missing rows are
 //   force_sin = [[0.0], [0.0]]  #   zero); columns: DOFs [N]; harmonic 0 has no sine part
+//   force_per_omega_cos = ..    # optional, same layout: F_ex = force + omega force_per_omega
+//   force_per_omega2_cos = ..   #   + omega^2 force_per_omega2 (and _sin): base excitation,
+//                               #   e.g. y = Y sin(omega t) through k, c: force_sin = k Y,
+//                               #   force_per_omega_cos = c Y [N s]
 //   force_scales = [0.5, 1.0]   # optional, default [1.0]: one curve per scale
 //   omega = { from = 0.2, to = 0.4 }   # rad/s as numbers, or quantity strings in Hz
 //                                      # ("10 Hz", converted by 2 pi) or rad/s ("62.8 rad/s")
