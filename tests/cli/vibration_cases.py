@@ -428,6 +428,29 @@ omega = { from = 0.5, to = 2.0 }
     return 0
 
 
+def out_refuses_a_foreign_directory(exe):
+    # An existing directory asperity did not write is refused before any work (exit 2),
+    # and left as it was.
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "out")
+        os.mkdir(out)
+        with open(os.path.join(out, "mine.txt"), "w") as f:
+            f.write("keep")
+        r, _ = run(exe, JENKINS + EPMC, tmp)
+        if r.returncode != 2 or r.stdout:
+            return fail(f"exit {r.returncode}: {r.stdout} {r.stderr}")
+        if os.listdir(out) != ["mine.txt"]:
+            return fail(f"directory changed: {os.listdir(out)}")
+        # A directory asperity wrote is replaced whole.
+        os.remove(os.path.join(out, "mine.txt"))
+        os.rmdir(out)
+        for _ in range(2):
+            r, _ = run(exe, JENKINS + EPMC, tmp)
+            if r.returncode != 0:
+                return fail(f"rewrite: exit {r.returncode}: {r.stderr}")
+    return 0
+
+
 BAD = {
     "singular_mass": (JENKINS.replace("mass = [[1.0]]", "mass = [[0.0]]") + EPMC, "mass"),
     "singular_mass_2dof": (
@@ -489,6 +512,7 @@ def main():
         "without_out_prints_the_summary": without_out_prints_the_summary,
         "element_types": element_types,
         "base_excitation": base_excitation,
+        "out_refuses_a_foreign_directory": out_refuses_a_foreign_directory,
         "rough_flat_forms": rough_flat_forms,
     }[case](exe)
 
