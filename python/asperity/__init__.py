@@ -40,6 +40,7 @@ from ._core import *  # noqa: F401,F403
 from ._core import mindlin
 from . import joints  # noqa: F401  (matplotlib helpers for predict / analyze_fretting)
 from . import dynamics  # noqa: F401  (dynamics case files, Fig. 7.3-7.7 helpers)
+from . import vibration  # noqa: F401  (harmonic balance, nonlinear modes, FRFs)
 
 # `import asperity.mindlin` works like a submodule of the package.
 _sys.modules[__name__ + ".mindlin"] = mindlin
