@@ -3,6 +3,7 @@
 // SI throughout. The friendly Python face is python/asperity/vibration.py; this file
 // binds the C++ objects into asperity._core._vibration.
 #include <nanobind/eigen/dense.h>
+#include <nanobind/stl/pair.h>
 #include <nanobind/stl/shared_ptr.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
@@ -182,6 +183,8 @@ void bind_vibration(nb::module_& parent) {
   m.def(
       "linear_modes",
       [](const Matrix& K, const Matrix& M) {
+        Structure s{M, K, Matrix()};
+        s.validate();  // square, same sizes, finite, symmetric, M positive definite
         const LinearModes lm = [&] {
           nb::gil_scoped_release release;
           return linear_modes(K, M);
