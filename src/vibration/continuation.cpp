@@ -283,7 +283,9 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
     }
     if (t_new.dot(t) < 0.0) t_new = -t_new;
     const double angle = std::acos(std::clamp(t_new.dot(t), -1.0, 1.0));
-    if (angle > opt.max_angle && h > opt.min_step * 2.0) {
+    // A kink of the solution curve (stick-slip onset, separation) turns the tangent by a
+    // finite angle however short the step: past a few halvings the point is accepted.
+    if (angle > opt.max_angle && h > std::max(16.0 * opt.min_step, opt.step / 64.0)) {
       ++out.rejected_steps;
       h *= 0.5;
       continue;

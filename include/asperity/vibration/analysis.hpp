@@ -18,7 +18,8 @@ struct NonlinearModeOptions {
   int mode = 1;  ///< 1-based, of the structure with the elements stuck
   double log10_amplitude_from = -6.0;
   double log10_amplitude_to = -3.0;
-  ContinuationOptions continuation;
+  /// Steps in decades of amplitude (the other unknowns scaled by the linear mode).
+  ContinuationOptions continuation{.step = 0.05, .min_step = 1e-6, .max_step = 0.1};
   void validate() const;
 };
 
@@ -52,7 +53,8 @@ struct FrequencyResponseOptions {
   std::vector<double> force_scales{1.0};
   double omega_from = 0.0;  ///< [rad/s] > 0
   double omega_to = 0.0;    ///< [rad/s] > 0, != omega_from
-  ContinuationOptions continuation;
+  /// Steps in units of the frequency range (amplitudes scaled by the stuck linear response).
+  ContinuationOptions continuation{.step = 0.01, .min_step = 1e-7, .max_step = 0.05};
   void validate(Eigen::Index unknowns) const;
 };
 
