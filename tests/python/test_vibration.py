@@ -28,7 +28,7 @@ import asperity
 import asperity.dynamics as ad
 import asperity.vibration as vib
 
-scipy = pytest.importorskip("scipy")  # python/requirements.txt installs it
+import scipy  # noqa: E402,F401  (python/requirements.txt installs it)
 from scipy.integrate import solve_ivp  # noqa: E402
 from scipy.io import mmwrite  # noqa: E402
 from scipy.linalg import eigh  # noqa: E402
