@@ -525,6 +525,24 @@ def test_epmc_agrees_with_quasi_static_estimate_for_the_rough_flat_at_small_damp
 # ---------------------------------------------------------------------------------------
 # 6. The Python face: errors, layout, threads.
 # ---------------------------------------------------------------------------------------
+def test_rough_flat_element_from_a_joint_case_carries_its_backbone():
+    # The element is the joint's SI backbone under Masing's rules (asperity.predict).
+    path = ROOT / "examples" / "joints" / "steel_rough.toml"
+    p = asperity.predict(str(path))
+    load = len(p["loads"]) - 1
+    L = p["loads"][load]
+    e = vib.RoughFlat.from_joint_case(path, T=[1.0, -1.0], load=load)
+    assert e.type == "rough_flat" and e.T.shape == (1, 2)
+    assert e.core.slip_force == pytest.approx(L["Q_max"], rel=1e-12)
+    assert e.core.initial_stiffness[0, 0] == pytest.approx(L["stiffness"], rel=1e-9)
+    x = np.array([0.1, 0.5, 2.0]) * L["Q_max"] / L["stiffness"]
+    for xi in x:
+        f, k = e.core.static_response(np.array([xi]))
+        assert f[0] == pytest.approx(L["backbone"].force(xi), rel=1e-12)  # virgin curve
+    with pytest.raises(ValueError, match="load"):
+        vib.RoughFlat.from_joint_case(path, load=len(p["loads"]))
+
+
 def test_bad_input_raises_value_errors_naming_the_field():
     with pytest.raises(ValueError, match="k_t"):
         vib.Jenkins(-1.0, 0.2)
