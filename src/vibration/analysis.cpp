@@ -215,7 +215,14 @@ std::vector<FrequencyResponseCurve> frequency_response(const HarmonicBalance& hb
   std::vector<FrequencyResponseCurve> curves;
   for (std::size_t level = 0; level < opt.force_scales.size(); ++level) {
     const double s = opt.force_scales[level];
-    const Eigen::VectorXd Fex = s * opt.force;
+    const Eigen::VectorXd F1 = opt.force_per_omega.size() ? Eigen::VectorXd(s * opt.force_per_omega)
+                                                          : Eigen::VectorXd::Zero(nu);
+    const Eigen::VectorXd F2 = opt.force_per_omega2.size()
+                                   ? Eigen::VectorXd(s * opt.force_per_omega2)
+                                   : Eigen::VectorXd::Zero(nu);
+    const auto excitation = [&](double w) -> Eigen::VectorXd {
+      return s * opt.force + w * F1 + w * w * F2;
+    };
     // The stuck linear response: the start, and the scale of the unknowns.
     Structure stuck = hb.structure();
     stuck.K = Ks;
@@ -224,12 +231,15 @@ std::vector<FrequencyResponseCurve> frequency_response(const HarmonicBalance& hb
     double u_scale = 0.0;
     for (int k = 0; k <= 64; ++k) {
       const double w = opt.omega_from + (opt.omega_to - opt.omega_from) * k / 64.0;
-      const Eigen::VectorXd U = lin.dynamic_stiffness(w, stuck.C).partialPivLu().solve(Fex);
+      const Eigen::VectorXd U =
+          lin.dynamic_stiffness(w, stuck.C).partialPivLu().solve(excitation(w));
       if (U.allFinite()) u_scale = std::max(u_scale, U.cwiseAbs().maxCoeff());
     }
     if (!(u_scale > 0.0) || !std::isfinite(u_scale)) u_scale = 1.0;
     Eigen::VectorXd y0(nu + 1);
-    y0.head(nu) = lin.dynamic_stiffness(opt.omega_from, stuck.C).partialPivLu().solve(Fex);
+    y0.head(nu) = lin.dynamic_stiffness(opt.omega_from, stuck.C)
+                      .partialPivLu()
+                      .solve(excitation(opt.omega_from));
     if (!y0.head(nu).allFinite()) y0.head(nu).setZero();
     y0(nu) = opt.omega_from;
 
@@ -237,17 +247,19 @@ std::vector<FrequencyResponseCurve> frequency_response(const HarmonicBalance& hb
     pb.f = [&](const Eigen::VectorXd& y, Eigen::VectorXd& R, Eigen::MatrixXd* J) {
       Eigen::MatrixXd dR;
       Eigen::VectorXd dRw;
-      hb.residual(y.head(nu), y(nu), Fex, R, J ? &dR : nullptr, J ? &dRw : nullptr);
+      const double w = y(nu);
+      hb.residual(y.head(nu), w, excitation(w), R, J ? &dR : nullptr, J ? &dRw : nullptr);
       if (J) {
         J->resize(nu, nu + 1);
         J->leftCols(nu) = dR;
-        J->col(nu) = dRw;
+        J->col(nu) = dRw - F1 - 2.0 * w * F2;
       }
     };
     pb.parameter = nu;
     pb.scale = Eigen::VectorXd::Constant(nu + 1, u_scale);
     pb.scale(nu) = std::abs(opt.omega_to - opt.omega_from);
-    pb.residual_scale = Fex.cwiseAbs().maxCoeff();
+    pb.residual_scale = std::max(excitation(opt.omega_from).cwiseAbs().maxCoeff(),
+                                 excitation(opt.omega_to).cwiseAbs().maxCoeff());
     pb.parameter_end = opt.omega_to;
 
     FrequencyResponseCurve c;

@@ -90,6 +90,18 @@ HarmonicBasis::HarmonicBasis(const HarmonicBalanceOptions& options) {
     D_(c, c + 1) = h;
   }
   fft_ = std::make_shared<const Fft>(n_t_);
+  const int H2 = 2 * harmonics_.back();
+  use_fft_ = static_cast<double>(H2 + 1) > 2.0 * std::log2(static_cast<double>(n_t_)) + 4.0;
+  if (!use_fft_) {
+    trig_.resize(N, 2 * (H2 + 1));
+    for (Eigen::Index i = 0; i < N; ++i) {
+      const double theta = 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(N);
+      for (int m = 0; m <= H2; ++m) {
+        trig_(i, m) = std::cos(m * theta);
+        trig_(i, H2 + 1 + m) = std::sin(m * theta);
+      }
+    }
+  }
 }
 
 long HarmonicBasis::index_of(int h, int kind) const {
@@ -116,6 +128,11 @@ std::complex<double> spectrum_at(const std::vector<std::complex<double>>& dst, s
 }  // namespace
 
 void HarmonicBasis::project(const double* s, double* out) const {
+  if (!use_fft_) {
+    const Eigen::Map<const Eigen::VectorXd> sv(s, static_cast<Eigen::Index>(n_t_));
+    Eigen::Map<Eigen::VectorXd>(out, static_cast<Eigen::Index>(n_c_)).noalias() = P_ * sv;
+    return;
+  }
   auto& buffer = spectrum_scratch(n_t_ / 2);
   fft_->half.transform_real(s, buffer.data());
   const double inv = 1.0 / static_cast<double>(n_t_);
@@ -127,18 +144,28 @@ void HarmonicBasis::project(const double* s, double* out) const {
 }
 
 void HarmonicBasis::project_diagonal(const double* s, Eigen::Ref<Eigen::MatrixXd> out) const {
-  auto& buffer = spectrum_scratch(n_t_ / 2);
-  fft_->half.transform_real(s, buffer.data());
   const double inv = 1.0 / static_cast<double>(n_t_);
   const int H2 = 2 * harmonics_.back();
   // C_m = (1/N) sum s cos(m theta), S_m = (1/N) sum s sin(m theta), m = 0 .. 2H.
   thread_local std::vector<double> Cm, Sm;
   Cm.resize(static_cast<std::size_t>(H2) + 1);
   Sm.resize(static_cast<std::size_t>(H2) + 1);
-  for (int m = 0; m <= H2; ++m) {
-    const auto X = spectrum_at(buffer, n_t_, static_cast<std::size_t>(m));
-    Cm[static_cast<std::size_t>(m)] = inv * X.real();
-    Sm[static_cast<std::size_t>(m)] = -inv * X.imag();
+  if (use_fft_) {
+    auto& buffer = spectrum_scratch(n_t_ / 2);
+    fft_->half.transform_real(s, buffer.data());
+    for (int m = 0; m <= H2; ++m) {
+      const auto X = spectrum_at(buffer, n_t_, static_cast<std::size_t>(m));
+      Cm[static_cast<std::size_t>(m)] = inv * X.real();
+      Sm[static_cast<std::size_t>(m)] = -inv * X.imag();
+    }
+  } else {
+    const Eigen::Map<const Eigen::VectorXd> sv(s, static_cast<Eigen::Index>(n_t_));
+    thread_local Eigen::VectorXd cs;
+    cs.noalias() = trig_.transpose() * sv;
+    for (int m = 0; m <= H2; ++m) {
+      Cm[static_cast<std::size_t>(m)] = inv * cs(m);
+      Sm[static_cast<std::size_t>(m)] = inv * cs(H2 + 1 + m);
+    }
   }
   auto C = [&](int m) { return Cm[static_cast<std::size_t>(m < 0 ? -m : m)]; };
   auto S = [&](int m) {
@@ -303,20 +330,32 @@ void HarmonicBalance::nonlinear_force(const Eigen::VectorXd& U, double omega, Ei
       }
     }
     if (!resp.history.empty()) {
-      // W(:, d, (j, e)) = sum over terms (i, d, j, e) of value P(:, i); then
-      // Je(d, e) += W(:, d, (j, e)) E(j, :).
+      // Per touched column (j, e): W(:, d) = sum over terms (i, d, j, e) of value P(:, i);
+      // then Je(d, e) += W(:, d) E(j, :). Hysteretic elements touch few columns (the
+      // reversal and slip samples), so W is kept compact.
       const Eigen::Index cols = N * dirs;
-      Eigen::MatrixXd W = Eigen::MatrixXd::Zero(nc * dirs, cols);
-      std::vector<char> touched(static_cast<std::size_t>(cols), 0);
+      thread_local std::vector<int> slot;
+      thread_local std::vector<Eigen::Index> touched;
+      thread_local Eigen::MatrixXd W;
+      slot.assign(static_cast<std::size_t>(cols), -1);
+      touched.clear();
       for (const HistoryTerm& t : resp.history) {
         const Eigen::Index col = static_cast<Eigen::Index>(t.j) + N * t.d_src;
-        W.block(nc * t.d, col, nc, 1) += t.value * P.col(t.i);
-        touched[static_cast<std::size_t>(col)] = 1;
+        int& k = slot[static_cast<std::size_t>(col)];
+        if (k < 0) {
+          k = static_cast<int>(touched.size());
+          touched.push_back(col);
+          if (W.cols() < static_cast<Eigen::Index>(touched.size())) {
+            W.conservativeResize(nc * dirs, std::max<Eigen::Index>(16, 2 * W.cols()));
+          }
+          W.col(k).setZero();
+        }
+        W.block(nc * t.d, k, nc, 1) += t.value * P.col(t.i);
       }
-      for (Eigen::Index col = 0; col < cols; ++col) {
-        if (!touched[static_cast<std::size_t>(col)]) continue;
+      for (std::size_t k = 0; k < touched.size(); ++k) {
+        const Eigen::Index col = touched[k];
         const Eigen::Index j = col % N, e = col / N;
-        Je.middleCols(nc * e, nc).noalias() += W.col(col) * E.row(j);
+        Je.middleCols(nc * e, nc).noalias() += W.col(static_cast<Eigen::Index>(k)) * E.row(j);
       }
     }
     // Structure: dF/dX += (T^T (x) I) Je (T (x) I).

@@ -237,22 +237,26 @@ TEST(VibrationHarmonicBalance, JacobianMatchesFiniteDifferences) {
   }
 }
 
-// The projection and synthesis are inverse (P E = I) and the FFT projection equals the
-// matrix one, for a harmonic subset.
+// The projection and synthesis are inverse (P E = I) and the fast projections (KISS FFT
+// for many harmonics, direct sums for few) equal the matrix ones, for harmonic subsets.
 TEST(VibrationHarmonicBalance, BasisProjectionInvertsSynthesis) {
-  const HarmonicBasis b(HarmonicBalanceOptions{{1, 3, 4}, 32});
-  const Eigen::MatrixXd PE = b.projection() * b.synthesis();
-  EXPECT_LT((PE - Eigen::MatrixXd::Identity(PE.rows(), PE.cols())).cwiseAbs().maxCoeff(), 1e-14);
-  std::mt19937_64 rng(1);
-  std::normal_distribution<double> g;
-  Eigen::VectorXd s(32);
-  for (auto& x : s) x = g(rng);
-  Eigen::VectorXd c(static_cast<Eigen::Index>(b.coefficients()));
-  b.project(s.data(), c.data());
-  EXPECT_LT((c - b.projection() * s).cwiseAbs().maxCoeff(), 1e-14);
-  Eigen::MatrixXd Dm(c.size(), c.size());
-  b.project_diagonal(s.data(), Dm);
-  EXPECT_LT((Dm - b.projection() * s.asDiagonal() * b.synthesis()).cwiseAbs().maxCoeff(), 1e-14);
+  for (const auto& [harmonics, N] : std::vector<std::pair<std::vector<int>, std::size_t>>{
+           {{1, 3, 4}, 32}, {{0, 1, 2, 3, 5, 7, 9, 11, 13}, 64}}) {
+    const HarmonicBasis b(HarmonicBalanceOptions{harmonics, N});
+    EXPECT_EQ(b.uses_fft(), harmonics.size() > 3);
+    const Eigen::MatrixXd PE = b.projection() * b.synthesis();
+    EXPECT_LT((PE - Eigen::MatrixXd::Identity(PE.rows(), PE.cols())).cwiseAbs().maxCoeff(), 1e-14);
+    std::mt19937_64 rng(1);
+    std::normal_distribution<double> g;
+    Eigen::VectorXd s(static_cast<Eigen::Index>(N));
+    for (auto& x : s) x = g(rng);
+    Eigen::VectorXd c(static_cast<Eigen::Index>(b.coefficients()));
+    b.project(s.data(), c.data());
+    EXPECT_LT((c - b.projection() * s).cwiseAbs().maxCoeff(), 1e-14);
+    Eigen::MatrixXd Dm(c.size(), c.size());
+    b.project_diagonal(s.data(), Dm);
+    EXPECT_LT((Dm - b.projection() * s.asDiagonal() * b.synthesis()).cwiseAbs().maxCoeff(), 1e-14);
+  }
 }
 
 // A linear structure: harmonic balance gives (K - w^2 M + i w C)^{-1} F exactly, on the
@@ -286,6 +290,57 @@ TEST(VibrationHarmonicBalance, LinearForcedResponseIsExact) {
                    b = curves[0].harmonics[k](hb.index(d, 1));
       EXPECT_NEAR(a, X(d).real(), 1e-9 * X.norm()) << "omega " << w;
       EXPECT_NEAR(b, -X(d).imag(), 1e-9 * X.norm()) << "omega " << w;
+    }
+  }
+}
+
+// Base excitation through force_per_omega: y = Y sin(w t) through k and c on a linear SDOF
+// gives X = (k + i w c) Y_hat / (k - w^2 m + i w c) (Y_hat = -i Y), exactly.
+TEST(VibrationHarmonicBalance, BaseExcitationIsExact) {
+  const double m = 2.0, k = 3.0, c = 0.05, Y = 0.1;
+  const auto hb = single_dof(nullptr, m, k, c, {1}, 8);
+  FrequencyResponseOptions opt;
+  opt.force = Eigen::VectorXd::Zero(hb.unknowns());
+  opt.force(hb.index(0, 1)) = k * Y;  // sin
+  opt.force_per_omega = Eigen::VectorXd::Zero(hb.unknowns());
+  opt.force_per_omega(hb.index(0, 0)) = c * Y;  // cos, times omega
+  opt.omega_from = 0.5;
+  opt.omega_to = 2.0;
+  const auto curves = frequency_response(hb, opt, {0});
+  ASSERT_TRUE(curves[0].continuation.complete);
+  for (std::size_t p = 0; p < curves[0].harmonics.size(); ++p) {
+    const double w = curves[0].omega(static_cast<Eigen::Index>(p));
+    const std::complex<double> X = std::complex<double>(k, w * c) * std::complex<double>(0.0, -Y) /
+                                   std::complex<double>(k - w * w * m, w * c);
+    EXPECT_NEAR(curves[0].harmonics[p](0), X.real(), 1e-10 * std::abs(X));
+    EXPECT_NEAR(curves[0].harmonics[p](1), -X.imag(), 1e-10 * std::abs(X));
+  }
+}
+
+// EPMC of a linear structure (no joints) is its linear mode at every amplitude: omega_n
+// and zeta = phi^T C phi / (2 omega_n) for Rayleigh damping.
+TEST(VibrationAnalysis, EpmcOfLinearStructureIsItsMode) {
+  Structure s;
+  s.M = Eigen::Matrix2d{{1.0, 0.0}, {0.0, 2.0}};
+  s.K = Eigen::Matrix2d{{3.0, -1.0}, {-1.0, 2.0}};
+  s.C = rayleigh(s.M, s.K, {.alpha = 0.01, .beta = 0.002});
+  const HarmonicBalance hb(s, {}, HarmonicBalanceOptions{{0, 1, 3}, 32});
+  const LinearModes lm = linear_modes(s.K, s.M);
+  for (int mode : {1, 2}) {
+    NonlinearModeOptions opt;
+    opt.mode = mode;
+    opt.log10_amplitude_from = -3.0;
+    opt.log10_amplitude_to = 1.0;
+    const auto r = nonlinear_mode(hb, opt, {0, 1});
+    ASSERT_TRUE(r.continuation.complete);
+    const double wn = lm.omega(mode - 1);
+    const Eigen::VectorXd phi = lm.shapes.col(mode - 1);
+    const double zeta = phi.dot(s.C * phi) / (2.0 * wn);
+    for (Eigen::Index i = 0; i < r.omega.size(); ++i) {
+      EXPECT_NEAR(r.omega(i), wn, 1e-10 * wn);
+      EXPECT_NEAR(r.damping_ratio(i), zeta, 1e-10 * zeta);
+      EXPECT_NEAR(r.output_amplitude(i, 1), r.amplitude(i) * std::abs(phi(1)),
+                  1e-9 * r.amplitude(i));
     }
   }
 }

@@ -48,8 +48,13 @@ struct NonlinearModeResult {
 
 struct FrequencyResponseOptions {
   /// Excitation coefficients in the unknowns' layout (see HarmonicBalance::index), at
-  /// force_scale = 1.
+  /// force_scale = 1: F_ex(omega) = force + omega force_per_omega + omega^2
+  /// force_per_omega2. The last two (optional, empty = zero) express base excitation:
+  /// a base motion y = Y sin(omega t) through a spring k and a damper c gives
+  /// k Y sin + omega c Y cos, so force_sin = k Y and force_per_omega (cos) = c Y.
   Eigen::VectorXd force;
+  Eigen::VectorXd force_per_omega;
+  Eigen::VectorXd force_per_omega2;
   std::vector<double> force_scales{1.0};
   double omega_from = 0.0;  ///< [rad/s] > 0
   double omega_to = 0.0;    ///< [rad/s] > 0, != omega_from
