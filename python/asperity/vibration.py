@@ -10,6 +10,10 @@ from the same C++ code as ``asperity vibration``. SI units throughout.
   :class:`Coulomb`, :class:`ElasticDryFriction2d`, :class:`RoughFlat` (any SI backbone
   under Masing's rules: from :func:`asperity.epb_backbone`, a joint case file or
   :func:`asperity.predict`).
+* :func:`run_case` / :func:`run_case_text` - a case file of ``asperity vibration``
+  (the same parser and run function as the command): the summary (summary.json as a
+  dict) and each analysis's arrays; :meth:`HarmonicBalance.from_case` - a case file's
+  system, for residuals and analyses of one's own.
 * :class:`HarmonicBalance` - the AFT system (harmonics kept, ``N_t`` samples per
   period): residual and analytic Jacobian as numpy arrays, the force vector from cosine
   and sine parts, and the analyses :meth:`HarmonicBalance.nonlinear_mode` (EPMC, Krack
@@ -37,7 +41,8 @@ _v = _core._vibration
 __all__ = [
     "Structure", "Element", "Jenkins", "Iwan4", "Coulomb", "ElasticDryFriction2d",
     "RoughFlat", "HarmonicBalance", "Result", "nonlinear_mode", "frequency_response",
-    "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh",
+    "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
+    "run_case_text",
 ]
 
 
@@ -236,16 +241,6 @@ class RoughFlat(Element):
         return cls(L["backbone"], T, name, params)
 
 
-def _continuation(kw: dict) -> tuple:
-    return (float(kw.pop("step", 0.05)), float(kw.pop("min_step", 1e-6)),
-            float(kw.pop("max_step", 0.5)), int(kw.pop("max_points", 2000)))
-
-
-def _check_kwargs(kw: dict, fn: str):
-    if kw:
-        raise TypeError(f"{fn}() got unexpected keyword arguments: {', '.join(kw)}")
-
-
 class HarmonicBalance:
     """The harmonic-balance (AFT) system of a structure with joint elements.
 
@@ -276,6 +271,26 @@ class HarmonicBalance:
         self._core = _v.HarmonicBalance(structure._core, [e.core for e in elements],
                                         [e.T for e in elements], names, harmonics,
                                         int(time_points))
+
+    @classmethod
+    def from_case(cls, path: str | os.PathLike) -> "HarmonicBalance":
+        """The structure, placed elements and harmonic-balance settings of a vibration case
+        file (its analyses are not run; ``output_dofs`` of the case in ``.output_dofs``)."""
+        d = _v.case_system(os.fspath(path))
+        return cls._from_system(d)
+
+    @classmethod
+    def _from_system(cls, d) -> "HarmonicBalance":
+        s = Structure.__new__(Structure)
+        s._core = d["structure"]
+        elements = []
+        for core, T, name in d["elements"]:
+            e = Element.__new__(Element)
+            e.core, e.T, e.name = core, np.asarray(T), name
+            elements.append(e)
+        hb = cls(s, elements, harmonics=d["harmonics"], time_points=d["time_points"])
+        hb.output_dofs = list(d["output_dofs"])
+        return hb
 
     # -- layout ---------------------------------------------------------------------------
     @property
@@ -389,29 +404,39 @@ class HarmonicBalance:
         frequency_hz, xi [1/s], damping_ratio (xi / 2 omega), output_amplitude (points x
         outputs), harmonics (points x unknowns: U = a Psi)``, ``linear_omega``,
         ``linear_damping_ratio``, ``continuation`` and ``warnings``. Keyword options of the
-        continuation: step, min_step, max_step, max_points."""
-        cont = _continuation(continuation)
-        _check_kwargs(continuation, "nonlinear_mode")
+        continuation: see :meth:`frequency_response`."""
         lo, hi = log10_amplitude
         r = Result(_v.nonlinear_mode(self._core, int(mode), float(lo), float(hi),
-                                     [int(d) for d in output_dofs], *cont))
+                                     [int(d) for d in output_dofs], dict(continuation)))
         _issue(r, "nonlinear_mode")
         return r
 
     def frequency_response(self, force, omega, force_scales: Sequence[float] = (1.0,),
-                           output_dofs: Sequence[int] = (), **continuation) -> list:
+                           output_dofs: Sequence[int] = (), *, force_per_omega=None,
+                           force_per_omega2=None, **continuation) -> list:
         """Forced response curves by continuation in ``omega = (from, to)`` [rad/s] for each
-        force scale; ``force`` in the layout of ``U`` (see :meth:`force`). One
-        :class:`Result` per scale: ``force_scale, omega, output_amplitude (points x
+        force scale; ``force`` in the layout of ``U`` (see :meth:`force`). The excitation
+        is ``force + omega force_per_omega + omega^2 force_per_omega2`` (the last two
+        optional: base excitation, e.g. ``y = Y sin(w t)`` through k and c gives
+        ``force = force(sin={1: k Y})`` and ``force_per_omega = force(cos={1: c Y})``).
+        One :class:`Result` per scale: ``force_scale, omega, output_amplitude (points x
         outputs, first harmonic), harmonic_amplitude (per output: points x harmonics),
         max_displacement (points x outputs), harmonics (points x unknowns), continuation,
-        warnings``."""
-        cont = _continuation(continuation)
-        _check_kwargs(continuation, "frequency_response")
+        warnings``.
+
+        Keyword options of the continuation (each optional; the analysis's own defaults
+        otherwise, as in a case file's ``continuation`` table): step, min_step, max_step
+        (arclength in scaled unknowns), max_points, target_iterations, max_angle [rad],
+        max_iterations, step_tolerance, residual_tolerance (Newton)."""
         w0, w1 = omega
-        curves = _v.frequency_response(self._core, np.ascontiguousarray(force, dtype=float),
-                                       [float(s) for s in force_scales], float(w0), float(w1),
-                                       [int(d) for d in output_dofs], *cont)
+
+        def vec(x):
+            return np.zeros(0) if x is None else np.ascontiguousarray(x, dtype=float)
+
+        curves = _v.frequency_response(self._core, vec(force), vec(force_per_omega),
+                                       vec(force_per_omega2), [float(s) for s in force_scales],
+                                       float(w0), float(w1), [int(d) for d in output_dofs],
+                                       dict(continuation))
         out = []
         for c in curves:
             r = Result(c)
@@ -442,12 +467,41 @@ def nonlinear_mode(hb: HarmonicBalance, mode: int = 1, log10_amplitude=(-6.0, -3
 
 
 def frequency_response(hb: HarmonicBalance, force, omega, force_scales=(1.0,),
-                       output_dofs: Sequence[int] = (), **continuation) -> list:
+                       output_dofs: Sequence[int] = (), **kwargs) -> list:
     """:meth:`HarmonicBalance.frequency_response`."""
-    return hb.frequency_response(force, omega, force_scales, output_dofs, **continuation)
+    return hb.frequency_response(force, omega, force_scales, output_dofs, **kwargs)
 
 
 def quasi_static_mode(hb: HarmonicBalance, mode: int = 1, amplitude=(1e-7, 1e-4),
                       points: int = 60) -> Result:
     """:meth:`HarmonicBalance.quasi_static_mode`."""
     return hb.quasi_static_mode(mode, amplitude, points)
+
+
+def _case_result(d: dict, source: str) -> Result:
+    out = Result(summary=d["summary"], complete=d["complete"], stop_reason=d["stop_reason"],
+                 warnings=list(d["warnings"]))
+    out["nonlinear_mode"] = Result(d["nonlinear_mode"]) if d["nonlinear_mode"] is not None else None
+    out["frequency_response"] = [Result(c) for c in d["frequency_response"]]
+    out["quasi_static_mode"] = (Result(d["quasi_static_mode"])
+                                if d["quasi_static_mode"] is not None else None)
+    out["system"] = HarmonicBalance._from_system(d["system"])
+    _issue(out, source)
+    return out
+
+
+def run_case(path: str | os.PathLike) -> Result:
+    """Runs a vibration case file (docs/vibration.md) through the same C++ code as
+    ``asperity vibration``. Returns a :class:`Result` with ``summary`` (summary.json as a
+    dict), ``nonlinear_mode`` and ``quasi_static_mode`` (:class:`Result` of arrays or None),
+    ``frequency_response`` (one :class:`Result` per curve, ``table`` its
+    ``[[frequency_response]]`` index), ``complete`` (every continuation reached its end),
+    ``stop_reason``, ``warnings`` (also issued as RuntimeWarning) and ``system`` (the
+    case's :class:`HarmonicBalance`)."""
+    return _case_result(_v.run_case(os.fspath(path)), os.fspath(path))
+
+
+def run_case_text(text: str, base_dir: str | os.PathLike = ".") -> Result:
+    """:func:`run_case` for case-file text (``base_dir`` resolves .mtx files and a
+    [joint]'s profiles)."""
+    return _case_result(_v.run_case_text(text, os.fspath(base_dir)), "<string>")

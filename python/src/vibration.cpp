@@ -6,6 +6,7 @@
 #include <nanobind/stl/pair.h>
 #include <nanobind/stl/shared_ptr.h>
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
 #include <fmt/format.h>
@@ -22,6 +23,7 @@
 #include "asperity/dynamics/case.hpp"
 #include "asperity/hysteresis/backbone.hpp"
 #include "asperity/vibration/analysis.hpp"
+#include "asperity/vibration/case.hpp"
 #include "asperity/vibration/continuation.hpp"
 #include "asperity/vibration/elements.hpp"
 #include "asperity/vibration/harmonic_balance.hpp"
@@ -95,13 +97,52 @@ std::vector<Eigen::Index> dof_list(const std::vector<long>& v) {
   return std::vector<Eigen::Index>(v.begin(), v.end());
 }
 
-ContinuationOptions continuation_options(double step, double min_step, double max_step,
-                                         std::size_t max_points) {
-  ContinuationOptions c;
-  c.step = step;
-  c.min_step = min_step;
-  c.max_step = max_step;
-  c.max_points = max_points;
+// Overrides of an analysis's default continuation settings from a dict with the keys of a
+// case file's `continuation` table; unknown keys are errors.
+ContinuationOptions continuation_options(ContinuationOptions c, const nb::dict& kw) {
+  for (auto [k, v] : kw) {
+    const std::string key = nb::cast<std::string>(nb::str(k));
+    auto number = [&] {
+      double x = 0.0;
+      if (!nb::try_cast<double>(v, x)) {
+        throw InvalidInput(fmt::format("continuation.{} must be a number", key));
+      }
+      return x;
+    };
+    auto integer = [&] {
+      const double x = number();
+      if (!(x >= 1.0 && x <= 1e6) || x != std::floor(x)) {
+        throw InvalidInput(
+            fmt::format("continuation.{} = {}: must be a whole number in [1, 1e6]", key, x));
+      }
+      return x;
+    };
+    if (key == "step") {
+      c.step = number();
+    } else if (key == "min_step") {
+      c.min_step = number();
+    } else if (key == "max_step") {
+      c.max_step = number();
+    } else if (key == "max_points") {
+      c.max_points = static_cast<std::size_t>(integer());
+    } else if (key == "target_iterations") {
+      c.target_iterations = static_cast<int>(integer());
+    } else if (key == "max_angle") {
+      c.max_angle = number();
+    } else if (key == "max_iterations") {
+      c.newton.max_iterations = static_cast<int>(integer());
+    } else if (key == "step_tolerance") {
+      c.newton.step_tolerance = number();
+    } else if (key == "residual_tolerance") {
+      c.newton.residual_tolerance = number();
+    } else {
+      throw InvalidInput(fmt::format(
+          "continuation option \"{}\" is unknown: allowed are step, min_step, max_step, "
+          "max_points, target_iterations, max_angle, max_iterations, step_tolerance, "
+          "residual_tolerance",
+          key));
+    }
+  }
   c.validate();
   return c;
 }
@@ -133,6 +174,95 @@ nb::list string_list(const std::vector<std::string>& v) {
   nb::list l;
   for (const auto& s : v) l.append(s);
   return l;
+}
+
+nb::dict mode_dict(const NonlinearModeResult& r, Eigen::Index unknowns) {
+  nb::dict d;
+  d["log10_amplitude"] = copy_of(r.log10_amplitude);
+  d["amplitude"] = copy_of(r.amplitude);
+  d["omega"] = copy_of(r.omega);
+  d["frequency_hz"] = copy_of(r.frequency_hz);
+  d["xi"] = copy_of(r.xi);
+  d["damping_ratio"] = copy_of(r.damping_ratio);
+  d["output_amplitude"] = copy_of(r.output_amplitude);
+  d["harmonics"] = copy_of(stack(r.harmonics, unknowns));
+  d["linear_omega"] = r.linear_omega;
+  d["linear_damping_ratio"] = r.linear_damping_ratio;
+  d["continuation"] = continuation_dict(r.continuation);
+  d["warnings"] = string_list(r.warnings);
+  return d;
+}
+
+nb::dict curve_dict(const FrequencyResponseCurve& c, Eigen::Index unknowns) {
+  nb::dict d;
+  d["force_scale"] = c.force_scale;
+  d["omega"] = copy_of(c.omega);
+  nb::list ha;
+  for (const Matrix& h : c.harmonic_amplitude) ha.append(copy_of(h));
+  d["harmonic_amplitude"] = ha;
+  d["output_amplitude"] = copy_of(c.output_amplitude);
+  d["max_displacement"] = copy_of(c.max_displacement);
+  d["harmonics"] = copy_of(stack(c.harmonics, unknowns));
+  d["continuation"] = continuation_dict(c.continuation);
+  d["warnings"] = string_list(c.warnings);
+  return d;
+}
+
+nb::dict quasi_static_dict(const QuasiStaticModeResult& r) {
+  nb::dict d;
+  d["amplitude"] = copy_of(r.amplitude);
+  d["omega"] = copy_of(r.omega);
+  d["frequency_hz"] = copy_of(r.frequency_hz);
+  d["damping_ratio"] = copy_of(r.damping_ratio);
+  d["modal_force"] = copy_of(r.modal_force);
+  d["dissipation"] = copy_of(r.dissipation);
+  d["linear_omega"] = r.linear_omega;
+  d["newton_iterations"] = r.newton_iterations;
+  d["warnings"] = string_list(r.warnings);
+  return d;
+}
+
+// The case's system as the pieces of a Python HarmonicBalance.
+nb::dict case_system(const VibrationCase& c) {
+  nb::dict d;
+  d["structure"] = nb::cast(c.structure);
+  nb::list elements;
+  for (const PlacedElement& pe : c.elements) {
+    elements.append(nb::make_tuple(nb::cast(pe.element), copy_of(pe.T), pe.name));
+  }
+  d["elements"] = elements;
+  d["harmonics"] = c.harmonic_balance.harmonics;
+  d["time_points"] = c.harmonic_balance.time_points;
+  d["output_dofs"] = std::vector<long>(c.output_dofs.begin(), c.output_dofs.end());
+  return d;
+}
+
+// run_case as a dict: summary (summary.json), the analyses' arrays, complete, warnings.
+nb::dict case_result(const VibrationCase& c) {
+  const VibrationResult r = [&] {
+    nb::gil_scoped_release release;
+    return run_case(c);
+  }();
+  const auto nu = static_cast<Eigen::Index>(HarmonicBasis(c.harmonic_balance).coefficients() *
+                                            static_cast<std::size_t>(c.structure.dofs()));
+  nb::dict d;
+  d["summary"] = summary_to_python(dynamics::SummaryValue(r.summary));
+  d["nonlinear_mode"] =
+      r.nonlinear_mode ? nb::object(mode_dict(*r.nonlinear_mode, nu)) : nb::none();
+  nb::list curves;
+  for (std::size_t k = 0; k < r.frequency_response.size(); ++k) {
+    nb::dict cd = curve_dict(r.frequency_response[k], nu);
+    cd["table"] = r.frequency_response_table[k];
+    curves.append(cd);
+  }
+  d["frequency_response"] = curves;
+  d["quasi_static_mode"] =
+      r.quasi_static_mode ? nb::object(quasi_static_dict(*r.quasi_static_mode)) : nb::none();
+  d["complete"] = r.complete;
+  d["stop_reason"] = r.stop_reason;
+  d["warnings"] = string_list(r.warnings);
+  d["system"] = case_system(c);
+  return d;
 }
 
 }  // namespace
@@ -435,67 +565,43 @@ void bind_vibration(nb::module_& parent) {
   m.def(
       "nonlinear_mode",
       [](const PyHarmonicBalance& p, int mode, double log10_from, double log10_to,
-         const std::vector<long>& outputs, double step, double min_step, double max_step,
-         std::size_t max_points) {
+         const std::vector<long>& outputs, const nb::dict& continuation) {
         NonlinearModeOptions o;
         o.mode = mode;
         o.log10_amplitude_from = log10_from;
         o.log10_amplitude_to = log10_to;
-        o.continuation = continuation_options(step, min_step, max_step, max_points);
+        o.continuation = continuation_options(o.continuation, continuation);
         const NonlinearModeResult r = locked(
             p, [&](const HarmonicBalance& hb) { return nonlinear_mode(hb, o, dof_list(outputs)); });
-        nb::dict d;
-        d["log10_amplitude"] = copy_of(r.log10_amplitude);
-        d["amplitude"] = copy_of(r.amplitude);
-        d["omega"] = copy_of(r.omega);
-        d["frequency_hz"] = copy_of(r.frequency_hz);
-        d["xi"] = copy_of(r.xi);
-        d["damping_ratio"] = copy_of(r.damping_ratio);
-        d["output_amplitude"] = copy_of(r.output_amplitude);
-        d["harmonics"] = copy_of(stack(r.harmonics, p.hb.unknowns()));
-        d["linear_omega"] = r.linear_omega;
-        d["linear_damping_ratio"] = r.linear_damping_ratio;
-        d["continuation"] = continuation_dict(r.continuation);
-        d["warnings"] = string_list(r.warnings);
-        return d;
+        return mode_dict(r, p.hb.unknowns());
       },
-      "hb"_a, "mode"_a, "log10_from"_a, "log10_to"_a, "output_dofs"_a, "step"_a, "min_step"_a,
-      "max_step"_a, "max_points"_a);
+      "hb"_a, "mode"_a, "log10_from"_a, "log10_to"_a, "output_dofs"_a, "continuation"_a);
 
   m.def(
       "frequency_response",
-      [](const PyHarmonicBalance& p, const Vector& force, const std::vector<double>& scales,
-         double omega_from, double omega_to, const std::vector<long>& outputs, double step,
-         double min_step, double max_step, std::size_t max_points) {
+      [](const PyHarmonicBalance& p, const Vector& force, const Vector& force_per_omega,
+         const Vector& force_per_omega2, const std::vector<double>& scales, double omega_from,
+         double omega_to, const std::vector<long>& outputs, const nb::dict& continuation) {
         FrequencyResponseOptions o;
         o.force = force;
+        o.force_per_omega = force_per_omega;
+        o.force_per_omega2 = force_per_omega2;
         o.force_scales = scales;
         o.omega_from = omega_from;
         o.omega_to = omega_to;
-        o.continuation = continuation_options(step, min_step, max_step, max_points);
+        o.continuation = continuation_options(o.continuation, continuation);
         const std::vector<FrequencyResponseCurve> curves =
             locked(p, [&](const HarmonicBalance& hb) {
               return frequency_response(hb, o, dof_list(outputs));
             });
         nb::list out;
-        for (const FrequencyResponseCurve& c : curves) {
-          nb::dict d;
-          d["force_scale"] = c.force_scale;
-          d["omega"] = copy_of(c.omega);
-          nb::list ha;
-          for (const Matrix& h : c.harmonic_amplitude) ha.append(copy_of(h));
-          d["harmonic_amplitude"] = ha;
-          d["output_amplitude"] = copy_of(c.output_amplitude);
-          d["max_displacement"] = copy_of(c.max_displacement);
-          d["harmonics"] = copy_of(stack(c.harmonics, p.hb.unknowns()));
-          d["continuation"] = continuation_dict(c.continuation);
-          d["warnings"] = string_list(c.warnings);
-          out.append(d);
-        }
+        for (const FrequencyResponseCurve& c : curves) out.append(curve_dict(c, p.hb.unknowns()));
         return out;
       },
-      "hb"_a, "force"_a, "force_scales"_a, "omega_from"_a, "omega_to"_a, "output_dofs"_a, "step"_a,
-      "min_step"_a, "max_step"_a, "max_points"_a);
+      "hb"_a, "force"_a, "force_per_omega"_a, "force_per_omega2"_a, "force_scales"_a,
+      "omega_from"_a, "omega_to"_a, "output_dofs"_a, "continuation"_a,
+      "F_ex(omega) = force + omega force_per_omega + omega^2 force_per_omega2 (the last two may "
+      "be empty).");
 
   m.def(
       "quasi_static_mode",
@@ -508,19 +614,43 @@ void bind_vibration(nb::module_& parent) {
         o.points = points;
         const QuasiStaticModeResult r =
             locked(p, [&](const HarmonicBalance& hb) { return quasi_static_mode(hb, o); });
-        nb::dict d;
-        d["amplitude"] = copy_of(r.amplitude);
-        d["omega"] = copy_of(r.omega);
-        d["frequency_hz"] = copy_of(r.frequency_hz);
-        d["damping_ratio"] = copy_of(r.damping_ratio);
-        d["modal_force"] = copy_of(r.modal_force);
-        d["dissipation"] = copy_of(r.dissipation);
-        d["linear_omega"] = r.linear_omega;
-        d["newton_iterations"] = r.newton_iterations;
-        d["warnings"] = string_list(r.warnings);
-        return d;
+        return quasi_static_dict(r);
       },
       "hb"_a, "mode"_a, "amplitude_from"_a, "amplitude_to"_a, "points"_a);
+
+  // ---- case files (shared with `asperity vibration`) -------------------------------------
+  m.def(
+      "run_case",
+      [](const std::string& path) {
+        const VibrationCase c = [&] {
+          nb::gil_scoped_release release;
+          return read_case_file(path);
+        }();
+        return case_result(c);
+      },
+      "path"_a,
+      "Runs a vibration case file: dict summary, nonlinear_mode, frequency_response, "
+      "quasi_static_mode, complete, stop_reason, warnings, system.");
+  m.def(
+      "run_case_text",
+      [](const std::string& text, const std::string& base_dir) {
+        const VibrationCase c = [&] {
+          nb::gil_scoped_release release;
+          return parse_case_text(text, "<string>", base_dir);
+        }();
+        return case_result(c);
+      },
+      "text"_a, "base_dir"_a = ".", "run_case for case-file text.");
+  m.def(
+      "case_system",
+      [](const std::string& path) {
+        const VibrationCase c = [&] {
+          nb::gil_scoped_release release;
+          return read_case_file(path);
+        }();
+        return case_system(c);
+      },
+      "path"_a, "A case file's structure, placed elements and harmonic-balance settings.");
 }
 
 }  // namespace asperity::python

@@ -543,6 +543,66 @@ def test_rough_flat_element_from_a_joint_case_carries_its_backbone():
         vib.RoughFlat.from_joint_case(path, load=len(p["loads"]))
 
 
+CASE = """
+[structure]
+mass = [[1.0, 0.0], [0.0, 2.0]]
+stiffness = [[3.0, -1.0], [-1.0, 2.0]]
+rayleigh = { alpha = 0.01, beta = 0.002 }
+output_dofs = [1]
+
+[[element]]
+type = "jenkins"
+T = [1.0, -0.5]
+k_t = "1.0 N/m"
+F_s = 0.3
+
+[harmonic_balance]
+max = 3
+time_points = 128
+
+[nonlinear_mode]
+mode = 1
+log10_amplitude = { from = -1.0, to = 0.5 }
+
+[[frequency_response]]
+force_cos = [[0.0, 0.0], [0.0, 0.2]]
+omega = { from = 0.8, to = 1.6 }
+
+[quasi_static_mode]
+mode = 1
+amplitude = { from = 0.1, to = 1.0 }
+points = 12
+"""
+
+
+def test_case_text_runs_the_same_analyses_as_the_python_api():
+    # The case runner (shared with `asperity vibration`) and the Python objects call the
+    # same C++ functions with the same settings: the arrays are identical.
+    r = vib.run_case_text(CASE)
+    assert r.complete
+    hb = r.system
+    assert hb.output_dofs == [1] and hb.harmonics == [0, 1, 2, 3] and hb.time_points == 128
+    s = vib.Structure([[1.0, 0.0], [0.0, 2.0]], [[3.0, -1.0], [-1.0, 2.0]],
+                      rayleigh=(0.01, 0.002))
+    mine = vib.HarmonicBalance(s, [vib.Jenkins(1.0, 0.3, T=[1.0, -0.5])], max_harmonic=3,
+                               time_points=128)
+    np.testing.assert_array_equal(hb.structure.C, s.C)
+    m = mine.nonlinear_mode(1, (-1.0, 0.5), output_dofs=[1])
+    np.testing.assert_array_equal(r.nonlinear_mode.omega, m.omega)
+    np.testing.assert_array_equal(r.nonlinear_mode.damping_ratio, m.damping_ratio)
+    np.testing.assert_array_equal(r.summary["nonlinear_mode"]["omega_rad_s"], m.omega)
+    (c,) = mine.frequency_response(mine.force(cos={1: [0.0, 0.2]}), omega=(0.8, 1.6),
+                                   output_dofs=[1])
+    (rc,) = r.frequency_response
+    assert rc.table == 0
+    np.testing.assert_array_equal(rc.omega, c.omega)
+    np.testing.assert_array_equal(rc.output_amplitude, c.output_amplitude)
+    q = mine.quasi_static_mode(1, (0.1, 1.0), 12)
+    np.testing.assert_array_equal(r.quasi_static_mode.damping_ratio, q.damping_ratio)
+    with pytest.raises(ValueError, match="k_t"):
+        vib.run_case_text(CASE.replace('k_t = "1.0 N/m"', "k_t = -1.0"))
+
+
 def test_bad_input_raises_value_errors_naming_the_field():
     with pytest.raises(ValueError, match="k_t"):
         vib.Jenkins(-1.0, 0.2)
