@@ -139,6 +139,33 @@ def test_jacobian_matches_central_differences_for_every_element(name):
             f"{name} trial {trial}: dR/domega"
 
 
+def test_jacobian_stays_exact_when_systems_of_other_sizes_ran_before_on_the_thread():
+    # Regression: the AFT Jacobian's scratch space is reused between calls; a 2-direction
+    # element after a 1-direction one, or more harmonics after fewer, must not see stale
+    # sizes (it once wrote past the scratch matrix's rows: wrong Jacobian, heap corruption).
+    s = vib.Structure(M2, K2, 0.02 * K2)
+    rng = np.random.default_rng(7)
+    systems = [
+        vib.HarmonicBalance(s, [vib.Jenkins(1.0, 0.3, T=[1.0, -0.5])], max_harmonic=1,
+                            time_points=64),
+        vib.HarmonicBalance(s, [vib.ElasticDryFriction2d(1.0, 2.0, 0.6, T=[[1.0, -0.5],
+                                                                            [0.3, 1.0]])],
+                            max_harmonic=7, time_points=64),
+        vib.HarmonicBalance(s, [vib.Iwan4(0.3, 1.0, -0.5, 0.1, T=[1.0, -0.5])], max_harmonic=2,
+                            time_points=64),
+    ]
+    for hb in systems + systems[::-1]:
+        U = rng.normal(size=hb.unknowns)
+        _, J, _ = hb.residual(U, 1.1)
+        h = 1e-6
+        Jfd = np.column_stack([
+            (hb.residual(U + h * e, 1.1, jacobian=False)
+             - hb.residual(U - h * e, 1.1, jacobian=False)) / (2 * h)
+            for e in np.eye(hb.unknowns)])
+        # As in the test above: round-off ~1e-10, a wrong entry O(1e-1).
+        assert np.abs(J - Jfd).max() <= 1e-7 * np.abs(J).max()
+
+
 # ---------------------------------------------------------------------------------------
 # 2. Linear structures: exact complex response and eigen solutions.
 # ---------------------------------------------------------------------------------------
