@@ -28,6 +28,7 @@ stopped early, negative damping) are also issued as :class:`RuntimeWarning`.
 """
 from __future__ import annotations
 
+import math
 import os
 import warnings
 from typing import Iterable, Mapping, Sequence
@@ -210,7 +211,8 @@ class RoughFlat(Element):
 
     ``RoughFlat(backbone, T)`` takes a backbone object (:func:`asperity.epb_backbone`,
     ``asperity.predict(...)["loads"][i]["backbone"]``, a :class:`asperity.JenkinsBackbone`
-    ...); :meth:`from_contact` and :meth:`from_joint_case` build one.
+    ...); :meth:`from_contact`, :meth:`from_normalized` and :meth:`from_joint_case` build
+    one.
     """
 
     def __init__(self, backbone, T=1.0, name: str | None = None,
@@ -225,6 +227,23 @@ class RoughFlat(Element):
         params = {"A0": contact.A0, "P": contact.P, "model": contact.model,
                   "sigma": contact.sigma, "E_star": contact.E_star}
         return cls(_core.epb_backbone(contact), T, name, params)
+
+    @classmethod
+    def from_normalized(cls, flat, P_star: float, sigma: float, force_scale: float, T=1.0,
+                        name: str | None = None) -> "RoughFlat":
+        """From a normalized :class:`asperity.RoughFlat` at the load ``P_star = P/(K H A0)``
+        and its SI scales ``sigma`` [m] (lengths) and ``force_scale = K H A0`` [N]: the
+        backbone at the separation of ``P_star`` (Eq. 4.4 inverted), as
+        ``backbone = "normalized"`` of a case file."""
+        for field, v in (("P_star", P_star), ("sigma", sigma), ("force_scale", force_scale)):
+            if not (math.isfinite(v) and v > 0):
+                raise _core.InvalidInput(f"{field} = {v}: must be finite and > 0")
+        d_star = flat.separation_star(P_star)
+        bb = _core.ScaledBackbone(flat.backbone(d_star), sigma, force_scale)
+        params = {"backbone": "normalized", "beta": flat.beta, "psi": flat.psi,
+                  "P_star": P_star, "d_star": d_star, "sigma_m": sigma,
+                  "force_scale_N": force_scale}
+        return cls(bb, T, name, params)
 
     @classmethod
     def from_joint_case(cls, path: str | os.PathLike, T=1.0, load: int = 0,

@@ -570,6 +570,45 @@ def test_rough_flat_element_from_a_joint_case_carries_its_backbone():
         vib.RoughFlat.from_joint_case(path, load=len(p["loads"]))
 
 
+def test_rough_flat_from_normalized_parameters_equals_the_case_file_element():
+    # backbone = "normalized" of a case file and RoughFlat.from_normalized build the same
+    # SI backbone (ScaledBackbone over the table at the separation of P_star).
+    text = """
+[structure]
+mass = [[1.0]]
+stiffness = [[1e6]]
+
+[[element]]
+type = "rough_flat"
+backbone = "normalized"
+T = [[1.0]]
+asperity_model = "bke"
+beta = 0.04
+psi = 0.5
+nu = 0.3
+G_over_E = 0.2059
+P_star = 1e-3
+sigma = "1 um"
+force_scale = "1000 N"
+
+[quasi_static_mode]
+amplitude = { from = 1e-9, to = 1e-8 }
+points = 2
+"""
+    case_element = vib.run_case_text(text).system.elements[0]
+    flat = asperity.RoughFlat("bke", beta=0.04, psi=0.5, nu=0.3, G_over_E=0.2059)
+    mine = vib.RoughFlat.from_normalized(flat, P_star=1e-3, sigma=1e-6, force_scale=1000.0)
+    assert mine.core.slip_force == case_element.core.slip_force
+    for x in (1e-9, 1e-8, 1e-7):
+        assert mine.core.static_response(np.array([x]))[0][0] == \
+            case_element.core.static_response(np.array([x]))[0][0]
+    # Its slip force is the rough flat's static friction (Eq. 4.7) in newtons.
+    d = flat.separation_star(1e-3)
+    assert mine.core.slip_force == pytest.approx(1000.0 * flat.static_friction_star(d), rel=1e-9)
+    with pytest.raises(ValueError, match="sigma"):
+        vib.RoughFlat.from_normalized(flat, P_star=1e-3, sigma=-1.0, force_scale=1000.0)
+
+
 CASE = """
 [structure]
 mass = [[1.0, 0.0], [0.0, 2.0]]
