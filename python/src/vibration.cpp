@@ -16,7 +16,9 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "asperity/core/error.hpp"
@@ -40,7 +42,8 @@ namespace {
 using Matrix = Eigen::MatrixXd;
 using Vector = Eigen::VectorXd;
 
-// An element's describe() as a dict.
+// A summary (an element's describe(), a case's summary.json) as dict, list, float, int,
+// str, bool, None: the conversion of dynamics.cpp's case summaries.
 nb::object summary_to_python(const dynamics::SummaryValue& v) {
   return std::visit(
       [](const auto& x) -> nb::object {
