@@ -451,6 +451,14 @@ QuasiStaticModeResult quasi_static_mode(const HarmonicBalance& hb,
                  : zeta_lin;
   }
   if (hb.elements().empty()) out.warnings.push_back("quasi-static mode: no joint elements");
+  for (const PlacedElement& pe : hb.elements()) {
+    if (pe.element->velocity_dependent()) {
+      out.warnings.push_back(fmt::format(
+          "quasi-static mode: {} ({}) depends on velocity, so a static push sees no force from "
+          "it: its damping is missing from this estimate (use the nonlinear mode)",
+          pe.name, pe.element->type()));
+    }
+  }
   return out;
 }
 

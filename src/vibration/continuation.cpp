@@ -299,7 +299,7 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
     const double ratio = static_cast<double>(opt.target_iterations) /
                          static_cast<double>(std::max(1, corr.iterations));
     double factor = std::clamp(ratio, 0.5, 2.0);
-    if (angle > 0.0) factor = std::min(factor, std::max(0.5, 0.7 * opt.max_angle / angle));
+    if (angle > 0.5 * opt.max_angle) factor = std::min(factor, 1.0);
     h = std::clamp(h * factor, opt.min_step * 0.5, opt.max_step);
     // Leaving the range backwards (the curve turned round and went past the start).
     if ((corr.y(p) - lambda0) * sense < -std::abs(range)) {

@@ -339,9 +339,7 @@ void HarmonicBalance::nonlinear_force(const Eigen::VectorXd& U, double omega, Ei
       thread_local Eigen::MatrixXd W;
       slot.assign(static_cast<std::size_t>(cols), -1);
       touched.clear();
-      // W is reused across calls: another element (directions) or system (n_c) may have
-      // left it with another number of rows; its columns are zeroed when first touched.
-      if (W.rows() != nc * dirs) W.resize(nc * dirs, std::max<Eigen::Index>(16, W.cols()));
+      if (W.rows() != nc * dirs) W.resize(nc * dirs, 16);
       for (const HistoryTerm& t : resp.history) {
         const Eigen::Index col = static_cast<Eigen::Index>(t.j) + N * t.d_src;
         int& k = slot[static_cast<std::size_t>(col)];

@@ -196,7 +196,13 @@ TEST(VibrationHarmonicBalance, JacobianMatchesFiniteDifferences) {
   s.M = Eigen::Matrix2d{{1.0, 0.1}, {0.1, 2.0}};
   s.K = Eigen::Matrix2d{{3.0, -1.0}, {-1.0, 2.0}};
   s.C = 0.02 * s.K;
-  for (const auto& el : all_elements()) {
+  // Forward and backward through the elements: evaluations in one thread reuse scratch
+  // space sized for the previous element (a 2-direction element after 1-direction ones
+  // once read a stale 1-direction buffer).
+  auto elements = all_elements();
+  const auto backward = std::vector(elements.rbegin(), elements.rend());
+  elements.insert(elements.end(), backward.begin(), backward.end());
+  for (const auto& el : elements) {
     const auto dirs = static_cast<Eigen::Index>(el->directions());
     Eigen::MatrixXd T(dirs, 2);
     if (dirs == 1) {
