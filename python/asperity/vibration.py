@@ -25,6 +25,7 @@ of ``x(t) = a_0 + sum_h a_h cos(h omega t) + b_h sin(h omega t)``: ``U[dof * n_c
 :meth:`HarmonicBalance.index` finds one. Results are :class:`Result` objects (dicts whose
 keys are also attributes) of numpy arrays; warnings of the solvers (a continuation that
 stopped early, negative damping) are also issued as :class:`RuntimeWarning`.
+:func:`plot_mode` and :func:`plot_response` draw them with matplotlib.
 """
 from __future__ import annotations
 
@@ -43,7 +44,7 @@ __all__ = [
     "Structure", "Element", "Jenkins", "Iwan4", "Coulomb", "ElasticDryFriction2d",
     "RoughFlat", "HarmonicBalance", "Result", "nonlinear_mode", "frequency_response",
     "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
-    "run_case_text",
+    "run_case_text", "plot_mode", "plot_response",
 ]
 
 
@@ -524,3 +525,45 @@ def run_case_text(text: str, base_dir: str | os.PathLike = ".") -> Result:
     """:func:`run_case` for case-file text (``base_dir`` resolves .mtx files and a
     [joint]'s profiles)."""
     return _case_result(_v.run_case_text(text, os.fspath(base_dir)), "<string>")
+
+
+# -- matplotlib helpers ----------------------------------------------------------------------
+def _axes(ax, n=1):
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        _, ax = plt.subplots(n, 1, sharex=True, squeeze=False)
+        return list(ax[:, 0])
+    return list(ax) if n > 1 else [ax]
+
+
+def plot_mode(mode: Mapping, axes=None, label: str | None = None, quasi_static: Mapping | None = None):
+    """Frequency [Hz] and damping ratio against the modal amplitude (log axes) of a
+    :meth:`HarmonicBalance.nonlinear_mode` result, with a quasi-static estimate dashed if
+    given. ``axes``: two matplotlib axes (created when None). Returns the axes."""
+    ax_f, ax_z = _axes(axes, 2)
+    line, = ax_f.semilogx(mode["amplitude"], mode["frequency_hz"], label=label or "EPMC")
+    ax_z.loglog(mode["amplitude"], mode["damping_ratio"], color=line.get_color())
+    if quasi_static is not None:
+        ax_f.semilogx(quasi_static["amplitude"], quasi_static["frequency_hz"], "--",
+                      color=line.get_color(), label="quasi-static")
+        ax_z.loglog(quasi_static["amplitude"], quasi_static["damping_ratio"], "--",
+                    color=line.get_color())
+    ax_f.set_ylabel("frequency [Hz]")
+    ax_z.set_ylabel("damping ratio")
+    ax_z.set_xlabel("modal amplitude [sqrt(kg) m]")
+    ax_f.legend()
+    return ax_f, ax_z
+
+
+def plot_response(curves: Sequence[Mapping], output: int = 0, ax=None):
+    """First-harmonic amplitude of output ``output`` against frequency [rad/s] of
+    :meth:`HarmonicBalance.frequency_response` curves, one line per force scale."""
+    (ax,) = _axes(ax)
+    for c in curves:
+        ax.plot(c["omega"], c["output_amplitude"][:, output],
+                label=f"force x {c['force_scale']:g}")
+    ax.set_xlabel("omega [rad/s]")
+    ax.set_ylabel("amplitude [m]")
+    ax.legend()
+    return ax
