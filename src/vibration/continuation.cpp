@@ -274,6 +274,14 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
       h *= 0.5;
       continue;
     }
+    // A corrector that wandered far from the predictor has jumped to another branch of
+    // the curve (seen at lightly damped resonances with large steps): a shorter step.
+    const double wander = ((corr.y.array() / pb.scale.array()).matrix() - z_pred).norm();
+    if (wander > std::max(2.0 * h, 10.0 * opt.min_step) && h > opt.min_step * 2.0) {
+      ++out.rejected_steps;
+      h *= 0.5;
+      continue;
+    }
     pb.f(corr.y, R, &J);
     Eigen::VectorXd t_new = tangent_of(J, pb.scale, t);
     if (t_new.size() == 0) {
