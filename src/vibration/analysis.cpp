@@ -430,7 +430,9 @@ QuasiStaticModeResult quasi_static_mode(const HarmonicBalance& hb,
     const double D2 = 8.0 * Il[k] - work;
     D[k] = D2 > 0.01 * work ? D2 : Dg[k];
   }
-  const double zeta_lin = sm.phi.dot(hb.structure().C * sm.phi) / (2.0 * sm.omega);
+  // Viscous part at the current frequency: phi^T C phi dissipates pi omega a^2 c_m per
+  // cycle, so zeta_c = c_m / (2 omega).
+  const double c_modal = sm.phi.dot(hb.structure().C * sm.phi);
   const auto np = static_cast<Eigen::Index>(opt.points);
   out.amplitude.resize(np);
   out.omega.resize(np);
@@ -447,8 +449,9 @@ QuasiStaticModeResult quasi_static_mode(const HarmonicBalance& hb,
     out.frequency_hz(k) = out.omega(k) / (2.0 * std::numbers::pi);
     out.dissipation(k) = std::max(0.0, D[j]);
     out.damping_ratio(k) =
-        w2 > 0.0 ? out.dissipation(k) / (2.0 * std::numbers::pi * qs[j] * qs[j] * w2) + zeta_lin
-                 : zeta_lin;
+        w2 > 0.0 ? out.dissipation(k) / (2.0 * std::numbers::pi * qs[j] * qs[j] * w2) +
+                       c_modal / (2.0 * out.omega(k))
+                 : 0.0;
   }
   if (hb.elements().empty()) out.warnings.push_back("quasi-static mode: no joint elements");
   for (const PlacedElement& pe : hb.elements()) {

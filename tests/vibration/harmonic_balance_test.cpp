@@ -462,7 +462,7 @@ TEST(VibrationAnalysis, EpmcAgreesWithQuasiStaticEstimateAtSmallDamping) {
 }
 
 // The quasi-static estimate of the Jenkins SDOF in closed form: stuck below a = F_s/k_t
-// (omega^2 = k + k_t, zeta from c only); slipped above, lambda = k a + F_s, so omega^2 =
+// (omega^2 = k + k_t, zeta = c / (2 omega)); slipped above, lambda = k a + F_s, so omega^2 =
 // k + F_s/a and Masing's loop dissipates D = 4 F_s (a - F_s/k_t) (Jenkins loop area).
 TEST(VibrationAnalysis, QuasiStaticJenkinsMatchesClosedForm) {
   const double k = 1.0, kt = 0.25, Fs = 0.2, c = 0.01;
@@ -472,9 +472,9 @@ TEST(VibrationAnalysis, QuasiStaticJenkinsMatchesClosedForm) {
   qo.amplitude_to = 30.0;
   qo.points = 50;
   const auto qs = quasi_static_mode(hb, qo);
-  const double zeta_c = c / (2.0 * std::sqrt(k + kt));
   for (Eigen::Index i = 0; i < qs.amplitude.size(); ++i) {
     const double a = qs.amplitude(i);
+    const double zeta_c = c / (2.0 * qs.omega(i));  // viscous modal damping at omega(a)
     if (a < Fs / kt) {
       EXPECT_NEAR(qs.omega(i), std::sqrt(k + kt), 1e-12) << "a " << a;
       EXPECT_NEAR(qs.damping_ratio(i), zeta_c, 1e-12) << "a " << a;

@@ -90,7 +90,9 @@ struct QuasiStaticModeOptions {
 /// omega(a) and zeta(a) from the modal backbone lambda(q) of a static push x(q) with
 /// phi^T M x = q: omega^2 = lambda(a)/a (secant), the energy per cycle from Masing's
 /// rules on lambda(q), D = 8 int_0^a lambda dq - 4 a lambda(a), zeta = D / (2 pi a^2
-/// omega^2) plus the linear modal damping phi^T C phi / (2 omega_0).
+/// omega^2) plus the viscous modal damping phi^T C phi / (2 omega). The push follows the
+/// stuck mode shape: where the joints slip and the shape changes (several DOFs), the
+/// estimate drifts from the nonlinear mode (docs/vibration.md).
 struct QuasiStaticModeResult {
   Eigen::VectorXd amplitude;
   Eigen::VectorXd omega;
