@@ -27,7 +27,7 @@ stage "C++ under ASan + UBSan (debug preset): GoogleTest suite and the C++ examp
 # The CLI-script tests are left out here: the same code paths run in the GoogleTest
 # suite, and the Python drivers under ASan would only add time.
 cmake --preset debug -DPython3_EXECUTABLE="$py"
-cmake --build --preset debug -j 2 --target asperity_tests sphere_example
+cmake --build --preset debug -j 2 --target asperity_tests sphere_example rough_flat_hysteresis
 ctest --preset debug -j 2 -L 'unit|example'
 
 stage "Fuzz smoke run of the profile readers (libFuzzer, clang, ASan + UBSan)"
