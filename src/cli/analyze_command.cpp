@@ -447,7 +447,7 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
         }
         if (o->out) {
           joint::StagedDirectory dir(*o->out, "asperity analyze");
-          write_file_atomically(dir.file("analysis.json"), j.dump(2) + "\n");
+          write_file_atomically(dir.file("analysis.json"), json_output(j));
           std::vector<std::vector<double>> cc(9), lc(4), tc(6);
           for (std::size_t k = 0; k < runs.size(); ++k) {
             const auto& d = runs[k].data;
@@ -538,7 +538,7 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
           dir.commit();
         }
         if (o->json) {
-          out = j.dump(2) + "\n";
+          out = json_output(j);
         } else {
           for (const auto& r : runs) out += run_text(r) + "\n";
           if (law) {

@@ -97,7 +97,7 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
       }
       write_file_atomically(dir.file("spectrum.csv"), csv);
     }
-    write_file_atomically(dir.file("summary.json"), to_json(r.summary).dump(2) + "\n");
+    write_file_atomically(dir.file("summary.json"), json_output(to_json(r.summary)));
 
     if (!o.no_plots) {
       const std::string label =

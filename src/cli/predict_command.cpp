@@ -249,7 +249,7 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
     written.push_back(prefix + name);
     return dir.file(prefix + name);
   };
-  if (data) write_file_atomically(file("summary.json"), prediction_json(c, p).dump(2) + "\n");
+  if (data) write_file_atomically(file("summary.json"), json_output(prediction_json(c, p)));
   // loops.csv: steady loops for every preload and amplitude (long format).
   std::vector<std::vector<double>> lc(4);
   // energy.csv: numbers with 12 digits, and an empty imposed[um] field where the joint
@@ -402,7 +402,7 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
           written = write_prediction_files(c, p, dir, !o->no_plots, true, "");
           dir.commit();
         }
-        out = o->json ? prediction_json(c, p).dump(2) + "\n" : prediction_summary(c, p);
+        out = o->json ? json_output(prediction_json(c, p)) : prediction_summary(c, p);
         if (o->out && !o->json) {
           std::string list;
           for (const auto& f : written) list += (list.empty() ? "" : ", ") + f;
