@@ -97,10 +97,30 @@ def case_json_outputs(exe, source, want, tmp):
     return 0
 
 
+def case_one_json_writer(exe, source, want, tmp):
+    """Every JSON text of the CLI goes through cli::json_output (which adds
+    asperity_version): no other nlohmann dump() in src/cli, so a new --json output or JSON
+    file cannot leave the version out."""
+    cli = os.path.join(source, "src", "cli")
+    offenders = []
+    for name in sorted(os.listdir(cli)):
+        if not name.endswith((".cpp", ".hpp")) or name in ("common.cpp",):
+            continue
+        with open(os.path.join(cli, name)) as f:
+            for number, line in enumerate(f, 1):
+                if ".dump(" in line:
+                    offenders.append(f"src/cli/{name}:{number}: {line.strip()}")
+    if offenders:
+        return fail("JSON written without cli::json_output (no asperity_version):\n"
+                    + "\n".join(offenders))
+    return 0
+
+
 def main():
     exe, source, build_type, case = sys.argv[1:5]
     want = expected_version(source, build_type)
-    cases = {"version_flag": case_version_flag, "json_outputs": case_json_outputs}
+    cases = {"version_flag": case_version_flag, "json_outputs": case_json_outputs,
+             "one_json_writer": case_one_json_writer}
     with tempfile.TemporaryDirectory() as tmp:
         return cases[case](exe, source, want, tmp)
 
