@@ -9,6 +9,7 @@
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
+#include "detail/convolution.hpp"
 
 namespace asperity::surface {
 namespace {
@@ -193,42 +194,28 @@ std::vector<double> gaussian_weights(double cutoff, double dx, std::size_t h) {
 
 }  // namespace
 
-Profile gaussian_mean_line(const Profile& profile, double cutoff, double truncation,
-                           EndEffects end) {
-  profile.validate();
-  core::require_positive("cut-off", cutoff);
-  const std::size_t n = profile.z.size();
-  const std::size_t h = half_width(cutoff, truncation, profile.dx);
-  if (end == EndEffects::discard && n <= 2 * h) {
-    throw InvalidInput(fmt::format(
-        "{}: the profile ({} points, {:.6g} mm) is shorter than the Gaussian filter with "
-        "cut-off {:.6g} mm needs ({} points): use a longer scan, a shorter cut-off or --end "
-        "regression",
-        source_name(profile), n, profile.length() * 1e3, cutoff * 1e3, 2 * h + 1));
-  }
-  const auto w = gaussian_weights(cutoff, profile.dx, h);
-  const auto& z = profile.z;
-  Profile out;
-  out.dx = profile.dx;
-  out.source = profile.source;
+namespace {
+
+// Mean line by direct summation: the reference path (O(n h)).
+void mean_line_direct(const std::vector<double>& z, const std::vector<double>& w, std::size_t h,
+                      EndEffects end, std::vector<double>& out) {
+  const std::size_t n = z.size();
   if (end == EndEffects::discard) {
     double wsum = 0.0;
     for (double v : w) wsum += v;
-    out.x0 = profile.x0 + static_cast<double>(h) * profile.dx;
-    out.z.resize(n - 2 * h);
+    out.resize(n - 2 * h);
     for (std::size_t i = h; i + h < n; ++i) {
       double s = 0.0;
       const double* zi = z.data() + (i - h);
       for (std::size_t k = 0; k <= 2 * h; ++k) s += w[k] * zi[k];
-      out.z[i - h] = s / wsum;
+      out[i - h] = s / wsum;
     }
-    return out;
+    return;
   }
   // Regression: Gaussian-weighted least-squares line through the points within the
   // window, evaluated at the centre (equals the weighted mean where the window is
   // symmetric).
-  out.x0 = profile.x0;
-  out.z.resize(n);
+  out.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t lo = i >= h ? i - h : 0;
     const std::size_t hi = std::min(n - 1, i + h);
@@ -243,7 +230,86 @@ Profile gaussian_mean_line(const Profile& profile, double cutoff, double truncat
       Sxz += wj * x * z[j];
     }
     const double det = S * Sxx - Sx * Sx;
-    out.z[i] = det > 1e-12 * S * Sxx ? (Sxx * Sz - Sx * Sxz) / det : Sz / S;
+    out[i] = det > 1e-12 * S * Sxx ? (Sxx * Sz - Sx * Sxz) / det : Sz / S;
+  }
+}
+
+// The same by FFT correlation (O(n log h)). With regression, the window sums of the
+// weights S, Sx, Sxx for a window k = -a..b come from suffix sums A_p[m] = sum_{k=m}^{h}
+// w_k k^p without cancellation; Sz = sum w_k z[i+k] is the zero-padded correlation of
+// the whole profile, Sxz = sum k w_k z[i+k] is needed only where the window is cut
+// (Sx = 0 elsewhere, where the line's value is the weighted mean Sz / S).
+void mean_line_fft(const std::vector<double>& z, const std::vector<double>& w, std::size_t h,
+                   EndEffects end, std::vector<double>& out) {
+  const std::size_t n = z.size();
+  if (end == EndEffects::discard) {
+    double wsum = 0.0;
+    for (double v : w) wsum += v;
+    out.resize(n - 2 * h);
+    detail::correlate_fft(z.data(), n, w, h, n - h, out.data());
+    for (double& v : out) v /= wsum;
+    return;
+  }
+  std::vector<double> A0(h + 2, 0.0), A1(h + 2, 0.0), A2(h + 2, 0.0);
+  for (std::size_t m = h + 1; m-- > 0;) {
+    const double k = static_cast<double>(m);
+    const double wk = w[h + m];
+    A0[m] = A0[m + 1] + wk;
+    A1[m] = A1[m + 1] + wk * k;
+    A2[m] = A2[m + 1] + wk * k * k;
+  }
+  out.resize(n);
+  detail::correlate_fft(z.data(), n, w, 0, n, out.data());  // Sz
+  std::vector<double> kw(w.size());
+  for (std::size_t q = 0; q < w.size(); ++q) {
+    kw[q] = (static_cast<double>(q) - static_cast<double>(h)) * w[q];
+  }
+  // Points whose window is cut: [0, min(h, n)) and [max(n - h, min(h, n)), n).
+  const std::size_t left_end = std::min(h, n);
+  const std::size_t right_begin = n > h ? std::max(n - h, left_end) : left_end;
+  std::vector<double> Sxz(left_end + (n - right_begin));
+  detail::correlate_fft(z.data(), n, kw, 0, left_end, Sxz.data());
+  detail::correlate_fft(z.data(), n, kw, right_begin, n, Sxz.data() + left_end);
+  auto cut = [&](std::size_t i, double Sxz_i) {
+    const std::size_t a = std::min(i, h), b = std::min(n - 1 - i, h);
+    const double S = (A0[0] - A0[b + 1]) + (A0[1] - A0[a + 1]);
+    const double Sx = A1[a + 1] - A1[b + 1];
+    const double Sxx = (A2[0] - A2[b + 1]) + (A2[1] - A2[a + 1]);
+    const double Sz = out[i];
+    const double det = S * Sxx - Sx * Sx;
+    return det > 1e-12 * S * Sxx ? (Sxx * Sz - Sx * Sxz_i) / det : Sz / S;
+  };
+  double S_full = 0.0;
+  for (double v : w) S_full += v;
+  for (std::size_t i = left_end; i < right_begin; ++i) out[i] /= S_full;
+  for (std::size_t i = 0; i < left_end; ++i) out[i] = cut(i, Sxz[i]);
+  for (std::size_t i = right_begin; i < n; ++i) out[i] = cut(i, Sxz[left_end + i - right_begin]);
+}
+
+}  // namespace
+
+Profile gaussian_mean_line(const Profile& profile, double cutoff, double truncation, EndEffects end,
+                           Convolution convolution) {
+  profile.validate();
+  core::require_positive("cut-off", cutoff);
+  const std::size_t n = profile.z.size();
+  const std::size_t h = half_width(cutoff, truncation, profile.dx);
+  if (end == EndEffects::discard && n <= 2 * h) {
+    throw InvalidInput(fmt::format(
+        "{}: the profile ({} points, {:.6g} mm) is shorter than the Gaussian filter with "
+        "cut-off {:.6g} mm needs ({} points): use a longer scan, a shorter cut-off or --end "
+        "regression",
+        source_name(profile), n, profile.length() * 1e3, cutoff * 1e3, 2 * h + 1));
+  }
+  const auto w = gaussian_weights(cutoff, profile.dx, h);
+  Profile out;
+  out.dx = profile.dx;
+  out.source = profile.source;
+  out.x0 = profile.x0 + (end == EndEffects::discard ? static_cast<double>(h) * profile.dx : 0.0);
+  if (convolution == Convolution::direct) {
+    mean_line_direct(profile.z, w, h, end, out.z);
+  } else {
+    mean_line_fft(profile.z, w, h, end, out.z);
   }
   return out;
 }
@@ -336,14 +402,14 @@ Profile GaussianFilter::apply(const Profile& profile) const {
   }
   Profile r = profile;
   if (lc > 0.0) {
-    const Profile w = gaussian_mean_line(profile, lc, truncation, end);
+    const Profile w = gaussian_mean_line(profile, lc, truncation, end, convolution);
     const std::size_t off =
         static_cast<std::size_t>(std::llround((w.x0 - profile.x0) / profile.dx));
     r.x0 = w.x0;
     r.z.assign(w.z.size(), 0.0);
     for (std::size_t i = 0; i < w.z.size(); ++i) r.z[i] = profile.z[i + off] - w.z[i];
   }
-  if (ls > 0.0) r = gaussian_mean_line(r, ls, truncation, end);
+  if (ls > 0.0) r = gaussian_mean_line(r, ls, truncation, end, convolution);
   return r;
 }
 
