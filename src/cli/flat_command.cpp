@@ -322,10 +322,15 @@ void run_flat(const FlatOptions& o, std::string& out) {
     if (history_si) {
       for (auto& v : history_star) v *= scales->sigma;
       for (auto& v : Q) v *= scales->force;
-      core::write_csv_table(*o.out_csv, {"delta[m]", "Q[N]"}, {history_star, Q});
-    } else {
-      core::write_csv_table(*o.out_csv, {"delta_star", "Q_star"}, {history_star, Q});
     }
+    // Moved, not copied, into the table: memory holds the two columns once.
+    std::vector<std::vector<double>> columns;
+    columns.push_back(std::move(history_star));
+    columns.push_back(std::move(Q));
+    core::write_csv_table(*o.out_csv,
+                          history_si ? std::vector<std::string>{"delta[m]", "Q[N]"}
+                                     : std::vector<std::string>{"delta_star", "Q_star"},
+                          columns);
   }
 }
 
