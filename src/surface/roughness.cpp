@@ -400,14 +400,16 @@ Profile GaussianFilter::apply(const Profile& profile) const {
         static_cast<double>(need - 1) * profile.dx * 1e3, lc * 1e3, ls * 1e6, to_string(end),
         shorter_lc_advice(profile.z.size(), profile.dx)));
   }
-  Profile r = profile;
+  // The roughness profile is written over the mean line (memory: the input, the mean
+  // line and, with ls, the smoothed profile).
+  Profile r;
   if (lc > 0.0) {
-    const Profile w = gaussian_mean_line(profile, lc, truncation, end, convolution);
+    r = gaussian_mean_line(profile, lc, truncation, end, convolution);
     const std::size_t off =
-        static_cast<std::size_t>(std::llround((w.x0 - profile.x0) / profile.dx));
-    r.x0 = w.x0;
-    r.z.assign(w.z.size(), 0.0);
-    for (std::size_t i = 0; i < w.z.size(); ++i) r.z[i] = profile.z[i + off] - w.z[i];
+        static_cast<std::size_t>(std::llround((r.x0 - profile.x0) / profile.dx));
+    for (std::size_t i = 0; i < r.z.size(); ++i) r.z[i] = profile.z[i + off] - r.z[i];
+  } else {
+    r = profile;
   }
   if (ls > 0.0) r = gaussian_mean_line(r, ls, truncation, end, convolution);
   return r;
@@ -453,18 +455,21 @@ namespace {
 // are taken as round-off: three orders of magnitude from either side.
 constexpr double kRoundOffLevel = 1e-12;
 
-void refuse_round_off(const Profile& raw, const ProcessedProfile& p, Levelling levelling,
-                      const GaussianFilter& filter) {
+double rms_about_zero(const std::vector<double>& z) {
   double ss = 0.0;
-  for (double v : raw.z) ss += v * v;
-  const double scale = std::sqrt(ss / static_cast<double>(raw.z.size()));
-  const double dx = p.filtered.dx;
+  for (double v : z) ss += v * v;
+  return std::sqrt(ss / static_cast<double>(z.size()));
+}
+
+void refuse_round_off(const std::string& name, double scale, double dx,
+                      const SpectralMoments& moments, Levelling levelling,
+                      const GaussianFilter& filter) {
   const struct {
     const char* what;
     double rms;
-  } left[] = {{"rms height", std::sqrt(p.moments.m0)},
-              {"rms difference of neighbouring heights (m2)", std::sqrt(p.moments.m2) * dx},
-              {"rms second difference of the heights (m4)", std::sqrt(p.moments.m4) * dx * dx}};
+  } left[] = {{"rms height", std::sqrt(moments.m0)},
+              {"rms difference of neighbouring heights (m2)", std::sqrt(moments.m2) * dx},
+              {"rms second difference of the heights (m4)", std::sqrt(moments.m4) * dx * dx}};
   for (const auto& l : left) {
     if (!(l.rms <= kRoundOffLevel * scale)) continue;  // NaN is left to validate()
     std::string steps;
@@ -474,8 +479,7 @@ void refuse_round_off(const Profile& raw, const ProcessedProfile& p, Levelling l
         "{}: the profile is flat{}: its {} is {:.3g} m, at round-off level (below {:g} of the "
         "raw heights' rms {:.6g} m), so there is no roughness to analyse (a straight line or a "
         "constant?)",
-        source_name(raw), steps.empty() ? "" : " after " + steps, l.what, l.rms, kRoundOffLevel,
-        scale));
+        name, steps.empty() ? "" : " after " + steps, l.what, l.rms, kRoundOffLevel, scale));
   }
 }
 
@@ -487,9 +491,33 @@ ProcessedProfile process_profile(const Profile& raw, Levelling levelling,
   p.levelled = level(raw, levelling);
   p.filtered = filter.is_none() ? p.levelled : filter.apply(p.levelled);
   p.moments = spectral_moments(p.filtered);
-  refuse_round_off(raw, p, levelling, filter);
+  refuse_round_off(source_name(raw), rms_about_zero(raw.z), p.filtered.dx, p.moments, levelling,
+                   filter);
   p.moments.validate(source_name(raw));
   return p;
+}
+
+ProfileMoments profile_moments(Profile raw, Levelling levelling, const GaussianFilter& filter) {
+  const std::string name = source_name(raw);
+  raw.validate();
+  const double scale = rms_about_zero(raw.z);
+  const double dx = raw.dx;
+  level_in_place(raw, levelling);
+  ProfileMoments out;
+  if (filter.is_none()) {
+    out.moments = spectral_moments(raw);
+    out.points = raw.z.size();
+    out.length = raw.length();
+  } else {
+    Profile filtered = filter.apply(raw);
+    raw = Profile{};  // freed before the moments' pass
+    out.moments = spectral_moments(filtered);
+    out.points = filtered.z.size();
+    out.length = filtered.length();
+  }
+  refuse_round_off(name, scale, dx, out.moments, levelling, filter);
+  out.moments.validate(name);
+  return out;
 }
 
 DirectionalMoments areal_moments(const HeightMap& map, Levelling levelling,
@@ -515,9 +543,9 @@ DirectionalMoments areal_moments(const HeightMap& map, Levelling levelling,
     for (const auto& p : profiles) {
       longest = std::max(longest, p.z.size());
       if (p.z.size() < min_pts) continue;
-      const auto r = process_profile(p, levelling, filter);
+      const auto r = profile_moments(p, levelling, filter);
       m.push_back(r.moments);
-      w.push_back(static_cast<double>(r.filtered.z.size()));
+      w.push_back(static_cast<double>(r.points));
     }
     if (m.empty()) {
       const std::string cut =

@@ -172,6 +172,17 @@ struct ProcessedProfile {
 [[nodiscard]] ProcessedProfile process_profile(const Profile& raw, Levelling levelling,
                                                const GaussianFilter& filter);
 
+/// What process_profile() gives for the moments, without keeping the levelled and
+/// filtered profiles: the profile is levelled in place and freed once filtered, so that
+/// memory peaks at three profiles (input, mean line, filtered) instead of five.
+struct ProfileMoments {
+  SpectralMoments moments;
+  std::size_t points = 0;  ///< of the filtered profile
+  double length = 0.0;     ///< of the filtered profile [m]
+};
+[[nodiscard]] ProfileMoments profile_moments(Profile raw, Levelling levelling,
+                                             const GaussianFilter& filter);
+
 /// Moments of an areal map along its two axes: each row (x) and column (y) is
 /// levelled, filtered and analysed as a profile; the moments of each direction are
 /// the point-weighted means over its profiles. Profiles too short for the filter
