@@ -8,6 +8,7 @@
 #include <string>
 
 #include "asperity/core/error.hpp"
+#include "asperity/core/parallel.hpp"
 #include "asperity/core/validate.hpp"
 #include "detail/convolution.hpp"
 
@@ -540,10 +541,18 @@ DirectionalMoments areal_moments(const HeightMap& map, Levelling levelling,
     std::vector<SpectralMoments> m;
     std::vector<double> w;
     std::size_t longest = 0;
-    for (const auto& p : profiles) {
-      longest = std::max(longest, p.z.size());
-      if (p.z.size() < min_pts) continue;
-      const auto r = profile_moments(p, levelling, filter);
+    // The rows (columns) are independent: spread over the cores, each into its own slot,
+    // averaged in order afterwards (the same sums whatever the number of threads).
+    std::vector<std::size_t> used;
+    for (std::size_t k = 0; k < profiles.size(); ++k) {
+      longest = std::max(longest, profiles[k].z.size());
+      if (profiles[k].z.size() >= min_pts) used.push_back(k);
+    }
+    std::vector<ProfileMoments> results(used.size());
+    core::parallel_for(used.size(), [&](std::size_t k) {
+      results[k] = profile_moments(profiles[used[k]], levelling, filter);
+    });
+    for (const auto& r : results) {
       m.push_back(r.moments);
       w.push_back(static_cast<double>(r.points));
     }
