@@ -20,6 +20,7 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "asperity/hysteresis/masing.hpp"
@@ -196,6 +197,35 @@ int main(int argc, char** argv) {
   }
   for (const auto& [name, seconds] : t) {
     if (name.rfind("BM_Dynamics", 0) == 0) std::printf("  %s: %.3g s\n", name.c_str(), seconds);
+  }
+  // Issue 14 (bench/scale_bench.cpp): each against its same-run baseline.
+  struct Ratio {
+    std::string what, baseline, note;
+  };
+  std::vector<Ratio> ratios;
+  for (const char* n : {"100000", "1000000"}) {
+    const std::string s(n);
+    ratios.push_back({"BM_ProfileRead/" + s, "BM_FileBytes/" + s, "parse / raw bytes"});
+    ratios.push_back(
+        {"BM_ProfileFilter/" + s, "BM_ProfileRead/" + s, "filter / read (target <= 2)"});
+    ratios.push_back({"BM_ProfileFilterDirect/" + s, "BM_ProfileFilter/" + s,
+                      "direct / FFT convolution (reference / fast path)"});
+  }
+  ratios.push_back(
+      {"BM_ArealMomentsThreads", "BM_ArealMomentsOneThread", "all cores / one thread (wall time)"});
+  ratios.push_back(
+      {"BM_PredictThreads", "BM_PredictOneThread", "all cores / one thread (wall time)"});
+  ratios.push_back(
+      {"BM_DynamicsSummaryOnly", "BM_DynamicsFullRecord", "summary only / whole trajectory kept"});
+  for (const auto& r : ratios) {
+    const double a = get(r.what.c_str()), b = get(r.baseline.c_str());
+    if (a > 0 && b > 0) {
+      std::printf("  %s / %s = %6.3f   (%s)\n", r.what.c_str(), r.baseline.c_str(), a / b,
+                  r.note.c_str());
+    }
+  }
+  for (const char* n : {"BM_HistoryRead/1000000", "BM_HistoryWrite/1000000"}) {
+    if (get(n) > 0) std::printf("  %s: %.1f ns per row\n", n, get(n) * 1e9 / 1e6);
   }
   benchmark::Shutdown();
   return 0;
