@@ -46,8 +46,9 @@ void import_numpy() {
 nb::object along_history(const Hysteresis& h, const ArrayLike& in, bool inverse) {
   double v = 0.0;
   if (detail::python_number(in.obj, v)) {
+    if (!inverse) return nb::float_(h.peek(v));
     Hysteresis c = h;
-    return nb::float_(inverse ? c.update_force(v) : c.update(v));
+    return nb::float_(c.update_force(v));
   }
   import_numpy();
   nb::object source = in.obj;
@@ -74,6 +75,12 @@ nb::object along_history(const Hysteresis& h, const ArrayLike& in, bool inverse)
   nb::object result = nb::steal(PyArray_SimpleNew(1, &n, NPY_DOUBLE));
   if (!result.is_valid()) throw nb::python_error();
   auto* out = static_cast<double*>(PyArray_DATA(reinterpret_cast<PyArrayObject*>(result.ptr())));
+  if (n == 1 && !inverse) {
+    double x0 = 0.0;
+    std::memcpy(&x0, x, sizeof x0);
+    out[0] = h.peek(x0);
+    return result;
+  }
   Hysteresis c = h;
   for (npy_intp k = 0; k < n; ++k) {
     double xk = 0.0;

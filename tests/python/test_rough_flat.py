@@ -165,6 +165,9 @@ def test_reversals_with_a_non_empty_stack_and_fast_history_paths():
     wide[::2] = path
     np.testing.assert_array_equal(h.forces(wide[::2]), general)
     assert h.forces(0.3) == general[0]
+    # A reversal (motion turns at x = 0.1): the slow path on a copy, for a float and a
+    # 1-element array alike.
+    assert h.forces(-0.1) == h.forces([-0.1, 0.0])[0] == h.forces(np.array([-0.1]))[0]
     assert isinstance(h.forces(0.3), float)
     # Within partial slip the displacement path is the inverse (linear branches of the
     # Jenkins element: exact up to one rounding per operation).
