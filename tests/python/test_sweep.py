@@ -290,3 +290,22 @@ def test_vibration_cases_are_not_wired_yet(tmp_path):
     s = spec.build(str(case), {"vibration.modes": [1, 2]})
     with pytest.raises(sweep.SweepError, match="not wired"):
         sweep.run(s, str(tmp_path / "o"), serial=True)
+
+
+def test_vary_flag_takes_a_grid_array_and_progress_draws_a_bar():
+    import io
+
+    assert spec.parse_vary_flag('load.bolts.diameter = ["2.8 mm", "3 mm"]') == (
+        "load.bolts.diameter", ["2.8 mm", "3 mm"])
+    assert spec.parse_vary_flag("joint.area ~ normal(170 mm^2, 2 %)") == (
+        "joint.area", "normal(170 mm^2, 2 %)")
+    from asperity.sweep.engine import Progress
+
+    buf = io.StringIO()
+    bar = Progress(10, enabled=True, stream=buf)
+    bar.update(10, 1)
+    bar.close()
+    assert "10/10 samples, 1 failed" in buf.getvalue() and "#" * 30 in buf.getvalue()
+    quiet = io.StringIO()
+    Progress(10, stream=quiet).update(10, 0)  # not a terminal: nothing
+    assert quiet.getvalue() == ""

@@ -362,16 +362,24 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
                 while sent < n_batches and sent < next_write + ahead:
                     inputs, items = make(sent)
                     pending[sent] = inputs
-                    f = client.submit(run_batch, sweep.kind, sweep.base_dir, sweep.case, items, pure=False,
-                                      retries=2)
+                    f = client.submit(run_batch, sweep.kind, sweep.base_dir, sweep.case, items,
+                                      pure=False)
                     futures[f.key] = sent
                     ac.add(f)
                     sent += 1
 
             submit_more()
+            from distributed import KilledWorker
+
             for f in ac:
                 j = futures.pop(f.key)
-                done[j] = f.result()
+                try:
+                    done[j] = f.result()
+                except KilledWorker as e:
+                    # The batch took down every worker that ran it (Dask's allowed
+                    # failures): its samples are recorded as failed, the rest goes on.
+                    done[j] = [(s, None, f"KilledWorker: {e}")
+                               for s in range(j * b, min((j + 1) * b, sweep.size))]
                 f.release()
                 write_ready()
                 submit_more()

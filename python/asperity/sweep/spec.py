@@ -525,23 +525,25 @@ class Sweep:
         return apply_assignments(self.case, self.assignments(overrides))
 
     # Design ----------------------------------------------------------------------
-    def _unit_rows(self, start: int, stop: int, lhs_cache: dict) -> np.ndarray:
+    def _unit_rows(self, start: int, stop: int, cache: dict) -> np.ndarray:
         """Rows [start, stop) of the unit-hypercube design of the drawn keys."""
         d = len(self.drawn)
         if d == 0:
             return np.zeros((stop - start, 0))
         if self.method == "lhs":
-            if "u" not in lhs_cache:
+            if "u" not in cache:
                 from scipy.stats import qmc
 
-                lhs_cache["u"] = qmc.LatinHypercube(d=d, seed=self.seed).random(self.samples)
-            u = lhs_cache["u"][start:stop]
+                cache["u"] = qmc.LatinHypercube(d=d, seed=self.seed).random(self.samples)
+            u = cache["u"][start:stop]
         else:
             rows = []
             b0, b1 = start // DESIGN_BLOCK, (stop - 1) // DESIGN_BLOCK
             for b in range(b0, b1 + 1):
                 n = min(DESIGN_BLOCK, self.samples - b * DESIGN_BLOCK)
-                if self.method == "random":
+                if cache.get("block", (None,))[0] == b:  # batches share a block
+                    blk = cache["block"][1]
+                elif self.method == "random":
                     g = np.random.Generator(np.random.PCG64(np.random.SeedSequence([self.seed, b])))
                     blk = g.random((n, d))
                 else:
@@ -555,6 +557,7 @@ class Sweep:
                     with warnings.catch_warnings():  # balance needs 2^m points; any n is valid
                         warnings.simplefilter("ignore", UserWarning)
                         blk = s.random(n)
+                cache["block"] = (b, blk)
                 lo = max(start - b * DESIGN_BLOCK, 0)
                 hi = min(stop - b * DESIGN_BLOCK, n)
                 rows.append(blk[lo:hi])
@@ -689,4 +692,10 @@ def parse_vary_flag(text: str) -> tuple[str, str]:
     if not m:
         raise SweepError(f"--vary {text!r}: write KEY ~ DISTRIBUTION or KEY = GRID, e.g. "
                          "'load.bolts.nut_factor ~ uniform(0.158, 0.267)'")
-    return m.group(1), m.group(2).strip()
+    value = m.group(2).strip()
+    if value.startswith("["):  # an array of grid values, TOML syntax
+        try:
+            return m.group(1), tomllib.loads(f"v = {value}")["v"]
+        except tomllib.TOMLDecodeError as e:
+            raise SweepError(f"--vary {text!r}: the array of values is not TOML: {e}") from None
+    return m.group(1), value

@@ -137,14 +137,29 @@ def plot_all(out_dir, sweep, schema, parts, ok, inputs):
         E = _load(parts, "energy")[ok]
         D = _load(parts, "delta_max")[ok]
         P = _load(parts, "preload")[ok]
-        fig, ax = plt.subplots(figsize=(6, 4.5))
+        imposed = np.isfinite(_load(parts, "imposed")[ok]).any(axis=(0, 1)) if \
+            "imposed" in names else np.zeros(E.shape[2], bool)
+        fig, ax = plt.subplots(figsize=(6.5, 4.8))
         colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
         for i in range(E.shape[1]):
             c = colors[i % len(colors)]
-            q = np.nanquantile(E[:, i, :], QUANTILES, axis=0)
-            x = np.nanmedian(D[:, i, :], axis=0) * 1e6
-            ax.fill_between(x, q[0], q[4], color=c, alpha=0.2)
-            ax.plot(x, q[2], "o-", color=c, label=f"load {i + 1} (P ~ {np.nanmedian(P[:, i]):.0f} N)")
+            lab = f"load {i + 1} (P ~ {np.nanmedian(P[:, i]):.0f} N)"
+            j = np.flatnonzero(~imposed)  # joint amplitudes: a band over amplitude
+            if j.size:
+                q = np.nanquantile(E[:, i][:, j], QUANTILES, axis=0)
+                x = np.nanmedian(D[:, i][:, j], axis=0) * 1e6
+                ax.fill_between(x, q[0], q[4], color=c, alpha=0.2)
+                ax.plot(x, q[2], "o-", color=c, label=lab)
+                lab = None
+            for k in np.flatnonzero(imposed):  # imposed amplitudes: the joint's varies too
+                qe = np.nanquantile(E[:, i, k], QUANTILES)
+                qd = np.nanquantile(D[:, i, k], QUANTILES) * 1e6
+                ax.errorbar(qd[2], qe[2], xerr=[[qd[2] - qd[0]], [qd[4] - qd[2]]],
+                            yerr=[[qe[2] - qe[0]], [qe[4] - qe[2]]], fmt="D", color=c,
+                            mfc="none", capsize=3, label=lab)
+                lab = None
+        if imposed.any():
+            ax.plot([], [], "D", color="0.3", mfc="none", label="imposed amplitude (5-95 %)")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("joint amplitude delta_max [um] (median)")
@@ -183,8 +198,9 @@ def plot_all(out_dir, sweep, schema, parts, ok, inputs):
         for i in range(y.shape[1]):
             if k == "energy" and (i + 1) % schema.sizes.get("amplitude", 1):
                 continue  # energy: the largest amplitude of each load case
+            na = schema.sizes.get("amplitude", 1)
             lab = k if y.shape[1] == 1 else (
-                f"{k} load {i // schema.sizes.get('amplitude', 1) + 1}" if k == "energy"
+                f"{k} load {i // na + 1}, amplitude {na}" if k == "energy"
                 else f"{k} load {i + 1}")
             labels.append(lab)
             rows.append([spearman(x[ok], y[ok, i]) for x in inputs.values()])
