@@ -8,9 +8,10 @@ with worker processes on loopback, one fresh cluster per configuration:
   2x1  two workers, one thread each   (issue 12's target: >= 1.7 x 1x1)
   1x2  one worker, two threads   (scales only if the C++ call releases the GIL)
 
-Prints samples/s per configuration, its ratio to 1x1 and the client's peak resident
-memory (RSS of this process, polled after every batch; scheduler and workers are other
-processes). Usage: bench/sweep_bench.py [--samples 10000] [--configs 1x1,2x1,1x2]
+Prints samples/s per configuration, its ratio to 1x1, the CPU time the workers got
+(their share of the cores: on a shared machine it, not the code, may limit the ratio) and
+the client's resident memory (RSS of this process after the first batch and its peak,
+polled after every batch; scheduler and workers are other processes). Usage: bench/sweep_bench.py [--samples 10000] [--configs 1x1,2x1,1x2]
 (PYTHONPATH must reach the asperity package, as for the tests).
 """
 import argparse
@@ -83,9 +84,13 @@ def main():
         w, t = (int(x) for x in cfg.split("x"))
         address, procs = start_cluster(w, t)
         peak = [me.memory_info().rss]
+        first = []
 
         def poll(done, total):
-            peak[0] = max(peak[0], me.memory_info().rss)
+            rss = me.memory_info().rss
+            peak[0] = max(peak[0], rss)
+            if not first:
+                first.append(rss)
 
         try:
             s = sweep.load(str(ROOT / "examples" / "sweeps" / "steel420_bolt_load.toml"),
@@ -96,14 +101,21 @@ def main():
                 info = sweep.run(s, os.path.join(tmp, "out"), scheduler=address, plots=False,
                                  on_progress=poll, progress=sys.stderr.isatty())
                 wall = time.monotonic() - t0
+                # CPU the workers got (user + system, over the run and the statistics):
+                # on a shared machine, their share of the cores explains a poor ratio.
+                cpu = sum(sum(psutil.Process(p.pid).cpu_times()[:2]) for p in procs[1:])
         finally:
             stop(procs)
         rate = info["samples"] / info["elapsed_s"]
         results[cfg] = rate
         print(f"{cfg}: {info['samples']} samples ({info['failed']} failed) in "
               f"{info['elapsed_s']:.1f} s = {rate:.1f} samples/s (batch {info['batch']}; "
-              f"with statistics {wall:.1f} s); client peak RSS {peak[0] / 2**20:.0f} MiB; "
-              f"load average {load0:.1f} -> {os.getloadavg()[0]:.1f}")
+              f"with statistics {wall:.1f} s); worker CPU {cpu:.0f} s = "
+              f"{cpu / info['elapsed_s']:.2f} cores on average, "
+              f"{info['samples'] / cpu:.1f} samples per worker CPU second; client RSS "
+              f"{first[0] / 2**20:.0f} MiB after the first batch, peak "
+              f"{peak[0] / 2**20:.0f} MiB; load average {load0:.1f} -> "
+              f"{os.getloadavg()[0]:.1f}")
     if "1x1" in results:
         for cfg, r in results.items():
             print(f"ratio {cfg} / 1x1: {r / results['1x1']:.2f}")
