@@ -10,6 +10,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "asperity/core/error.hpp"
 #include "asperity/joint/case.hpp"
@@ -150,10 +151,37 @@ void bind_joint(nb::module_& m) {
   m.def(
       "predict_case_text",
       [](const std::string& text, const std::string& base_dir, std::size_t loop_points) {
-        const auto c = parse_case(text, "<string>", base_dir);
-        return prediction_dict(c, joint::predict(c), loop_points);
+        // Parsing and predicting touch no Python object: other threads (Dask workers
+        // with several threads, asperity.sweep) run meanwhile.
+        auto solved = [&] {
+          nb::gil_scoped_release release;
+          auto c = parse_case(text, "<string>", base_dir);
+          auto p = joint::predict(c);
+          return std::make_pair(std::move(c), std::move(p));
+        }();
+        return prediction_dict(solved.first, solved.second, loop_points);
       },
-      "text"_a, "base_dir"_a = ".", "loop_points"_a = 100, "predict() for case-file text.");
+      "text"_a, "base_dir"_a = ".", "loop_points"_a = 100,
+      "predict() for case-file text (the GIL is released while parsing and predicting).");
+  m.def(
+      "check_case_text",
+      [](const std::string& text, const std::string& base_dir) {
+        const auto c = [&] {
+          nb::gil_scoped_release release;
+          auto parsed = parse_case(text, "<string>", base_dir);
+          parsed.validate();
+          return parsed;
+        }();
+        nb::dict out;
+        out["loads"] = c.preloads.size();
+        out["amplitudes"] = c.amplitudes.size();
+        out["imposed"] = c.imposed.size();
+        return out;
+      },
+      "text"_a, "base_dir"_a = ".",
+      "Parses and validates case-file text without predicting (InvalidInput as predict() "
+      "would raise it): a dict with the number of load cases, amplitudes and imposed "
+      "amplitudes.");
   m.def(
       "analyze_fretting",
       [](const Array1& t, const Array1& delta, const Array1& Q, double P,

@@ -1,0 +1,442 @@
+"""Running a sweep: the samples in batches on a Dask cluster (or serially), results
+streamed to disk in blocks, in sample order, with bounded memory.
+
+Reproducibility: every sample's inputs are derived in the client from the seed before it
+is sent (:meth:`Sweep.sample_inputs`); a batch is a pure function of its inputs, so a
+batch that Dask re-runs after a worker died gives the same numbers, and the result does
+not depend on the number of workers or on which worker ran what.
+"""
+from __future__ import annotations
+
+import csv
+import dataclasses
+import json
+import os
+import shutil
+import sys
+import time
+import traceback
+
+import numpy as np
+
+from .. import _core
+from .runners import runner_for
+from .spec import Sweep, SweepError, apply_assignments, to_toml
+
+MARKER = ".asperity-output"  # as the C++ commands' output directories (output_dir.hpp)
+
+
+# --------------------------------------------------------------------------- worker side
+
+def run_batch(kind: str, base_dir: str, case: dict, items: list) -> list:
+    """Runs ``[(sample, assignments)]`` (each sample's values written into the base
+    ``case``, :func:`spec.apply_assignments`); returns ``[(sample, outputs or None,
+    error or "")]``. A sample that fails (asperity.Error: bad input drawn, numerical
+    failure; or any other exception) is returned with its error, never dropped."""
+    runner = runner_for(kind)
+    out = []
+    for s, assignments in items:
+        try:
+            text = to_toml(apply_assignments(case, assignments))
+            out.append((s, runner.run(text, base_dir), ""))
+        except _core.Error as e:
+            out.append((s, None, f"{type(e).__name__}: {e}"))
+        except Exception as e:  # noqa: BLE001  (recorded with the sample, not dropped)
+            out.append((s, None, f"{type(e).__name__}: {e}"))
+    return out
+
+
+# --------------------------------------------------------------------------- output
+
+def prepare_out_dir(out: str) -> str:
+    """Refuses an existing non-empty directory that asperity did not write (no marker);
+    returns the temporary sibling to write into (renamed over ``out`` at the end)."""
+    out = os.path.abspath(out)
+    if os.path.exists(out):
+        if not os.path.isdir(out):
+            raise SweepError(f"--out {out}: exists and is not a directory")
+        if os.listdir(out) and not os.path.exists(os.path.join(out, MARKER)):
+            raise SweepError(f"--out {out}: a non-empty directory that asperity did not write "
+                             f"(no {MARKER} marker); asperity replaces its output directory as "
+                             "a whole, so it refuses to touch it: choose another")
+    parent = os.path.dirname(out)
+    try:
+        os.makedirs(parent, exist_ok=True)
+        tmp = os.path.join(parent, f".{os.path.basename(out)}.partial-{os.getpid()}")
+        if os.path.exists(tmp):
+            shutil.rmtree(tmp)
+        os.makedirs(os.path.join(tmp, "samples"))
+        with open(os.path.join(tmp, MARKER), "w") as f:
+            f.write("written by asperity sweep; replaced as a whole by the next run\n")
+    except OSError as e:
+        raise SweepError(f"--out {out}: cannot be written: {e.strerror}") from None
+    return tmp
+
+
+def finish_out_dir(tmp: str, out: str) -> None:
+    out = os.path.abspath(out)
+    if os.path.exists(out):
+        old = tmp + ".old"
+        os.rename(out, old)
+        os.rename(tmp, out)
+        shutil.rmtree(old)
+    else:
+        os.rename(tmp, out)
+
+
+@dataclasses.dataclass
+class Schema:
+    """Output names, their dims beyond ``sample`` and shapes (from the base case's run)."""
+
+    names: list
+    dims: dict
+    shapes: dict
+    sizes: dict  # dim name -> size
+
+
+def schema_from(runner, outputs: dict) -> Schema:
+    names = list(outputs)
+    dims = {k: runner.dims(k) for k in names}
+    shapes = {k: np.shape(outputs[k]) for k in names}
+    sizes = {}
+    for k in names:
+        for d, n in zip(dims[k], shapes[k]):
+            if sizes.setdefault(d, n) != n:
+                raise AssertionError(f"dimension {d} of {k}: {n} against {sizes[d]}")
+    return Schema(names, dims, shapes, sizes)
+
+
+class BlockWriter:
+    """Collects samples in order and writes every ``block`` of them as
+    ``samples/part-NNNNN.nc`` (NetCDF, scipy engine) and a row group of
+    ``samples.parquet``; failures go to ``failures.csv`` as they come."""
+
+    def __init__(self, tmp: str, sweep: Sweep, schema: Schema, block: int, formats):
+        self.tmp, self.sweep, self.schema, self.block = tmp, sweep, schema, block
+        self.formats = set(formats)
+        self.parts: list[str] = []
+        self.rows: list = []  # (sample, inputs, outputs, error), in sample order
+        self.failed = 0
+        self.written = 0
+        self._parquet = None
+        self._fail_file = open(os.path.join(tmp, "failures.csv"), "w", newline="")
+        self._fail = csv.writer(self._fail_file)
+        self._fail.writerow(["sample"] + [v.key for v in sweep.variations] + ["error"])
+
+    def add(self, sample: int, inputs: list, outputs, error: str):
+        if outputs is not None:
+            try:
+                outputs = self._conform(outputs)
+            except ValueError as e:
+                outputs, error = None, f"ShapeError: {e}"
+        if outputs is None:
+            self.failed += 1
+            self._fail.writerow([sample] + [val.toml for _, val in inputs] + [error])
+        self.rows.append((sample, inputs, outputs, error))
+        if len(self.rows) >= self.block:
+            self.flush()
+
+    def _conform(self, outputs: dict) -> dict:
+        out = {}
+        for k in self.schema.names:
+            a = np.asarray(outputs.get(k, np.full(self.schema.shapes[k], np.nan)), dtype=float)
+            if a.shape != self.schema.shapes[k]:
+                raise ValueError(f"{k} has shape {a.shape}, the base case's {self.schema.shapes[k]}"
+                                 " (a varied key changed the number of load cases or amplitudes)")
+            out[k] = a
+        return out
+
+    def flush(self):
+        if not self.rows:
+            return
+        import xarray as xr
+
+        rows, self.rows = self.rows, []
+        n = len(rows)
+        samples = np.array([r[0] for r in rows], dtype=np.int64)
+        data = {}
+        for k in self.schema.names:
+            a = np.full((n,) + self.schema.shapes[k], np.nan)
+            for i, r in enumerate(rows):
+                if r[2] is not None:
+                    a[i] = r[2][k]
+            data[k] = (("sample",) + self.schema.dims[k], a)
+        data["ok"] = (("sample",), np.array([r[2] is not None for r in rows], dtype=np.int8))
+        data["error"] = (("sample",), np.array([r[3] for r in rows], dtype=object).astype(str))
+        coords = {"sample": samples}
+        for d, size in self.schema.sizes.items():
+            coords[d] = np.arange(1, size + 1)  # 1-based, as the case-file errors count
+        for j, v in enumerate(self.sweep.variations):
+            vals = [r[1][j][1].coord for r in rows]
+            coords[v.key] = (("sample",), np.array(vals, dtype=str if isinstance(vals[0], str)
+                                                   else float))
+        ds = xr.Dataset(data, coords=coords)
+        if "netcdf" in self.formats:
+            path = os.path.join(self.tmp, "samples", f"part-{len(self.parts):05d}.nc")
+            ds.to_netcdf(path, engine="scipy")
+            self.parts.append(path)
+        if "parquet" in self.formats:
+            self._write_parquet(ds)
+        self.written += n
+        self._fail_file.flush()
+
+    def _write_parquet(self, ds):
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        cols = {"sample": ds["sample"].values}
+        for v in self.sweep.variations:
+            cols[v.key] = ds[v.key].values
+        cols["ok"] = ds["ok"].values
+        cols["error"] = ds["error"].values.astype(str)
+        for k in self.schema.names:
+            a = ds[k].values
+            dims = self.schema.dims[k]
+            if not dims:
+                cols[k] = a
+            for idx in np.ndindex(*a.shape[1:]) if dims else []:
+                name = k + "[" + ",".join(f"{d}={i + 1}" for d, i in zip(dims, idx)) + "]"
+                cols[name] = a[(slice(None),) + idx]
+        table = pa.table(cols)
+        if self._parquet is None:
+            self._parquet = pq.ParquetWriter(os.path.join(self.tmp, "samples.parquet"),
+                                              table.schema)
+        self._parquet.write_table(table)
+
+    def close(self):
+        self.flush()
+        if self._parquet is not None:
+            self._parquet.close()
+        self._fail_file.close()
+
+
+# --------------------------------------------------------------------------- progress
+
+class Progress:
+    """A one-line progress bar on stderr when it is a terminal (else silent)."""
+
+    def __init__(self, total: int, enabled: bool | None = None, stream=None):
+        self.stream = stream or sys.stderr
+        self.enabled = self.stream.isatty() if enabled is None else enabled
+        self.total, self.done, self.failed = total, 0, 0
+        self.t0 = time.monotonic()
+        self._last = 0.0
+
+    def update(self, done: int, failed: int):
+        self.done, self.failed = done, failed
+        now = time.monotonic()
+        if self.enabled and (now - self._last > 0.2 or done == self.total):
+            self._last = now
+            w = 30
+            f = int(w * done / self.total) if self.total else w
+            rate = done / max(now - self.t0, 1e-9)
+            self.stream.write(f"\r[{'#' * f}{'.' * (w - f)}] {done}/{self.total} samples, "
+                              f"{failed} failed, {rate:.1f}/s ")
+            self.stream.flush()
+
+    def close(self):
+        if self.enabled:
+            self.stream.write("\n")
+            self.stream.flush()
+
+
+# --------------------------------------------------------------------------- client
+
+def connect(scheduler: str | None = None, workers: int | None = None,
+            threads_per_worker: int = 1):
+    """A ``distributed.Client``: to ``scheduler`` (tcp://HOST:PORT) or
+    DASK_SCHEDULER_ADDRESS when given, else a LocalCluster with ``workers`` processes
+    (default: one per core) of ``threads_per_worker`` threads."""
+    import logging
+
+    from distributed import Client, LocalCluster
+
+    address = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS") or None
+    if address:
+        try:
+            return Client(address, timeout="20s")
+        except (OSError, TimeoutError) as e:
+            raise SweepError(f"--scheduler {address}: cannot connect: {e}") from None
+    n = workers or os.cpu_count() or 1
+    cluster = LocalCluster(n_workers=n, threads_per_worker=threads_per_worker, processes=True,
+                           dashboard_address=None, silence_logs=logging.ERROR)
+    return Client(cluster)
+
+
+def preflight(sweep: Sweep):
+    """Everything checked before any work: the case with each variation at its extremes
+    (the case parser), then the base case run once in the client (its outputs fix the
+    output schema). Returns (runner, schema)."""
+    runner = runner_for(sweep.kind)
+    sweep.check(lambda c: runner.check(to_toml(c), sweep.base_dir))
+    try:
+        base = runner.run(to_toml(sweep.case), sweep.base_dir)
+    except _core.Error as e:
+        raise SweepError(f"{sweep.case_path}: the case itself (no variation) fails: {e}") from None
+    return runner, schema_from(runner, base)
+
+
+def default_batch(sweep: Sweep, nthreads: int) -> int:
+    """Samples per task: about 8 tasks per thread, at most 32 samples (a joint sample
+    takes ~15 ms), at least 1."""
+    return int(max(1, min(32, sweep.size // max(8 * nthreads, 1))))
+
+
+def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | None = None,
+        threads_per_worker: int = 1, serial: bool = False, batch: int | None = None,
+        block: int = 1024, formats=("netcdf", "parquet"), plots: bool = True,
+        progress: bool | None = None, client=None, on_progress=None) -> dict:
+    """Runs the sweep into directory ``out`` (replaced as a whole: written to a temporary
+    sibling, renamed at the end, removed on error) and returns a dict (the content of
+    ``out/sweep.json``). ``serial`` runs in this process without Dask (the reference).
+    ``on_progress(done, total)`` is called after each batch (tests use it)."""
+    formats = tuple(formats)
+    for f in formats:
+        if f not in ("netcdf", "parquet"):
+            raise SweepError(f"--format {f}: allowed: netcdf, parquet")
+    if not formats:
+        raise SweepError("--format: at least one of netcdf, parquet")
+    if not (isinstance(block, int) and block >= 1):
+        raise SweepError(f"block = {block!r}: a positive integer")
+    runner, schema = preflight(sweep)
+    tmp = prepare_out_dir(out)
+    own_client = False
+    try:
+        t0 = time.monotonic()
+        if serial:
+            nthreads, engine = 1, "serial"
+        else:
+            if client is None:
+                client = connect(scheduler, workers, threads_per_worker)
+                own_client = True
+            nthreads = max(sum(client.nthreads().values()), 1)
+            engine = f"dask ({client.scheduler.address}, {len(client.nthreads())} workers)"
+        b = batch or default_batch(sweep, nthreads)
+        writer = BlockWriter(tmp, sweep, schema, block, formats)
+        bar = Progress(sweep.size, progress)
+        n_batches = -(-sweep.size // b)
+        cache: dict = {}
+
+        def make(j):
+            lo, hi = j * b, min((j + 1) * b, sweep.size)
+            inputs = list(sweep.sample_inputs(lo, hi, cache))
+            items = [(s, sweep.assignments(vals)) for s, vals in inputs]
+            return [vals for _, vals in inputs], items
+
+        pending: dict = {}  # batch -> inputs, for the batches sent and not yet written
+        done: dict = {}  # batch -> results, finished but not yet written (out of order)
+        next_write = 0
+        count = 0
+
+        def write_ready():
+            nonlocal next_write, count
+            while next_write in done:
+                res = done.pop(next_write)
+                inputs = pending.pop(next_write)
+                for (s, o, e), vals in zip(res, inputs):
+                    writer.add(s, vals, o, e)
+                count += len(res)
+                next_write += 1
+            bar.update(count, writer.failed)
+            if on_progress:
+                on_progress(count, sweep.size)
+
+        if serial:
+            for j in range(n_batches):
+                inputs, items = make(j)
+                pending[j] = inputs
+                done[j] = run_batch(sweep.kind, sweep.base_dir, sweep.case, items)
+                write_ready()
+        else:
+            from distributed import as_completed
+
+            # At most `ahead` batches beyond the oldest unwritten one are in flight or
+            # waiting: memory stays bounded whatever the number of samples.
+            ahead = max(4 * nthreads, 8)
+            sent = 0
+            ac = as_completed()
+            futures = {}
+
+            def submit_more():
+                nonlocal sent
+                while sent < n_batches and sent < next_write + ahead:
+                    inputs, items = make(sent)
+                    pending[sent] = inputs
+                    f = client.submit(run_batch, sweep.kind, sweep.base_dir, sweep.case, items,
+                                      pure=False)
+                    futures[f.key] = sent
+                    ac.add(f)
+                    sent += 1
+
+            submit_more()
+            from distributed import KilledWorker
+
+            for f in ac:
+                j = futures.pop(f.key)
+                try:
+                    done[j] = f.result()
+                except KilledWorker as e:
+                    # The batch took down every worker that ran it (Dask's allowed
+                    # failures): its samples are recorded as failed, the rest goes on.
+                    done[j] = [(s, None, f"KilledWorker: {e}")
+                               for s in range(j * b, min((j + 1) * b, sweep.size))]
+                f.release()
+                write_ready()
+                submit_more()
+        writer.close()
+        bar.close()
+        elapsed = time.monotonic() - t0
+        from .stats import summarize
+
+        info = {
+            "case": os.path.abspath(sweep.case_path),
+            "kind": sweep.kind,
+            "method": sweep.method,
+            "seed": sweep.seed,
+            "samples_per_grid_point": sweep.samples,
+            "grid_points": sweep.grid_points,
+            "samples": sweep.size,
+            "failed": writer.failed,
+            "varied": {v.key: v.text for v in sweep.variations},
+            "engine": engine,
+            "batch": b,
+            "elapsed_s": elapsed,
+            "samples_per_s": sweep.size / elapsed if elapsed > 0 else None,
+            "outputs": {k: list(schema.dims[k]) for k in schema.names},
+            "files": sorted(os.path.relpath(p, tmp) for p in writer.parts)
+            + (["samples.parquet"] if "parquet" in formats else []),
+        }
+        summarize(tmp, sweep, schema, writer.parts, plots=plots and "netcdf" in formats,
+                  info=info)
+        with open(os.path.join(tmp, "sweep.json"), "w") as f:
+            json.dump(info, f, indent=2)
+        finish_out_dir(tmp, out)
+        return info
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    finally:
+        if own_client:
+            cluster = client.cluster
+            client.close()
+            if cluster is not None:
+                cluster.close()
+
+
+def open_results(out: str):
+    """The samples of a finished sweep as one xarray Dataset (lazy, over its NetCDF parts):
+    dimension ``sample``, the varied keys as coordinates, ``ok`` and ``error``."""
+    import glob
+
+    import xarray as xr
+
+    parts = sorted(glob.glob(os.path.join(out, "samples", "part-*.nc")))
+    if not parts:
+        raise SweepError(f"{out}: no samples/part-*.nc (not a sweep output, or written "
+                         "without --format netcdf)")
+    return xr.open_mfdataset(parts, combine="nested", concat_dim="sample", engine="scipy",
+                             data_vars="all", coords="different", compat="equals")
+
+
+def format_error(e: BaseException) -> str:
+    return "".join(traceback.format_exception_only(type(e), e)).strip()

@@ -1,0 +1,311 @@
+"""asperity.sweep (issue 12): a real Dask scheduler and two workers on loopback with one
+worker killed mid-run, the default LocalCluster, reproducibility, failures kept, bad input
+refused before any work. Every Dask process is started here with a bounded wait and
+always stopped."""
+import os
+import pathlib
+import signal
+import socket
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+pytest.importorskip("distributed")
+pytest.importorskip("xarray")
+pytest.importorskip("scipy")
+
+from asperity import sweep  # noqa: E402
+from asperity.sweep import spec  # noqa: E402
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+CASE = str(ROOT / "examples" / "joints" / "steel420_two_bolts.toml")
+VARY = {"load.bolts.nut_factor": "uniform(0.158, 0.267)",
+        "joint.half[*].material.H": "normal(5.8 GPa, 5 %)"}
+ENV = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=os.pathsep.join(
+    p for p in [os.path.dirname(os.path.dirname(sweep.__file__)),
+                os.environ.get("PYTHONPATH", "")] if p))
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _same(a, b):
+    """Every variable and coordinate of two result Datasets equal (bitwise; NaN = NaN):
+    the same C++ code on the same inputs."""
+    assert set(a.variables) == set(b.variables)
+    for k in a.variables:
+        x, y = a[k].values, b[k].values
+        if x.dtype.kind == "f":
+            assert np.array_equal(x, y, equal_nan=True), k
+        else:
+            assert (x == y).all(), k
+
+
+def _serial(tmp_path, name, samples, seed, **kw):
+    s = spec.build(CASE, VARY, samples=samples, seed=seed)
+    sweep.run(s, str(tmp_path / name), serial=True, plots=False, **kw)
+    return sweep.open_results(str(tmp_path / name)).load()
+
+
+@pytest.fixture
+def dask_cluster():
+    """A `dask scheduler` and two `dask worker` processes (no nanny: a killed worker
+    stays dead) on 127.0.0.1; yields (address, [worker processes])."""
+    from distributed import Client
+
+    port = _free_port()
+    address = f"tcp://127.0.0.1:{port}"
+    procs = []
+    log = open(os.devnull, "w")
+    try:
+        procs.append(subprocess.Popen(
+            [sys.executable, "-m", "dask", "scheduler", "--host", "127.0.0.1", "--port",
+             str(port), "--no-dashboard"], stdout=log, stderr=log, env=ENV))
+        workers = []
+        for _ in range(2):
+            w = subprocess.Popen(
+                [sys.executable, "-m", "dask", "worker", address, "--nthreads", "1",
+                 "--no-nanny", "--host", "127.0.0.1", "--no-dashboard"],
+                stdout=log, stderr=log, env=ENV)
+            procs.append(w)
+            workers.append(w)
+        deadline = time.monotonic() + 60
+        while True:
+            try:
+                with Client(address, timeout="5s") as c:
+                    c.wait_for_workers(2, timeout=max(deadline - time.monotonic(), 1))
+                break
+            except OSError:
+                if time.monotonic() > deadline:
+                    raise
+                time.sleep(0.5)
+        yield address, workers
+    finally:
+        for p in reversed(procs):
+            if p.poll() is None:
+                p.terminate()
+        for p in procs:
+            try:
+                p.wait(timeout=15)
+            except subprocess.TimeoutExpired:
+                p.kill()
+                p.wait(timeout=15)
+        log.close()
+
+
+def test_scheduler_two_workers_one_killed_equals_serial(tmp_path, dask_cluster):
+    address, workers = dask_cluster
+    n, seed = 64, 7
+    out = tmp_path / "dask"
+    cmd = [sys.executable, "-m", "asperity.sweep", CASE, "--samples", str(n), "--seed",
+           str(seed), "--scheduler", address, "--batch", "2", "--block", "8", "--no-plots",
+           "--out", str(out)]
+    for k, v in VARY.items():
+        cmd += ["--vary", f"{k} ~ {v}"]
+    run = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                           env=ENV)
+    try:
+        # Kill one worker once the first block of samples is on disk (mid-run).
+        deadline = time.monotonic() + 90
+        killed_mid_run = False
+        while time.monotonic() < deadline and run.poll() is None:
+            parts = list(tmp_path.glob(".dask.partial-*/samples/part-*.nc"))
+            if parts:
+                workers[0].send_signal(signal.SIGKILL)
+                workers[0].wait(timeout=15)
+                killed_mid_run = run.poll() is None
+                break
+            time.sleep(0.05)
+        stdout, stderr = run.communicate(timeout=120)
+    finally:
+        if run.poll() is None:
+            run.kill()
+    assert run.returncode == 0, stderr
+    assert killed_mid_run, "the sweep ended before a worker could be killed"
+    assert workers[0].returncode == -signal.SIGKILL
+    ds = sweep.open_results(str(out)).load()
+    assert list(ds["sample"].values) == list(range(n))  # every sample, in order
+    assert ds["ok"].values.all()
+    _same(ds, _serial(tmp_path, "serial", n, seed))
+
+
+def test_default_local_cluster_equals_serial(tmp_path):
+    n, seed = 16, 3
+    s = spec.build(CASE, VARY, samples=n, seed=seed, method="sobol")
+    info = sweep.run(s, str(tmp_path / "local"), plots=True)
+    assert info["engine"].startswith("dask") and info["failed"] == 0
+    ds = sweep.open_results(str(tmp_path / "local")).load()
+    s2 = spec.build(CASE, VARY, samples=n, seed=seed, method="sobol")
+    sweep.run(s2, str(tmp_path / "serial"), serial=True, plots=False)
+    _same(ds, sweep.open_results(str(tmp_path / "serial")).load())
+    for f in ("summary.csv", "sensitivity.csv", "failures.csv", "sweep.json",
+              "samples.parquet", "bands_vs_preload.png", "bands_vs_amplitude.png",
+              "histograms.png", "sensitivity.png"):
+        assert (tmp_path / "local" / f).stat().st_size > 0, f
+
+
+def test_draws_do_not_depend_on_batching(tmp_path):
+    a = _serial(tmp_path, "b1", 8, 5, batch=1, block=3)
+    b = _serial(tmp_path, "b5", 8, 5, batch=5, block=1024)
+    _same(a, b)
+    c = _serial(tmp_path, "seed6", 8, 6)
+    assert not np.array_equal(a["load.bolts.nut_factor"], c["load.bolts.nut_factor"])
+
+
+def _design(method, n, vary=None, seed=11):
+    s = spec.build(CASE, vary or VARY, samples=n, seed=seed, method=method)
+    rows = [vals for _, vals in s.sample_inputs(0, n)]
+    return s, np.array([[val.coord for _, val in r] for r in rows])
+
+
+@pytest.mark.parametrize("method", ["sobol", "lhs"])
+def test_stratified_designs_hold_one_point_per_stratum(method):
+    # Invariants: a scrambled Sobol net of 2^m points and a Latin hypercube of n points
+    # put exactly one point in each of n equal strata of each input's probability.
+    n = 64
+    s, x = _design(method, n)
+    lo, hi = 0.158, 0.267
+    strata = np.floor((x[:, 0] - lo) / (hi - lo) * n).astype(int)
+    assert sorted(strata) == list(range(n))
+    from scipy.stats import norm
+
+    u = norm.cdf((x[:, 1] - 5.8e9) / 0.29e9)
+    assert sorted(np.floor(u * n).astype(int)) == list(range(n))
+
+
+def test_random_draws_have_the_asked_moments():
+    # 4096 draws: the sample mean of a normal(5.8 GPa, 5 %) lies within 4 standard
+    # errors (0.29 GPa / 64) of 5.8 GPa, its sd within 10 % of 0.29 GPa (the sd's
+    # standard error is ~1.1 %); uniform draws stay inside [LOW, HIGH].
+    s, x = _design("random", 4096)
+    assert ((x[:, 0] >= 0.158) & (x[:, 0] <= 0.267)).all()
+    assert abs(x[:, 1].mean() - 5.8e9) < 4 * 0.29e9 / 64
+    assert abs(x[:, 1].std() / 0.29e9 - 1) < 0.1
+
+
+def test_grid_times_draws_uses_the_same_draws_at_every_grid_point():
+    s = spec.build(CASE, {"load.bolts.diameter": "2.8 mm .. 3 mm, 3 steps",
+                          "load.bolts.nut_factor": "uniform(0.158, 0.267)"}, samples=4, seed=2)
+    rows = list(s.sample_inputs(0, s.size))
+    assert s.size == 12 and len(rows) == 12
+    d = np.array([[v.coord for _, v in r] for _, r in rows])
+    assert np.allclose(d[:, 0], np.repeat([2.8e-3, 2.9e-3, 3.0e-3], 4), rtol=1e-12)
+    assert (d[0:4, 1] == d[4:8, 1]).all() and (d[0:4, 1] == d[8:12, 1]).all()
+
+
+def test_failed_sample_is_recorded_with_inputs_and_error(tmp_path):
+    # A preload beyond the model's range passes the case parser (a positive torque) and
+    # fails in predict (docs/joints.md): that sample is recorded, the others complete.
+    s = spec.build(CASE, {"load.bolts.total_torques[1]": ["1.2 lbf*in", "3e6 lbf*in",
+                                                          "1.3 lbf*in"]})
+    info = sweep.run(s, str(tmp_path / "f"), serial=True, plots=False)
+    assert info["samples"] == 3 and info["failed"] == 1
+    ds = sweep.open_results(str(tmp_path / "f")).load()
+    assert list(ds["ok"].values) == [1, 0, 1]
+    assert "beyond the model's range" in str(ds["error"].values[1])
+    assert np.isnan(ds["mu"].values[1]).all() and np.isfinite(ds["mu"].values[[0, 2]]).all()
+    lines = (tmp_path / "f" / "failures.csv").read_text().splitlines()
+    assert len(lines) == 2 and lines[1].startswith("1,3e6 lbf*in,")
+    assert "beyond the model's range" in lines[1]
+
+
+def test_choice_tables_and_words(tmp_path):
+    # A choice of [choices] tables sets several keys together; a choice of words.
+    s = spec.build(CASE, {"surface": "choice(before, rougher)", "joint.model": "choice(bke, ke)"},
+                   samples=6, seed=1, choices={"surface": {
+                       "before": {},
+                       "rougher": {"joint.half[*].roughness.sigma": "2.5 um"}}})
+    sweep.run(s, str(tmp_path / "c"), serial=True, plots=False)
+    ds = sweep.open_results(str(tmp_path / "c")).load()
+    rough = ds["surface"].values == "rougher"
+    assert set(ds["joint.model"].values) <= {"bke", "ke"}
+    # Combined sigma (Eq. 5.1: root sum of squares) of two 2.5 um halves.
+    assert np.allclose(ds["sigma"].values[rough], np.hypot(2.5e-6, 2.5e-6), rtol=1e-9)
+    assert np.allclose(ds["sigma"].values[~rough], np.hypot(1.763e-6, 2.015e-6), rtol=1e-9)
+
+
+def test_dynamics_cases_sweep(tmp_path):
+    case = str(ROOT / "examples" / "dynamics" / "impulse_dankowicz.toml")
+    s = spec.build(case, {"dynamics.epsilon": [0.02, 0.032]})
+    assert s.kind == "dynamics"
+    sweep.run(s, str(tmp_path / "d"), serial=True, plots=False)
+    ds = sweep.open_results(str(tmp_path / "d")).load()
+    assert ds["ok"].values.all() and ds["modal_frequency"].shape == (2,)
+    # epsilon 0.032 is the shipped case: the same modal frequency as running it directly.
+    from asperity import dynamics
+
+    assert ds["modal_frequency"].values[1] == dynamics.run_case(case)["summary"]["modal_frequency"]
+
+
+@pytest.mark.parametrize("vary, words", [
+    ({"load.bolts.nut_facter": "uniform(0.158, 0.267)"}, ["load.bolts.nut_facter", "unknown key"]),
+    ({"joint.half[3].material.H": "normal(5.8 GPa, 5 %)"}, ["joint.half[3]", "2 elements"]),
+    ({"load.bolts.nut_factor": "uniform(0.267, 0.158)"}, ["load.bolts.nut_factor", "LOW < HIGH"]),
+    ({"load.bolts.nut_factor": "uniform(-0.1, 0.2)"}, ["load.bolts.nut_factor", "must be > 0"]),
+    ({"joint.half[1].material.nu": "uniform(0.3, 0.6)"}, ["material.nu", "[0, 0.5)"]),
+    ({"joint.half[*].material.H": "normal(5.8 GPa, -5 %)"}, ["material.H", "SD > 0"]),
+    ({"joint.half[*].material.H": "normal(5.8 GPa, 40 %)"}, ["material.H", "MEAN +-"]),
+    ({"joint.half[*].material.H": "normal(5.8 um, 5 %)"}, ["material.H", "length", "pressure"]),
+    ({"load.bolts.nut_factor": "uniform(0.1 N, 0.2 N)"}, ["nut_factor", "dimensionless"]),
+    ({"joint.area": "uniform(100, 200)"}, ["joint.area", "give the unit"]),
+    ({"joint.model": "choice(bke, xyz)"}, ["joint.model", "xyz"]),
+    ({"joint.model": "uniform(1, 2)"}, ["joint.model", "use a grid or choice"]),
+    ({"load.bolts.count": "normal(2, 10 %)"}, ["load.bolts.count", "integer"]),
+])
+def test_bad_input_refused_before_any_work(tmp_path, vary, words):
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "asperity.sweep", CASE, "--samples", "10", "--out", str(out),
+           # Nothing listens there: a refusal must come before any connection.
+           "--scheduler", f"tcp://127.0.0.1:{_free_port()}"]
+    for k, v in vary.items():
+        cmd += ["--vary", f"{k} ~ {v}"]
+    p = subprocess.run(cmd, capture_output=True, text=True, env=ENV, timeout=60)
+    assert p.returncode == 2, p.stderr
+    msg = p.stderr.strip()
+    assert msg.startswith("asperity sweep: error: ") and len(msg.splitlines()) == 1
+    for w in words:
+        assert w in msg, msg
+    assert not out.exists() and not list(tmp_path.glob(".out.partial-*"))
+
+
+def test_foreign_output_directory_is_refused(tmp_path):
+    out = tmp_path / "mine"
+    out.mkdir()
+    (out / "notes.txt").write_text("keep")
+    s = spec.build(CASE, VARY, samples=2, seed=1)
+    with pytest.raises(sweep.SweepError, match="did not write"):
+        sweep.run(s, str(out), serial=True)
+    assert (out / "notes.txt").read_text() == "keep"
+
+
+def test_vibration_cases_are_not_wired_yet(tmp_path):
+    case = tmp_path / "v.toml"
+    case.write_text('[vibration]\nmodes = 2\n')
+    s = spec.build(str(case), {"vibration.modes": [1, 2]})
+    with pytest.raises(sweep.SweepError, match="not wired"):
+        sweep.run(s, str(tmp_path / "o"), serial=True)
+
+
+def test_vary_flag_takes_a_grid_array_and_progress_draws_a_bar():
+    import io
+
+    assert spec.parse_vary_flag('load.bolts.diameter = ["2.8 mm", "3 mm"]') == (
+        "load.bolts.diameter", ["2.8 mm", "3 mm"])
+    assert spec.parse_vary_flag("joint.area ~ normal(170 mm^2, 2 %)") == (
+        "joint.area", "normal(170 mm^2, 2 %)")
+    from asperity.sweep.engine import Progress
+
+    buf = io.StringIO()
+    bar = Progress(10, enabled=True, stream=buf)
+    bar.update(10, 1)
+    bar.close()
+    assert "10/10 samples, 1 failed" in buf.getvalue() and "#" * 30 in buf.getvalue()
+    quiet = io.StringIO()
+    Progress(10, stream=quiet).update(10, 0)  # not a terminal: nothing
+    assert quiet.getvalue() == ""
