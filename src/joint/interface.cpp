@@ -268,6 +268,24 @@ std::vector<Cell> cells_with_force(const InterfaceSpec& s, double preload, doubl
 
 }  // namespace
 
+double halves_compliance(const std::array<double, 2>& E, const HalvesGeometry& g) {
+  double C = 0.0;
+  for (std::size_t i = 0; i < 2; ++i) {
+    for (const auto& [name, v] : {std::pair{"E", E[i]}, std::pair{"length", g.length[i]},
+                                  std::pair{"thickness", g.thickness[i]}}) {
+      if (!(v > 0.0) || !std::isfinite(v)) {
+        throw InvalidInput(
+            fmt::format("halves: {} of half {} = {:.6g} (SI) must be > 0", name, i + 1, v));
+      }
+    }
+    if (!(g.width > 0.0) || !std::isfinite(g.width)) {
+      throw InvalidInput(fmt::format("halves: width = {:.6g} m must be > 0", g.width));
+    }
+    C += g.length[i] / (E[i] * g.width * g.thickness[i]);  // a bar: L/(E A)
+  }
+  return C;
+}
+
 double map_total_force(const InterfaceSpec& spec, double area) {
   spec.validate(area);
   double scale = 1.0, total = 0.0;

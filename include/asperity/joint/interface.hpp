@@ -103,6 +103,25 @@ struct InterfacePatch {
                                                             double preload,
                                                             double min_patch_area = 0.0);
 
+/// The joint halves between the points where the joint's displacement is measured and
+/// the interface, for the "interface plus halves" stiffness (issue 11, item 3): each half
+/// a prismatic bar of free length L_i, width w and thickness t_i carrying the tangential
+/// force Q in tension or compression, so that its elastic compliance is L_i/(E_i w t_i)
+/// (Hooke's law for a bar) and the two add in series with the interface:
+///   C_halves = L_1/(E_1 w t_1) + L_2/(E_2 w t_2),   1/k_joint = 1/k_interface + C_halves.
+/// Neglected: the shear lag of the load transfer within the overlap, bending of the lap
+/// (its eccentricity), the bolts. A linear spring in series with a Masing element leaves
+/// the energy per cycle at a given peak force unchanged (it stores but dissipates
+/// nothing): the series compliance moves stiffness and displacement amplitude, not the
+/// energy-force exponent.
+struct HalvesGeometry {
+  std::array<double, 2> length{};     ///< L_1, L_2 [m]
+  std::array<double, 2> thickness{};  ///< t_1, t_2 [m]
+  double width = 0.0;                 ///< w [m]
+};
+/// C_halves [m/N] for Young's moduli E_1, E_2 [Pa]; InvalidInput for non-positive inputs.
+[[nodiscard]] double halves_compliance(const std::array<double, 2>& E, const HalvesGeometry& g);
+
 /// The integral of a map used as given (scale_to_preload = false) over the interface [N].
 [[nodiscard]] double map_total_force(const InterfaceSpec& spec, double area);
 
