@@ -11,6 +11,7 @@
 #include <string>
 
 #include "../support.hpp"
+#include "asperity/dynamics/case.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 #include "asperity/hysteresis/masing.hpp"
 #include "asperity/hysteresis/sum_backbone.hpp"
@@ -378,6 +379,35 @@ TEST(InterfaceCase, BadInputNamesTheProblem) {
               (void)joint::parse_case(case_text(size));
             }).find("the outline must be the nominal area"),
             std::string::npos);
+}
+
+// `asperity dynamics` with a [joint] and an [interface]: its friction law is the summed
+// backbone of predict (the same Q_max and reversal stiffness, to the last bit: the same
+// computation).
+TEST(InterfaceCase, DynamicsUsesTheSummedBackbone) {
+  const std::string text = case_text(kBolted) + R"(
+[dynamics]
+excitation = "impulse"
+epsilon = 0.032
+stiffness = "1e7 N/m"
+amplitude = "12 um"
+duration = 5
+[dynamics.impulse]
+amplitude = 1
+)";
+  const auto dc = dynamics::parse_case_text(text, "<dyn>", ".");
+  double Q_max = 0.0, k_t = 0.0;
+  for (const auto& [k, v] : dc.friction_summary) {
+    if (k == "Q_max_N") Q_max = std::get<double>(v.data);
+    if (k == "k_t_N_per_m") k_t = std::get<double>(v.data);
+  }
+  const auto jc = joint::parse_case(case_text(kBolted));
+  const auto lp = joint::predict_case_load(jc, jc.preloads[0]);
+  ASSERT_GT(lp.patches.size(), 100u);
+  EXPECT_EQ(Q_max, lp.Q_max);
+  EXPECT_EQ(k_t, lp.stiffness);
+  const auto uniform = joint::predict_load(jc.rough_flat(), jc.preloads[0], {});
+  EXPECT_NE(Q_max, uniform.Q_max);  // not the uniform flat's
 }
 
 }  // namespace
