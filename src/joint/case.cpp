@@ -388,8 +388,9 @@ HalfRoughness parse_roughness(const Reader& r, const toml::table& half, const st
 void parse_interface(const Reader& r, const toml::node& node, JointCase& c) {
   const auto* t = node.as_table();
   if (!t) r.fail(&node, "interface", "must be a table");
-  r.check_keys(*t, "interface",
-               {"pressure", "size", "patches", "map", "scale_to_preload", "bolts"});
+  r.check_keys(
+      *t, "interface",
+      {"pressure", "size", "patches", "map", "scale_to_preload", "bolts", "halves", "tangential"});
   auto& s = c.interface;
   s.origin = r.origin(&node, "interface");
   const std::string kind = r.string(*t, "pressure", "interface", "uniform");
@@ -459,6 +460,37 @@ void parse_interface(const Reader& r, const toml::node& node, JointCase& c) {
     if (t->get("scale_to_preload"))
       r.fail(t->get("scale_to_preload"), "interface.scale_to_preload",
              "is used only with pressure = \"map\"");
+  }
+  {
+    // The tangential law at the asperity scale: Cattaneo-Mindlin only (see docs/joints.md
+    // for why the Odfalk-Vingsbo law of Eq. 3.10 is refused).
+    const std::string law = r.string(*t, "tangential", "interface", "mindlin");
+    if (law == "odfalk_vingsbo") {
+      r.fail_value(t->get("tangential"), "interface.tangential",
+                   "the Odfalk-Vingsbo elastic-plastic law (Eq. 3.10) needs the fretting yield "
+                   "point Q_ty and the hardening coefficient k_p, which the thesis says are "
+                   "obtained experimentally (section 3.3); asperity has no physics-based value for "
+                   "them and does not fit any: use \"mindlin\"");
+    } else if (law != "mindlin") {
+      r.fail_value(t->get("tangential"), "interface.tangential",
+                   "use \"mindlin\" (Cattaneo-Mindlin partial slip, the default)");
+    }
+  }
+  if (const auto* hn = t->get("halves")) {
+    const auto* h = hn->as_table();
+    if (!h) r.fail(hn, "interface.halves", "must be a table { length, thickness, width }");
+    const std::string w = "interface.halves";
+    r.check_keys(*h, w, {"length", "thickness", "width"});
+    HalvesGeometry g;
+    for (const char* key : {"length", "thickness"}) {
+      const auto* n = h->get(key);
+      if (!n) r.fail(hn, w + "." + key, "missing: give two lengths [half 1, half 2]");
+      const auto v = r.quantity_list(*n, dim::length, w + "." + key, true);
+      if (v.size() != 2) r.fail(n, w + "." + key, "give two lengths [half 1, half 2]");
+      (std::string(key) == "length" ? g.length : g.thickness) = {v[0], v[1]};
+    }
+    g.width = r.positive(*h, "width", dim::length, w);
+    s.halves = g;
   }
   const auto* bn = t->get("bolts");
   if (s.pressure == PressureKind::bolted) {

@@ -98,6 +98,7 @@ LoadPrediction predict_load(const surface::RoughFlat& flat, double preload,
   out.Q_max = flat.static_friction_star(out.d_star) * s->force;
   out.mu = out.Q_max / preload;
   out.stiffness = flat.stiffness_star(out.d_star) * s->force / s->sigma;
+  out.interface_stiffness = out.stiffness;
   out.contact_area_ratio = flat.contact_area_ratio(out.d_star);
   out.mean_pressure = preload / s->A0;
   auto table = flat.backbone(out.d_star);
@@ -113,10 +114,15 @@ LoadPrediction predict_load(const surface::RoughFlat& flat, double preload,
 LoadPrediction predict_load(const surface::RoughFlat& flat, double preload,
                             const std::vector<InterfacePatch>& patches,
                             const std::vector<double>& amplitudes,
-                            const std::vector<double>& imposed, double apparatus_compliance) {
+                            const std::vector<double>& imposed, double apparatus_compliance,
+                            double series_compliance) {
   const auto& s = flat.scales();
   if (!s) throw InvalidInput("predict_load: the rough flat has no dimensional scales");
   if (patches.empty()) throw InvalidInput("predict_load: no patch");
+  if (!(series_compliance >= 0.0) || !std::isfinite(series_compliance)) {
+    throw InvalidInput(
+        fmt::format("halves' compliance = {:.6g} m/N must be >= 0", series_compliance));
+  }
   LoadPrediction out;
   out.preload = preload;
   out.P_star = preload / s->force;
@@ -161,7 +167,9 @@ LoadPrediction predict_load(const surface::RoughFlat& flat, double preload,
     out.contact_area_ratio += w * flat.contact_area_ratio(d);
   }
   if (loaded.empty()) throw InvalidInput("predict_load: no patch carries a normal force");
-  auto table = std::make_shared<const surface::PatchedRoughFlatBackbone>(flat, loaded);
+  auto table = std::make_shared<const surface::PatchedRoughFlatBackbone>(
+      flat, loaded, 1e-9, series_compliance * s->force / s->sigma);
+  out.halves_compliance = series_compliance;
   out.distinct_patch_sums = table->distinct_sums();
   // Separation: area-weighted mean over the loaded patches (each has its own).
   out.d_star = d_weighted / area;
@@ -169,6 +177,9 @@ LoadPrediction predict_load(const surface::RoughFlat& flat, double preload,
   out.Q_max = table->limit() * s->force;
   out.mu = out.Q_max / preload;
   out.stiffness = table->initial_stiffness() * s->force / s->sigma;
+  double k_interface = 0.0;
+  for (const auto& r : table->responses()) k_interface += r.stiffness_star;
+  out.interface_stiffness = k_interface * s->force / s->sigma;
   out.backbone = std::make_shared<hysteresis::ScaledBackbone>(table, s->sigma, s->force);
   out.gross_slip_amplitude = table->table_end() * s->sigma;
   for (std::size_t i = 0; i < kept.size(); ++i) {
@@ -179,6 +190,15 @@ LoadPrediction predict_load(const surface::RoughFlat& flat, double preload,
   fill_amplitudes(out, *table, s->sigma, s->force, amplitudes, imposed, apparatus_compliance);
   return out;
 }
+
+namespace {
+
+double case_halves_compliance(const JointCase& c) {
+  if (!c.interface.halves) return 0.0;
+  return halves_compliance({c.halves[0].material.E, c.halves[1].material.E}, *c.interface.halves);
+}
+
+}  // namespace
 
 std::vector<InterfacePatch> case_patches(const JointCase& c, double preload) {
   const double eta = c.combined_roughness().eta();
@@ -193,7 +213,7 @@ LoadPrediction predict_case_load(const JointCase& c, double preload,
     return predict_load(flat, preload, amplitudes, imposed, c.apparatus.compliance());
   }
   return predict_load(flat, preload, case_patches(c, preload), amplitudes, imposed,
-                      c.apparatus.compliance());
+                      c.apparatus.compliance(), case_halves_compliance(c));
 }
 
 JointPrediction predict(const JointCase& c,
@@ -215,7 +235,7 @@ JointPrediction predict(const JointCase& c,
           c.interface.is_default()
               ? predict_load(flat, c.preloads[i], c.amplitudes, c.imposed, c.apparatus.compliance())
               : predict_load(flat, c.preloads[i], case_patches(c, c.preloads[i]), c.amplitudes,
-                             c.imposed, c.apparatus.compliance());
+                             c.imposed, c.apparatus.compliance(), case_halves_compliance(c));
     } catch (const InvalidInput& e) {
       // Name where this load case came from (file, line, key).
       if (i < c.preload_origin.size())

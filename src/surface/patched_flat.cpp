@@ -39,8 +39,8 @@ struct PatchedRoughFlatBackbone::Built {
 
 PatchedRoughFlatBackbone::PatchedRoughFlatBackbone(const RoughFlat& flat,
                                                    const std::vector<FlatPatch>& patches,
-                                                   double rel_tol)
-    : PatchedRoughFlatBackbone(build(flat, patches, rel_tol), patches) {}
+                                                   double rel_tol, double series_compliance_star)
+    : PatchedRoughFlatBackbone(build(flat, patches, rel_tol, series_compliance_star), patches) {}
 
 PatchedRoughFlatBackbone::PatchedRoughFlatBackbone(Built&& b, const std::vector<FlatPatch>& patches)
     : hysteresis::TabulatedBackbone(b.tab),
@@ -49,7 +49,12 @@ PatchedRoughFlatBackbone::PatchedRoughFlatBackbone(Built&& b, const std::vector<
       distinct_(b.distinct) {}
 
 PatchedRoughFlatBackbone::Built PatchedRoughFlatBackbone::build(
-    const RoughFlat& flat, const std::vector<FlatPatch>& patches, double rel_tol) {
+    const RoughFlat& flat, const std::vector<FlatPatch>& patches, double rel_tol,
+    double series_compliance_star) {
+  const double C = series_compliance_star;
+  if (!(C >= 0.0) || !std::isfinite(C)) {
+    throw InvalidInput(fmt::format("series compliance C* = {} must be >= 0", C));
+  }
   if (patches.empty()) throw InvalidInput("patched rough flat: no patch");
   std::vector<Group> groups;
   std::vector<std::size_t> group_of(patches.size());
@@ -123,6 +128,37 @@ PatchedRoughFlatBackbone::Built PatchedRoughFlatBackbone::build(
   }
   in.rel_tol = rel_tol;
   in.max_intervals = 1u << 16;
+  if (C > 0.0) {
+    // The interface in series with a linear spring: sample at x* by solving
+    // x*_i + C* Q*_l(x*_i) = x* (monotone in x*_i; Newton steps kept inside a shrinking
+    // bracket [0, x*], first guess x*/(1 + C* k0)).
+    const auto interface = in.sample;
+    const double k0 = in.initial_stiffness;
+    in.sample = [interface, C, k0](double x) {
+      double lo = 0.0, hi = x, xi = x / (1.0 + C * k0);
+      hysteresis::BackboneSample q = interface(xi);
+      for (int it = 0; it < 200; ++it) {
+        const double h = xi + C * q.Q - x;
+        if (h > 0.0) {
+          hi = xi;
+        } else {
+          lo = xi;
+        }
+        if (std::abs(h) <= 1e-15 * x || hi - lo <= 1e-15 * x) break;
+        double next = xi - h / (1.0 + C * q.dQ);
+        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        xi = next;
+        q = interface(xi);
+      }
+      const double s = 1.0 + C * q.dQ;
+      return hysteresis::BackboneSample{q.Q, q.dQ / s, q.d2Q / (s * s * s)};
+    };
+    for (double& k : in.knots) k += C * interface(k).Q;
+    for (auto& g : groups) g.x_end += C * interface(g.x_end).Q;
+    in.x_end += C * in.limit;
+    in.initial_curvature /= std::pow(1.0 + C * k0, 3);
+    in.initial_stiffness = k0 / (1.0 + C * k0);
+  }
   for (std::size_t i = 0; i < patches.size(); ++i) {
     const auto& g = groups[group_of[i]];
     out.responses.push_back({patches[i].weight * g.Q_max, patches[i].weight * g.k0, g.x_end});

@@ -248,6 +248,39 @@ TEST(InterfacePatches, EnergyExponentTendsToThreeAtSmallAmplitude) {
   }
 }
 
+// The halves in series: 1/k = 1/k_interface + C with C = sum L/(E w t) (a bar), and the
+// energy per cycle at a given peak force is the interface's (a linear spring dissipates
+// nothing): W_series(delta_i + C Q) = W_interface(delta_i). The two tables differ by their
+// verified bounds (~1e-9), and W = 8 Int Q - 4 x Q loses the digits of 8 x Q/W: 1e-7 of
+// that covers both.
+TEST(InterfacePatches, HalvesComplianceInSeries) {
+  auto c = bolted_case();
+  const joint::HalvesGeometry g{{5e-3, 8e-3}, {5e-3, 4e-3}, 10e-3};
+  const double C = joint::halves_compliance({200e9, 200e9}, g);
+  EXPECT_LT(rel(C, 5e-3 / (200e9 * 10e-3 * 5e-3) + 8e-3 / (200e9 * 10e-3 * 4e-3)), 1e-15);
+  const auto flat = c.rough_flat();
+  const double P = c.preloads[2];
+  const auto patches = joint::case_patches(c, P);
+  const auto alone = joint::predict_load(flat, P, patches, {}, {}, 0.0);
+  std::vector<double> total;
+  for (double a : kAmplitudes) total.push_back(a + C * alone.backbone->force(a));
+  const auto interface = joint::predict_load(flat, P, patches, amplitudes(), {}, 0.0);
+  const auto series = joint::predict_load(flat, P, patches, total, {}, 0.0, C);
+  EXPECT_LT(rel(1.0 / series.stiffness, 1.0 / alone.stiffness + C), 1e-12);
+  EXPECT_LT(rel(series.interface_stiffness, alone.stiffness), 1e-12);
+  EXPECT_EQ(series.Q_max, alone.Q_max);
+  EXPECT_LT(rel(series.gross_slip_amplitude, alone.gross_slip_amplitude + C * alone.Q_max), 1e-9);
+  for (std::size_t i = 0; i < total.size(); ++i) {
+    const auto &s = series.amplitudes[i], &a = interface.amplitudes[i];
+    EXPECT_LT(rel(s.Q_peak, a.Q_peak), 1e-8) << i;
+    EXPECT_LT(rel(s.energy, a.energy), 1e-7 * 8.0 * a.delta_max * a.Q_peak / a.energy) << i;
+  }
+  // Through a case file: [interface.halves].
+  c.interface.halves = g;
+  const auto lp = joint::predict_case_load(c, P);
+  EXPECT_LT(rel(lp.stiffness, series.stiffness), 1e-12);
+}
+
 // --- case files and bad input ---
 
 std::string case_text(const std::string& interface) {
@@ -373,6 +406,13 @@ TEST(InterfaceCase, BadInputNamesTheProblem) {
               (void)joint::parse_case(case_text(kind));
             }).find("interface.pressure = \"cones\""),
             std::string::npos);
+  // The Odfalk-Vingsbo law is refused, saying why (no physics-based Q_ty, k_p).
+  std::string ov = kBolted;
+  ov.replace(ov.find("patches = [17, 10]"), 18,
+             "patches = [17, 10]\ntangential = \"odfalk_vingsbo\"");
+  const auto ovm = invalid_input_message([&] { (void)joint::parse_case(case_text(ov)); });
+  EXPECT_NE(ovm.find("interface.tangential = \"odfalk_vingsbo\""), std::string::npos) << ovm;
+  EXPECT_NE(ovm.find("fretting yield point Q_ty"), std::string::npos) << ovm;
   std::string size = kBolted;
   size.replace(size.find("\"10 mm\"]"), 7, "\"12 mm\"");
   EXPECT_NE(invalid_input_message([&] {

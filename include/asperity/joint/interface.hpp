@@ -63,6 +63,25 @@ struct BoltedPressure {
   [[nodiscard]] double footprint_radius() const;
 };
 
+/// The joint halves between the points where the joint's displacement is measured and
+/// the interface, for the "interface plus halves" stiffness (issue 11, item 3): each half
+/// a prismatic bar of free length L_i, width w and thickness t_i carrying the tangential
+/// force Q in tension or compression, so that its elastic compliance is L_i/(E_i w t_i)
+/// (Hooke's law for a bar) and the two add in series with the interface:
+///   C_halves = L_1/(E_1 w t_1) + L_2/(E_2 w t_2),   1/k_joint = 1/k_interface + C_halves.
+/// Neglected: the shear lag of the load transfer within the overlap, bending of the lap
+/// (its eccentricity), the bolts. A linear spring in series with a Masing element leaves
+/// the energy per cycle at a given peak force unchanged (it stores but dissipates
+/// nothing): the series compliance moves stiffness and displacement amplitude, not the
+/// energy-force exponent.
+struct HalvesGeometry {
+  std::array<double, 2> length{};     ///< L_1, L_2 [m]
+  std::array<double, 2> thickness{};  ///< t_1, t_2 [m]
+  double width = 0.0;                 ///< w [m]
+};
+/// C_halves [m/N] for Young's moduli E_1, E_2 [Pa]; InvalidInput for non-positive inputs.
+[[nodiscard]] double halves_compliance(const std::array<double, 2>& E, const HalvesGeometry& g);
+
 struct InterfaceSpec {
   PressureKind pressure = PressureKind::uniform;
   /// Lx, Ly [m]; required for map and bolted, optional for uniform (then the patches
@@ -71,10 +90,13 @@ struct InterfaceSpec {
   std::array<int, 2> patches{1, 1};  ///< nx, ny: a grid of equal cells over the outline
   PressureMap map;
   BoltedPressure bolts;
+  /// The halves' elastic compliance in series with the interface ([interface.halves]);
+  /// unset: the interface alone (today's model).
+  std::optional<HalvesGeometry> halves;
   std::string origin;  ///< "FILE:LINE: interface" for errors found later
 
   [[nodiscard]] bool is_default() const {
-    return pressure == PressureKind::uniform && patches[0] * patches[1] == 1;
+    return pressure == PressureKind::uniform && patches[0] * patches[1] == 1 && !halves;
   }
   /// Checks the geometry against the joint's nominal area A0: outline present where
   /// needed, bolts and their cones' holes inside the outline, holes smaller than heads,
@@ -102,25 +124,6 @@ struct InterfacePatch {
 [[nodiscard]] std::vector<InterfacePatch> interface_patches(const InterfaceSpec& spec, double area,
                                                             double preload,
                                                             double min_patch_area = 0.0);
-
-/// The joint halves between the points where the joint's displacement is measured and
-/// the interface, for the "interface plus halves" stiffness (issue 11, item 3): each half
-/// a prismatic bar of free length L_i, width w and thickness t_i carrying the tangential
-/// force Q in tension or compression, so that its elastic compliance is L_i/(E_i w t_i)
-/// (Hooke's law for a bar) and the two add in series with the interface:
-///   C_halves = L_1/(E_1 w t_1) + L_2/(E_2 w t_2),   1/k_joint = 1/k_interface + C_halves.
-/// Neglected: the shear lag of the load transfer within the overlap, bending of the lap
-/// (its eccentricity), the bolts. A linear spring in series with a Masing element leaves
-/// the energy per cycle at a given peak force unchanged (it stores but dissipates
-/// nothing): the series compliance moves stiffness and displacement amplitude, not the
-/// energy-force exponent.
-struct HalvesGeometry {
-  std::array<double, 2> length{};     ///< L_1, L_2 [m]
-  std::array<double, 2> thickness{};  ///< t_1, t_2 [m]
-  double width = 0.0;                 ///< w [m]
-};
-/// C_halves [m/N] for Young's moduli E_1, E_2 [Pa]; InvalidInput for non-positive inputs.
-[[nodiscard]] double halves_compliance(const std::array<double, 2>& E, const HalvesGeometry& g);
 
 /// The integral of a map used as given (scale_to_preload = false) over the interface [N].
 [[nodiscard]] double map_total_force(const InterfaceSpec& spec, double area);

@@ -52,9 +52,13 @@ struct LoadPrediction {
   double P_star = 0.0;      ///< P/(K H A0)
   double separation = 0.0;  ///< mean-plane separation d [m] (d* sigma_s)
   double d_star = 0.0;
-  double Q_max = 0.0;               ///< static friction force [N] (Eq. 4.7)
-  double mu = 0.0;                  ///< Q_max/P
-  double stiffness = 0.0;           ///< tangential stiffness at every reversal [N/m]
+  double Q_max = 0.0;      ///< static friction force [N] (Eq. 4.7)
+  double mu = 0.0;         ///< Q_max/P
+  double stiffness = 0.0;  ///< tangential stiffness at every reversal [N/m]
+  /// The interface's own stiffness, and the halves' compliance in series with it [m/N]
+  /// (0 without [interface.halves]): 1/stiffness = 1/interface_stiffness + compliance.
+  double interface_stiffness = 0.0;
+  double halves_compliance = 0.0;
   double contact_area_ratio = 0.0;  ///< real over nominal area
   double mean_pressure = 0.0;       ///< P/A0 [Pa]
   /// Amplitude from which the joint is in gross slip [m]: the end of the backbone table,
@@ -91,14 +95,18 @@ struct JointPrediction {
                                           double apparatus_compliance = 0.0);
 
 /// The same for an interface in patches (interface_patches): each loaded patch a rough
-/// flat of area A_i at P_i, their backbones summed (surface::PatchedRoughFlatBackbone).
+/// flat of area A_i at P_i, their backbones summed (surface::PatchedRoughFlatBackbone);
+/// `series_compliance` [m/N] >= 0 puts the joint halves in series (halves_compliance):
+/// the backbone, stiffness, amplitudes and gross-slip amplitudes are then those between
+/// the measurement points, and interface_stiffness keeps the interface's own.
 /// `preload` is the sum of the patches' forces. A patch beyond the model's range, or with
 /// P_i/(K H A_i) below 1e-12 while carrying force, is an InvalidInput naming it.
 [[nodiscard]] LoadPrediction predict_load(const surface::RoughFlat& flat, double preload,
                                           const std::vector<InterfacePatch>& patches,
                                           const std::vector<double>& amplitudes,
                                           const std::vector<double>& imposed,
-                                          double apparatus_compliance);
+                                          double apparatus_compliance,
+                                          double series_compliance = 0.0);
 
 /// The patches of case `c` at `preload` (its [interface]; minimum patch area
 /// kMinAsperitiesPerPatch / eta).

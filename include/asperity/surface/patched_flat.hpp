@@ -39,8 +39,16 @@ class PatchedRoughFlatBackbone final : public hysteresis::TabulatedBackbone {
   /// uniform field costs one sum per distinct pressure). One patch of weight 1 gives
   /// exactly RoughFlatBackbone(flat, d*). Throws InvalidInput for no patch, a weight
   /// <= 0 or a non-finite d*, or a patch that carries no friction force.
+  ///
+  /// `series_compliance_star` C* >= 0 (a compliance over sigma_s/(K H A0)) puts a linear
+  /// spring in series with the interface (the joint halves, joint/interface.hpp): the
+  /// table is then Q*(x*) with x* = x*_i + C* Q*_l(x*_i) (x*_i the interface's own
+  /// displacement), dQ*/dx* = Q*_l'/(1 + C* Q*_l'), d2Q*/dx*2 = Q*_l''/(1 + C* Q*_l')^3.
+  /// A linear spring in series with a Masing element is a Masing element with this
+  /// backbone (every branch: Delta x = 2 x_l(Delta Q/2) + C Delta Q). gross_slip_star
+  /// is then in x* too.
   PatchedRoughFlatBackbone(const RoughFlat& flat, const std::vector<FlatPatch>& patches,
-                           double rel_tol = 1e-9);
+                           double rel_tol = 1e-9, double series_compliance_star = 0.0);
 
   [[nodiscard]] const std::vector<FlatPatch>& patches() const { return patches_; }
   [[nodiscard]] const std::vector<FlatPatchResponse>& responses() const { return responses_; }
@@ -49,7 +57,8 @@ class PatchedRoughFlatBackbone final : public hysteresis::TabulatedBackbone {
 
  private:
   struct Built;
-  static Built build(const RoughFlat& flat, const std::vector<FlatPatch>& patches, double rel_tol);
+  static Built build(const RoughFlat& flat, const std::vector<FlatPatch>& patches, double rel_tol,
+                     double series_compliance_star);
   PatchedRoughFlatBackbone(Built&& b, const std::vector<FlatPatch>& patches);
   std::vector<FlatPatch> patches_;
   std::vector<FlatPatchResponse> responses_;
