@@ -422,7 +422,7 @@ JointCase variant_case(const JointCase& base, const Variant& v) {
 
 // Stiffness, Table 5.6's displacement and the energy-force exponent for every variant,
 // against the measurements (issue 11, item 4). No constant is adjusted to them.
-void variant_rows(Builder& out) {
+void variant_rows(Builder& out, std::vector<VariantPoint>* points) {
   Builder b;
   const auto ch5 = chapter5_joint();
   const double dmax[] = {4.26, 2.69, 1.32, 0.79};
@@ -434,6 +434,7 @@ void variant_rows(Builder& out) {
       // displacement (and stiffness) is that between the measurement points.
       const auto lp = predict_case_load(c, P, {}, {6.75e-6});
       const auto& a = lp.amplitudes.front();
+      if (points) points->push_back({"ch. 5", v.name, P, lp.stiffness, 10e6, 300e6, std::nullopt});
       std::string note = v.bolts ? kBoltNote : "uniform P/A0 (today's model)";
       if (v.halves) note += std::string("; ") + kHalvesNote;
       b.experiment_range(
@@ -465,8 +466,12 @@ void variant_rows(Builder& out) {
                            fmt::format("{} k at {:.0f} N [N/um], {}", kTable64[j].label, P, v.name),
                            lo, hi, lp.stiffness * 1e-6,
                            note + "; ranges read from the text of section 6.3, not the figure");
-        if (v.halves) continue;  // a series spring leaves W(Q_peak) unchanged
         const auto& a = lp.amplitudes.front();
+        if (points) {
+          points->push_back({kTable64[j].label, v.name, P, lp.stiffness, lo * 1e6, hi * 1e6,
+                             v.halves ? std::nullopt : a.exponent});
+        }
+        if (v.halves) continue;  // a series spring leaves W(Q_peak) unchanged
         if (!a.exponent) continue;
         b.experiment_range(
             "Fig. 6.12-6.14 energy-force exponent (2-3)",
@@ -559,12 +564,12 @@ HalvesGeometry assumed_halves() {
   return {{5e-3, 5e-3}, {5e-3, 5e-3}, 10e-3};
 }
 
-std::vector<ValidationRow> validation_rows() {
+std::vector<ValidationRow> validation_rows(std::vector<VariantPoint>* points) {
   Builder b;
   chapter3(b);
   chapter4(b);
   chapter5_6(b);
-  variant_rows(b);
+  variant_rows(b, points);
   return b.rows;
 }
 

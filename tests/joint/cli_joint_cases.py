@@ -378,7 +378,8 @@ elif case == "validate_report":
     md = open(os.path.join(out, "validation.md")).read()
     check("| FAIL |" not in md and "| mu at 526 N | 0.335 |" in md, "report incomplete")
     check(p.stdout == md, "stdout differs from the file")
-    for f in ["ch5_loops.png", "ch5_energy_vs_force.png", "ch5_mu_vs_preload.png", "ch5_stiffness_vs_preload.png"]:
+    for f in ["ch5_loops.png", "ch5_energy_vs_force.png", "ch5_mu_vs_preload.png", "ch5_stiffness_vs_preload.png",
+              "ch5_stiffness_variants.png", "ch6_stiffness_variants.png", "ch6_exponent_vs_preload.png"]:
         check(os.path.getsize(os.path.join(out, f)) > 0, f"missing {f}")
 elif case == "validate_docs_current":
     p = run("validate")

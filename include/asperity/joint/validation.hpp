@@ -2,6 +2,7 @@
 // Reproduction of the thesis's numbers (asperity validate): every table and statement
 // the library can recompute, with the thesis's value, ours, the relative difference and
 // a verdict. Used by the CLI, the test suite and docs/validation.md.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,8 +52,20 @@ struct ValidationRow {
 /// joints (not printed there): 5 mm free length and 5 mm thickness each, 10 mm wide.
 [[nodiscard]] HalvesGeometry assumed_halves();
 
-/// Computes every row (a few seconds).
-[[nodiscard]] std::vector<ValidationRow> validation_rows();
+/// One model variant of one joint at one preload (issue 11): the numbers the variant
+/// rows hold against the measurements, for plots.
+struct VariantPoint {
+  std::string joint;       ///< "ch. 5", "smooth Al", "rough Al", "smooth St", "rough St"
+  std::string variant;     ///< "uniform", "bolt field", "uniform + halves", "bolt field + halves"
+  double preload = 0.0;    ///< [N]
+  double stiffness = 0.0;  ///< between the measurement points [N/m]
+  double stiffness_low = 0.0, stiffness_high = 0.0;  ///< measured range [N/m]
+  std::optional<double> exponent;  ///< at the smallest imposed amplitude (ch. 6), partial slip
+};
+
+/// Computes every row (a few seconds); `points` (if given) receives the variant points.
+[[nodiscard]] std::vector<ValidationRow> validation_rows(
+    std::vector<VariantPoint>* points = nullptr);
 
 /// Markdown report: a table per source with ours, the thesis's, the relative
 /// difference and the verdict, and a summary count.
