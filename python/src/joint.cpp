@@ -247,7 +247,7 @@ void bind_joint(nb::module_& m) {
          double sample_rate, double noise_delta, double noise_Q, double k_pzt, double k_lc,
          std::uint64_t seed) {
         const auto c = read_case_file(case_path);
-        const auto lp = predict_load(c.rough_flat(), preload, {});
+        const auto lp = predict_case_load(c, preload);  // with the case's [interface]
         SyntheticOptions o;
         o.excitation = {.amplitude = imposed, .frequency = frequency, .cycles = cycles};
         o.sample_rate = sample_rate;

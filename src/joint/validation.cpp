@@ -594,13 +594,14 @@ std::string validation_markdown(const std::vector<ValidationRow>& rows) {
        "`differs (model vs experiment)`. The summary counts the three kinds of row apart.\n\n";
   std::map<std::string, std::map<std::string, int>> count;  // kind -> verdict -> rows
   for (const auto& r : rows) ++count[r.kind()][r.verdict];
-  s += "Figures (`asperity validate --out DIR` writes them next to validation.md): the chapter 5\n"
-       "joint's loops at 4 um (`ch5_loops.png`), energy per cycle against peak force with slope-2\n"
-       "and slope-3 guides (`ch5_energy_vs_force.png`, cf. Fig. 6.12-6.14), mu and stiffness\n"
-       "against preload (`ch5_mu_vs_preload.png`, `ch5_stiffness_vs_preload.png`); per model\n"
-       "variant with the measured ranges: stiffness against preload (`ch5_stiffness_variants.png`,\n"
-       "`ch6_stiffness_variants.png`) and the ch. 6 energy-force exponent\n"
-       "(`ch6_exponent_vs_preload.png`).\n\n";
+  s +=
+      "Figures (`asperity validate --out DIR` writes them next to validation.md): the chapter 5\n"
+      "joint's loops at 4 um (`ch5_loops.png`), energy per cycle against peak force with slope-2\n"
+      "and slope-3 guides (`ch5_energy_vs_force.png`, cf. Fig. 6.12-6.14), mu and stiffness\n"
+      "against preload (`ch5_mu_vs_preload.png`, `ch5_stiffness_vs_preload.png`); per model\n"
+      "variant with the measured ranges: stiffness against preload (`ch5_stiffness_variants.png`,\n"
+      "`ch6_stiffness_variants.png`) and the ch. 6 energy-force exponent\n"
+      "(`ch6_exponent_vs_preload.png`).\n\n";
   // Reproductions of the thesis's numbers, regressions (our own value by an independent
   // method), and the model against measurements, counted apart.
   s += "Summary:";
