@@ -446,6 +446,7 @@ void parse_interface(const Reader& r, const toml::node& node, JointCase& c) {
       s.map.x = col("x", dim::length);
       s.map.y = col("y", dim::length);
       s.map.p = col("p", dim::pressure);
+      s.map.build_index();
     } catch (const InvalidInput& e) {
       r.fail(mapn, "interface.map", e.what());
     }

@@ -38,25 +38,40 @@ bool PressureMap::is_grid() const {
   return std::adjacent_find(pts.begin(), pts.end()) == pts.end();
 }
 
+void PressureMap::build_index() {
+  gx_.clear();
+  gy_.clear();
+  gp_.clear();
+  if (!is_grid()) return;
+  gx_ = distinct(x);
+  gy_ = distinct(y);
+  gp_.assign(gx_.size() * gy_.size(), 0.0);
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const auto i =
+        static_cast<std::size_t>(std::lower_bound(gx_.begin(), gx_.end(), x[k]) - gx_.begin());
+    const auto j =
+        static_cast<std::size_t>(std::lower_bound(gy_.begin(), gy_.end(), y[k]) - gy_.begin());
+    gp_[i * gy_.size() + j] = p[k];
+  }
+}
+
 double PressureMap::at(double px, double py) const {
-  if (is_grid()) {
-    const auto xs = distinct(x), ys = distinct(y);
-    const auto cell = [](const std::vector<double>& v, double t) {
-      const auto it = std::upper_bound(v.begin(), v.end(), t);
-      const auto i = static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(
-          it - v.begin() - 1, 0, static_cast<std::ptrdiff_t>(v.size()) - 2));
-      return i;
-    };
-    const std::size_t i = cell(xs, px), j = cell(ys, py);
-    const auto value = [&](std::size_t a, std::size_t b) {
-      for (std::size_t k = 0; k < x.size(); ++k)
-        if (x[k] == xs[a] && y[k] == ys[b]) return p[k];
-      return 0.0;  // unreachable for a grid
-    };
-    const double u = std::clamp((px - xs[i]) / (xs[i + 1] - xs[i]), 0.0, 1.0);
-    const double w = std::clamp((py - ys[j]) / (ys[j + 1] - ys[j]), 0.0, 1.0);
-    return (1 - u) * (1 - w) * value(i, j) + u * (1 - w) * value(i + 1, j) +
-           (1 - u) * w * value(i, j + 1) + u * w * value(i + 1, j + 1);
+  const auto cell = [](const std::vector<double>& v, double t) {
+    const auto it = std::upper_bound(v.begin(), v.end(), t);
+    return static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(
+        it - v.begin() - 1, 0, static_cast<std::ptrdiff_t>(v.size()) - 2));
+  };
+  if (!gp_.empty()) {
+    const std::size_t i = cell(gx_, px), j = cell(gy_, py), ny = gy_.size();
+    const double u = std::clamp((px - gx_[i]) / (gx_[i + 1] - gx_[i]), 0.0, 1.0);
+    const double w = std::clamp((py - gy_[j]) / (gy_[j + 1] - gy_[j]), 0.0, 1.0);
+    return (1 - u) * (1 - w) * gp_[i * ny + j] + u * (1 - w) * gp_[(i + 1) * ny + j] +
+           (1 - u) * w * gp_[i * ny + j + 1] + u * w * gp_[(i + 1) * ny + j + 1];
+  }
+  if (is_grid()) {  // not indexed: index a copy (slow, correct)
+    PressureMap indexed = *this;
+    indexed.build_index();
+    return indexed.at(px, py);
   }
   std::size_t best = 0;
   double d2 = std::numeric_limits<double>::infinity();

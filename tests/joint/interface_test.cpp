@@ -352,6 +352,16 @@ TEST(InterfaceCase, MapScaledToPreloadOrAsGiven) {
   for (const auto& p : patches) F += p.force;
   EXPECT_LT(rel(F, 526.0), 1e-12);
   EXPECT_GT(patches.back().pressure(), patches.front().pressure());  // p grows with x
+  // Bilinear interpolation is exact on a linear field, indexed (as read) or not.
+  joint::PressureMap raw;
+  raw.x = c.interface.map.x;
+  raw.y = c.interface.map.y;
+  raw.p = c.interface.map.p;
+  for (const auto& [x, y] : {std::pair{3e-3, 7e-3}, {11.2e-3, 0.4e-3}, {17e-3, 10e-3}}) {
+    const double exact = (2.0 + x / 17e-3) * 1e6;
+    EXPECT_LT(rel(c.interface.map.at(x, y), exact), 1e-12);
+    EXPECT_LT(rel(raw.at(x, y), exact), 1e-12);
+  }
   // As given: the integral of p = 2 + x/17 MPa over 17 x 10 mm^2 is 2.5 MPa * 170 mm^2.
   const auto g = joint::parse_case(case_text(std::string("[interface]\npressure = \"map\"\n") +
                                              "size = [\"17 mm\", \"10 mm\"]\npatches = [4, 2]\n"

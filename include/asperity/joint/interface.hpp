@@ -36,8 +36,14 @@ struct PressureMap {
   /// case; false: used as given, and its integral is the joint's only load case.
   bool scale_to_preload = true;
   [[nodiscard]] bool is_grid() const;
+  /// Sorts a grid map's distinct x and y and its values into a lattice for at(); call
+  /// after filling x, y, p (the case reader does). Without it at() is correct but slow.
+  void build_index();
   /// p at (x, y): bilinear on a grid, nearest point otherwise.
   [[nodiscard]] double at(double x, double y) const;
+
+ private:
+  std::vector<double> gx_, gy_, gp_;  // the lattice (gp_ row-major in x), empty if none
 };
 
 /// Pressure cones under the bolts (Rotscher's frustum, as in Shigley's Mechanical
