@@ -468,6 +468,33 @@ elif case == "predict_bolt_field":
     run("predict", os.path.join(ex, "steel420_two_bolts.toml"), "--out", u, "--no-plots")
     check(not os.path.exists(os.path.join(u, "patches.csv")), "patches.csv for a uniform case")
     check("patches" not in json.load(open(os.path.join(u, "summary.json")))["loads"][0], "patch keys")
+elif case == "flat_case_history":
+    # flat --case: Masing on the case's backbone (with its [interface]); on the virgin curve
+    # the force is predict's Q_peak at the same amplitude (the same table: 1e-12).
+    hist = os.path.join(src, "examples", "flat", "history.csv")
+    x1 = float(open(hist).read().split()[2]) * 1e-6  # the first step, delta[um]
+    for name in ["steel420_two_bolts.toml", "steel420_bolt_field.toml"]:
+        text = open(os.path.join(ex, name)).read()
+        text = text.replace('amplitudes = ["0.05 um"', f'amplitudes = ["{x1 * 1e6!r} um", "0.05 um"')
+        s = json.loads(run("predict", write_case(text), "--json").stdout)
+        ld = s["loads"][2]  # 526 N (Table 5.5's 2.7 lbf in)
+        out = os.path.join(tmp, "f.csv")
+        run("flat", "--case", os.path.join(ex, name), "--P", f"{ld['preload']!r}N", "--history", hist,
+            "--out", out)
+        rows = [l.split(",") for l in open(out).read().split()[1:]]
+        check(abs(float(rows[1][0]) - x1) < 1e-18, (rows[1], x1))
+        q1 = float(rows[1][1])
+        a = [a for a in ld["amplitudes"] if abs(a["delta_max"] - x1) < 1e-15][0]
+        check(abs(a["Q_peak"] - q1) < 1e-12 * q1, (name, a["Q_peak"], q1))
+        qmax = max(abs(float(r[1])) for r in rows)
+        check(qmax <= ld["Q_max"] * (1 + 1e-12), (name, qmax, ld["Q_max"]))
+    # a sweep needs --P; flat's own inputs do not mix with --case
+    p = run("flat", "--case", os.path.join(ex, "steel420_two_bolts.toml"), "--history", hist,
+            "--out", os.path.join(tmp, "g.csv"), code=2)
+    check("choose one with --P" in p.stderr, p.stderr)
+    p = run("flat", "--case", os.path.join(ex, "steel420_two_bolts.toml"), "--P", "526N", "--beta", "0.04",
+            "--history", hist, "--out", os.path.join(tmp, "g.csv"), code=2)
+    check("--case takes the joint from the case file" in p.stderr, p.stderr)
 elif case.startswith("bad.interface_"):
     bolted = open(os.path.join(ex, "steel420_bolt_field.toml")).read()
     if case == "bad.interface_bolt_outside":
