@@ -29,11 +29,13 @@ double joint_amplitude(const hysteresis::Backbone& b, double imposed, double com
 namespace {
 
 // Local exponent n = d ln W / d ln Q_l at x (normalized table), central difference over
-// x (1 +- h); empty where Q_l no longer grows (gross slip).
+// x (1 +- h); empty in gross slip (x at the table's end or beyond), or where Q_l no longer
+// grows to rounding.
 std::optional<double> local_exponent(const hysteresis::TabulatedBackbone& table, double x) {
   constexpr double h = 1e-3;
-  if (x * (1.0 + h) >= table.table_end()) return std::nullopt;
-  const double xl = x * (1.0 - h), xh = x * (1.0 + h);
+  if (!(x > 0.0) || x >= table.table_end()) return std::nullopt;
+  // Just below the end of the table the upper point stops there (Q_l = Q_max beyond).
+  const double xl = x * (1.0 - h), xh = std::min(x * (1.0 + h), table.table_end());
   const double Ql = table.force(xl), Qh = table.force(xh);
   const double Wl = hysteresis::energy_per_cycle(table, xl);
   const double Wh = hysteresis::energy_per_cycle(table, xh);

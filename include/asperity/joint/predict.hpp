@@ -31,8 +31,9 @@ struct AmplitudePrediction {
   std::vector<std::uint8_t> patch_gross_slip;
   double gross_slip_area_fraction = 0.0;
   /// Local energy-force exponent n = d ln W / d ln Q_peak at delta_max (central
-  /// difference over delta_max (1 +- 1e-3)); empty in gross slip, where Q_peak no longer
-  /// grows.
+  /// difference over delta_max (1 +- 1e-3), the upper point capped at the gross-slip
+  /// amplitude); empty in gross slip, where Q_peak no longer grows (and where it does not
+  /// grow to rounding, within ~1e-12 of Q_max).
   std::optional<double> exponent;
 };
 
