@@ -320,6 +320,24 @@ TEST(InterfaceCase, BoltedCaseFileEqualsTheBuiltInField) {
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].force, b[i].force);
 }
 
+// validate's "bolt field" rows use the geometry of the shipped example (the same forces).
+TEST(InterfaceCase, ValidateBoltFieldIsTheShippedExample) {
+  const auto file = joint::read_case_file(std::string(ASPERITY_TEST_DATA_DIR) +
+                                          "/../../examples/joints/steel420_bolt_field.toml");
+  const auto built_in = joint::with_assumed_bolt_field(joint::chapter5_joint());
+  ASSERT_EQ(file.preloads.size(), built_in.preloads.size());
+  for (std::size_t i = 0; i < file.preloads.size(); ++i) {
+    EXPECT_LT(rel(file.preloads[i], built_in.preloads[i]), 1e-12);
+    const auto a = joint::case_patches(file, file.preloads[i]);
+    const auto b = joint::case_patches(built_in, file.preloads[i]);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      EXPECT_LT(std::abs(a[k].force - b[k].force), 1e-12 * file.preloads[i]);
+      EXPECT_LT(std::abs(a[k].area - b[k].area), 1e-12 * file.area);
+    }
+  }
+}
+
 struct TempDir {
   fs::path path;
   explicit TempDir(const char* name) : path(fs::temp_directory_path() / name) {
