@@ -240,7 +240,11 @@ void roughness_rows(Builder& b, const std::string& source, const std::string& la
   b.add(source, label + " combined sigma [um]", comb[0], c.sigma() * 1e6,
         (0.5e-3 + 0.5e-3 * (half1[0] + half2[0]) / comb[0]) / comb[0],
         "rounding of the printed inputs and result");
-  b.add(source, label + " combined eta [um^-2]", comb[1], c.eta() * 1e-12, 0.5e-6 / comb[1] + 2e-3);
+  b.add(source, label + " combined eta [um^-2]", comb[1], c.eta() * 1e-12, 0.5e-6 / comb[1] + 2e-3,
+        with_R ? ""
+               : fmt::format("the halves' R is not legible in the thesis: ASSUMED {} and {} um "
+                             "(beta = 0.024 like the other rough halves); R not compared",
+                             half1[2], half2[2]));
   if (with_R) b.add(source, label + " combined R [um]", comb[2], c.R() * 1e6, 1e-3);
   if (psi) {
     const auto pair = contact::ContactPair::combine(mat, mat, 1.0);
