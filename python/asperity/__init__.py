@@ -30,6 +30,10 @@ here. Dynamics works in the non-dimensional variables of section 7.2
 ``asperity dynamics`` (``run_case``: summary and numpy arrays) and draws Fig. 7.3-7.7;
 Cattaneo-Mindlin tilde functions live in :mod:`asperity.mindlin`; matplotlib helpers in
 :mod:`asperity.plotting`; the thesis's experiments in :mod:`asperity.thesis`.
+:mod:`asperity.vibration` holds the vibration layer (issue 10): structures from numpy
+matrices or MatrixMarket files, joint elements (Jenkins, Iwan4, Coulomb,
+ElasticDryFriction2d, RoughFlat), harmonic balance with its residual and Jacobian,
+nonlinear modes (EPMC), frequency responses and the quasi-static modal estimate.
 """
 from __future__ import annotations
 
@@ -40,6 +44,7 @@ from ._core import *  # noqa: F401,F403
 from ._core import mindlin
 from . import joints  # noqa: F401  (matplotlib helpers for predict / analyze_fretting)
 from . import dynamics  # noqa: F401  (dynamics case files, Fig. 7.3-7.7 helpers)
+from . import vibration  # noqa: F401  (harmonic balance, nonlinear modes, FRFs)
 
 # `import asperity.mindlin` works like a submodule of the package.
 _sys.modules[__name__ + ".mindlin"] = mindlin

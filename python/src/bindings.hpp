@@ -24,5 +24,7 @@ void bind_rough_flat(nb::module_& m);
 void bind_joint(nb::module_& m);
 /// dynamics/: friction models, the single-DOF system of Eq. 7.1, simulate, analysis.
 void bind_dynamics(nb::module_& m);
+/// vibration/: structures, joint elements, harmonic balance, nonlinear modes, FRFs.
+void bind_vibration(nb::module_& m);
 
 }  // namespace asperity::python

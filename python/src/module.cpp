@@ -13,4 +13,5 @@ NB_MODULE(_core, m) {
   asperity::python::bind_rough_flat(m);
   asperity::python::bind_joint(m);
   asperity::python::bind_dynamics(m);
+  asperity::python::bind_vibration(m);
 }

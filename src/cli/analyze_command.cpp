@@ -270,13 +270,14 @@ PowerLaw power_law(const std::vector<Run>& runs) {
 // energy_vs_force.png of several runs: the runs (left-out ones marked), the fitted power
 // law and the slope-2 and slope-3 guides of Fig. 6.12-6.14.
 PlotSpec energy_plot(const std::vector<Run>& runs, const PowerLaw& law) {
-  PlotSpec e{"Energy per cycle against peak force",
+  PlotSpec e{fmt::format("Energy per cycle against peak force: {} runs at P = {:.4g} N",
+                         runs.size(), runs.front().a.P),
              "peak force [N]",
-             "energy per cycle [J]",
+             "energy per cycle [µJ]",
              true,
              true,
              {},
-             "set key inside left top box opaque"};
+             "set key inside left top box opaque\n"};
   Series used{"runs", {}, {}, "points pt 7 ps 1.5 lc rgb '#1f4e9a'"};
   Series excl{
       "runs below the noise floor (left out)", {}, {}, "points pt 6 ps 1.5 lc rgb '#c0392b'"};
@@ -325,7 +326,32 @@ PlotSpec energy_plot(const std::vector<Run>& runs, const PowerLaw& law) {
     }
     e.series.push_back(fit);
   }
+  // Runs the --model prediction puts in gross slip, ringed (their Q_max is the static
+  // friction force).
+  Series gross{"gross slip (--model)", {}, {}, "points pt 6 ps 2.4 lc rgb 'black'"};
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const auto& m = runs[k].model;
+    if (m && m->amplitudes.front().regime == "gross slip") {
+      gross.x.push_back(runs[k].a.mean.Q_max);
+      gross.y.push_back(runs[k].a.mean.energy > 0.0 ? runs[k].a.mean.energy
+                                                    : runs[k].a.energy_noise_floor);
+    }
+  }
+  if (!gross.x.empty()) e.series.push_back(gross);
   add_power_guides(e, q0, e0, qmin, qmax);
+  double emin = 1e300, emax = 0.0;
+  for (auto& sr : e.series) {
+    for (double& y : sr.y) y *= 1e6;  // J -> µJ, the unit of the table
+  }
+  for (const auto* sr : {&used, &excl}) {
+    for (double y : sr->y) {
+      if (y > 0.0) {
+        emin = std::min(emin, y * 1e6);
+        emax = std::max(emax, y * 1e6);
+      }
+    }
+  }
+  if (emin < 1e300) set_energy_force_ranges(e, qmin, qmax, emin, emax);
   return e;
 }
 
@@ -340,20 +366,25 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
       "(Eq. 6.1), slip displacements (Fig. 6.1), standard errors and noise checks; several files "
       "give the energy-force power law.");
   cmd->add_option("data", o->files, "fretting data files (CSV)")->required();
-  cmd->add_option("--P", o->P, "normal load (preload) of the runs, e.g. 526N")->required();
+  cmd->add_option("--P,--preload", o->P, "normal load (preload) of the runs, e.g. 526N")
+      ->required();
   cmd->add_option("--model", o->model,
                   "a case file: overlay its prediction and quantify the differences");
   cmd->add_option("--out", o->out,
                   "write analysis.json, cycles.csv, cycle_traces.csv, averaged_loop.csv and plots "
-                  "into DIR (a new directory, or one asperity wrote before)");
+                  "into DIR (a new directory, or one asperity wrote before); a name ending in "
+                  ".json writes only analysis.json there, - prints it");
   cmd->add_option(
       "--window", o->window,
-      fmt::format("stiffness fit window, fraction of the peak-to-peak force ({})", o->window));
-  cmd->add_option("--degree", o->degree,
-                  fmt::format("polynomial degree of the stiffness fit, 1-4 ({})", o->degree));
+      fmt::format(
+          "stiffness fit window, fraction of the peak-to-peak force, in (0, 0.5] (default: {})",
+          o->window));
+  cmd->add_option(
+      "--degree", o->degree,
+      fmt::format("polynomial degree of the stiffness fit, 1-4 (default: {})", o->degree));
   cmd->add_flag("--stiffness-from-delta", o->stiffness_from_delta,
                 "fit the stiffness on the measured delta even when the imposed Delta is given "
-                "(default with Delta: Q(Delta) and the fitted apparatus compliance)");
+                "(without it, when Delta is given: Q(Delta) and the fitted apparatus compliance)");
   cmd->add_flag("--json", o->json, "print JSON instead of tables");
   cmd->add_flag("--no-plots", o->no_plots, "do not draw PNG plots");
   cmd->callback([o, &action] {
@@ -367,18 +398,28 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
         if (o->degree < 1 || o->degree > 4) {
           throw InvalidInput(fmt::format("--degree = {}: must be 1, 2, 3 or 4", o->degree));
         }
+        const OutKind kind = out_kind(o->out, ".json");
+        const bool to_dir = kind == OutKind::directory;
+        if (kind == OutKind::standard_output && o->json)
+          throw InvalidInput("--json and --out - both print the JSON: give one of them");
+        const bool stdout_is_data = o->json || kind == OutKind::standard_output;
         // Refuse an --out that is or holds an input, or a foreign directory, before the work.
-        if (o->out) {
+        if (to_dir || kind == OutKind::file) {
           std::vector<joint::NamedInput> inputs;
           for (const auto& f : o->files) inputs.push_back({"the data file", f});
           if (o->model) inputs.push_back({"the --model case file", *o->model});
-          joint::require_output_apart_from_inputs(*o->out, inputs);
-          joint::require_replaceable_output(*o->out, *o->out);
+          if (to_dir) {
+            joint::require_output_apart_from_inputs(*o->out, inputs);
+            joint::require_replaceable_output(*o->out, *o->out);
+          } else {
+            for (const auto& in : inputs)
+              require_distinct_outputs({{in.what, in.path}, {"--out", *o->out}});
+          }
         }
         std::optional<joint::JointCase> model_case;  // its [interface], if any, applies
         if (o->model) {
           model_case = joint::read_case_file(*o->model);
-          if (o->out) joint::require_output_apart_from_inputs(*o->out, profile_inputs(*model_case));
+          if (to_dir) joint::require_output_apart_from_inputs(*o->out, profile_inputs(*model_case));
         }
         std::vector<Run> runs;
         for (const auto& f : o->files) {
@@ -444,8 +485,11 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
         if (law) {
           for (const auto& w : law->warnings) std::cerr << "asperity: warning: " << w << "\n";
         }
-        if (o->out) {
+        std::vector<std::string> written;
+        if (kind == OutKind::file) write_file_atomically(*o->out, j.dump(2) + "\n");
+        if (to_dir) {
           joint::StagedDirectory dir(*o->out, "asperity analyze");
+          written = {"analysis.json", "cycles.csv", "cycle_traces.csv", "averaged_loop.csv"};
           write_file_atomically(dir.file("analysis.json"), j.dump(2) + "\n");
           std::vector<std::vector<double>> cc(9), lc(4), tc(6);
           for (std::size_t k = 0; k < runs.size(); ++k) {
@@ -454,7 +498,7 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
               const auto& c = runs[k].a.cycles[i];
               const double row[] = {double(k + 1),
                                     double(i + 1),
-                                    c.energy,
+                                    c.energy * 1e6,
                                     c.Q_max,
                                     c.delta_max * 1e6,
                                     c.stiffness * 1e-6,
@@ -483,7 +527,7 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
           }
           core::write_csv_table(
               dir.file("cycles.csv"),
-              {"run", "cycle", "energy[J]", "Q_max[N]", "delta_max[um]", "stiffness[N/um]",
+              {"run", "cycle", "energy[uJ]", "Q_max[N]", "delta_max[um]", "stiffness[N/um]",
                "stiffness_resolved", "sliding[um]", "partial_slip[um]"},
               cc);
           bool all_imposed = true;
@@ -501,7 +545,7 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
             PlotSpec loops{
                 single ? fmt::format("Averaged fretting loop: {}", base_name(runs.front().file))
                        : "Averaged fretting loops",
-                "delta [um]",
+                "delta [µm]",
                 "Q [N]",
                 false,
                 false,
@@ -531,12 +575,15 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
               }
             }
             plot_png(dir.file("loops.png"), loops);
-            if (runs.size() >= 2)
+            written.emplace_back("loops.png");
+            if (runs.size() >= 2) {
               plot_png(dir.file("energy_vs_force.png"), energy_plot(runs, *law));
+              written.emplace_back("energy_vs_force.png");
+            }
           }
           dir.commit();
         }
-        if (o->json) {
+        if (stdout_is_data) {
           out = j.dump(2) + "\n";
         } else {
           for (const auto& r : runs) out += run_text(r) + "\n";
@@ -554,6 +601,8 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
             for (const auto& w : law->warnings) out += "warning: " + w + "\n";
           }
         }
+        if (kind == OutKind::file) report_written({*o->out}, stdout_is_data, out);
+        if (to_dir) report_written_directory(*o->out, written, stdout_is_data, out);
       });
     };
   });
@@ -569,6 +618,7 @@ struct SynthOptions {
   int cycles = 10;
   std::uint64_t seed = 1;
   bool no_imposed = false;
+  bool json = false;
 };
 }  // namespace
 
@@ -583,22 +633,28 @@ void add_synthesize_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--imposed", o->imposed,
                   "half peak-to-peak PZT tip motion (0.5 A of Eq. 5.3), e.g. 6.75um")
       ->required();
-  cmd->add_option("--preload", o->preload, "preload (default: the case's first load case)");
-  cmd->add_option("--cycles", o->cycles, "harmonic cycles (10)");
-  cmd->add_option("--frequency", o->frequency, "frequency f of Eq. 5.3 (1Hz)");
-  cmd->add_option("--rate", o->rate, "sample rate (1000Hz)");
-  cmd->add_option("--noise-delta", o->noise_delta, "rms noise of the displacement sensor (0.1um)");
-  cmd->add_option("--noise-Q", o->noise_Q, "rms noise of the load cell (1N)");
-  cmd->add_option("--k-pzt", o->k_pzt, "stiffness of the PZT side of the apparatus (38N/um)");
-  cmd->add_option("--k-lc", o->k_lc, "stiffness of the load-cell side (1462N/um)");
-  cmd->add_option("--seed", o->seed, "random seed (1)");
+  cmd->add_option("--P,--preload", o->preload, "preload (default: the case's first load case)");
+  cmd->add_option("--cycles", o->cycles, "harmonic cycles (default: 10)");
+  cmd->add_option("--frequency", o->frequency, "frequency f of Eq. 5.3 (default: 1Hz)");
+  cmd->add_option("--rate", o->rate, "sample rate (default: 1000Hz)");
+  cmd->add_option("--noise-delta", o->noise_delta,
+                  "rms noise of the displacement sensor (default: 0.1um)");
+  cmd->add_option("--noise-Q", o->noise_Q, "rms noise of the load cell (default: 1N)");
+  cmd->add_option("--k-pzt", o->k_pzt,
+                  "stiffness of the PZT side of the apparatus (default: 38N/um)");
+  cmd->add_option("--k-lc", o->k_lc, "stiffness of the load-cell side (default: 1462N/um)");
+  cmd->add_option("--seed", o->seed, "random seed (default: 1)");
   cmd->add_flag("--no-imposed", o->no_imposed, "leave out the Delta column");
-  cmd->add_option("--out", o->out, "output CSV file")->required();
+  cmd->add_option("--out", o->out, "output CSV file (- for standard output)")->required();
+  cmd->add_flag("--json", o->json,
+                "print what was written (file, samples, preload, mu, stiffness, settings) as "
+                "JSON instead of a line");
   cmd->callback([o, &action] {
     action = [o] {
       return run_guarded([o](std::string& out) {
         // The CSV must not replace the case file it is made from.
         require_distinct_outputs({{"the case file", o->case_file}, {"--out", o->out}});
+        require_one_stdout(o->json, {{"--out", o->out}});
         if (o->cycles < 1)
           throw InvalidInput(fmt::format("--cycles = {}: must be >= 1", o->cycles));
         joint::SyntheticOptions s;
@@ -633,10 +689,10 @@ void add_synthesize_command(CLI::App& app, std::function<int()>& action) {
         const auto c = joint::read_case_file(o->case_file);
         for (const auto& in : profile_inputs(c))  // nor a scan the case reads
           require_distinct_outputs({{in.what, in.path}, {"--out", o->out}});
-        const double P = o->preload ? required_quantity(o->preload, dim::force, "--preload")
-                                    : c.preloads.front();
+        const double P =
+            o->preload ? required_quantity(o->preload, dim::force, "--P") : c.preloads.front();
         if (!(P > 0.0) || !std::isfinite(P))
-          throw InvalidInput(fmt::format("--preload = {}: must be > 0", o->preload.value_or("")));
+          throw InvalidInput(fmt::format("--P = {}: must be > 0", o->preload.value_or("")));
         s.noise_delta = required_quantity(o->noise_delta, dim::length, "--noise-delta");
         s.noise_Q = required_quantity(o->noise_Q, dim::force, "--noise-Q");
         s.pzt_stiffness = required_quantity(o->k_pzt, dim::stiffness, "--k-pzt");
@@ -653,10 +709,32 @@ void add_synthesize_command(CLI::App& app, std::function<int()>& action) {
         }
         std::vector<std::string> header{"t[s]", "delta[um]", "Q[N]"};
         if (!o->no_imposed) header.emplace_back("Delta[um]");
-        core::write_csv_table(o->out, header, cols);
-        out =
-            fmt::format("wrote {} ({} samples; P = {:.4g} N, mu = {:.4f}, stiffness {:.4g} N/um)\n",
-                        o->out, d.t.size(), P, lp.mu, lp.stiffness * 1e-6);
+        write_output(o->out, csv_text(header, cols), out);
+        if (o->json) {
+          Json j{{"out", o->out},
+                 {"samples", d.t.size()},
+                 {"P", P},
+                 {"mu", lp.mu},
+                 {"stiffness", lp.stiffness},
+                 {"imposed", s.excitation.amplitude},
+                 {"frequency", s.excitation.frequency},
+                 {"cycles", o->cycles},
+                 {"sample_rate", s.sample_rate},
+                 {"noise_delta", s.noise_delta},
+                 {"noise_Q", s.noise_Q},
+                 {"pzt_stiffness", s.pzt_stiffness},
+                 {"load_cell_stiffness", s.load_cell_stiffness},
+                 {"seed", s.seed},
+                 {"columns", header}};
+          out += j.dump(2) + "\n";
+        } else if (is_standard_output(o->out)) {
+          std::cerr << fmt::format("{} samples; P = {:.4g} N, mu = {:.4f}, stiffness {:.4g} N/um\n",
+                                   d.t.size(), P, lp.mu, lp.stiffness * 1e-6);
+        } else {
+          out = fmt::format(
+              "wrote {} ({} samples; P = {:.4g} N, mu = {:.4f}, stiffness {:.4g} N/um)\n", o->out,
+              d.t.size(), P, lp.mu, lp.stiffness * 1e-6);
+        }
       });
     };
   });

@@ -12,6 +12,7 @@ void add_sphere_command(CLI::App& app, std::function<int()>& action);
 void add_flat_command(CLI::App& app, std::function<int()>& action);
 void add_roughness_command(CLI::App& app, std::function<int()>& action);
 void add_dynamics_command(CLI::App& app, std::function<int()>& action);
+void add_vibration_command(CLI::App& app, std::function<int()>& action);
 void add_predict_command(CLI::App& app, std::function<int()>& action);
 void add_analyze_command(CLI::App& app, std::function<int()>& action);
 void add_synthesize_command(CLI::App& app, std::function<int()>& action);
@@ -33,6 +34,11 @@ struct PlotSpec;
 /// Adds the slope-2 and slope-3 guides of Fig. 6.12-6.14 (energy ~ Q^2, Q^3) through
 /// (q0, e0) over [qmin, qmax] to a log-log energy-force plot (predict, analyze, validate).
 void add_power_guides(PlotSpec& spec, double q0, double e0, double qmin, double qmax);
+
+/// Log-log ranges of an energy-force plot spanning the data ([qmin, qmax] x [emin, emax],
+/// a factor 1.25 in force and 2 in energy beyond), with force ticks at 1, 2, 5 x 10^k as
+/// plain numbers (the data span about a decade, where decade ticks leave one label).
+void set_energy_force_ranges(PlotSpec& spec, double qmin, double qmax, double emin, double emax);
 
 /// predict's output files (summary.json, loops.csv, energy.csv with `data`; the PNG plots
 /// with `plots`), each name prefixed with `prefix`; shared with validate. Returns the

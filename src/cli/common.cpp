@@ -23,6 +23,13 @@ extern char** environ;  // POSIX: the environment, for posix_spawnp
 
 namespace asperity::cli {
 
+std::string lowercase(std::string s) {
+  for (char& c : s) {
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  }
+  return s;
+}
+
 std::optional<double> quantity(const std::optional<std::string>& text, core::Dimension d,
                                const std::string& flag) {
   if (!text) return std::nullopt;
@@ -38,14 +45,14 @@ double required_quantity(const std::optional<std::string>& text, core::Dimension
 void MaterialOptions::add_to(CLI::App* cmd, const std::string& body1, const std::string& body2) {
   cmd->add_option("--E1", E1, "Young's modulus of " + body1)->required();
   cmd->add_option("--nu1", nu1, "Poisson's ratio of " + body1 + ", in [0, 0.5)")->required();
-  cmd->add_option("--G1", G1, "shear modulus of " + body1 + " (default E1/(2(1+nu1)))");
+  cmd->add_option("--G1", G1, "shear modulus of " + body1 + " (default: E1/(2(1+nu1)))");
   cmd->add_option("--H1", H1,
                   "hardness of " + body1 +
                       "; with --H2 the smaller is the softer material's, alone it marks body 1 "
                       "as the softer material");
   cmd->add_option("--E2", E2, "Young's modulus of " + body2)->required();
   cmd->add_option("--nu2", nu2, "Poisson's ratio of " + body2 + ", in [0, 0.5)")->required();
-  cmd->add_option("--G2", G2, "shear modulus of " + body2 + " (default E2/(2(1+nu2)))");
+  cmd->add_option("--G2", G2, "shear modulus of " + body2 + " (default: E2/(2(1+nu2)))");
   cmd->add_option("--H2", H2,
                   "hardness of " + body2 +
                       "; with --H1 the smaller is the softer material's, alone it marks body 2 "
@@ -121,11 +128,86 @@ void write_file_atomically(const std::string& path, const std::string& content) 
   core::write_file_atomically(path, content);
 }
 
+std::string csv_text(const std::vector<std::string>& header,
+                     const std::vector<std::vector<double>>& columns) {
+  std::string out;
+  for (std::size_t i = 0; i < header.size(); ++i) out += (i ? "," : "") + header[i];
+  out += "\n";
+  const std::size_t rows = columns.empty() ? 0 : columns.front().size();
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      out += fmt::format("{}{:.12g}", c ? "," : "", columns[c][r]);
+    out += "\n";
+  }
+  return out;
+}
+
+void write_output(const std::string& path, const std::string& content, std::string& stdout_text) {
+  if (is_standard_output(path)) {
+    stdout_text += content;
+  } else {
+    write_file_atomically(path, content);
+  }
+}
+
+void report_written(const std::vector<std::string>& files, bool stdout_is_data, std::string& out) {
+  std::string list;
+  for (const auto& f : files) {
+    if (!is_standard_output(f)) list += (list.empty() ? "" : ", ") + f;
+  }
+  if (list.empty()) return;
+  if (stdout_is_data) {
+    std::cerr << "asperity: wrote " << list << "\n";
+  } else {
+    out += "wrote " + list + "\n";
+  }
+}
+
+void report_written_directory(const std::string& dir, const std::vector<std::string>& files,
+                              bool stdout_is_data, std::string& out) {
+  std::string list;
+  for (const auto& f : files) list += (list.empty() ? "" : ", ") + f;
+  std::string d = dir;
+  if (!d.ends_with('/')) d += '/';
+  const std::string line = fmt::format("wrote {} ({})\n", d, list);
+  if (stdout_is_data) {
+    std::cerr << line;
+  } else {
+    out += line;
+  }
+}
+
+OutKind out_kind(const std::optional<std::string>& out, const std::string& extension) {
+  if (!out) return OutKind::none;
+  if (is_standard_output(*out)) return OutKind::standard_output;
+  const std::string name = std::filesystem::path(*out).filename().string();
+  if (name.size() > extension.size() && lowercase(name).ends_with(extension)) return OutKind::file;
+  return OutKind::directory;
+}
+
+void require_one_stdout(
+    bool json, const std::vector<std::pair<std::string, std::optional<std::string>>>& outputs) {
+  std::string first;
+  for (const auto& [flag, path] : outputs) {
+    if (!is_standard_output(path)) continue;
+    if (json) {
+      throw InvalidInput(fmt::format(
+          "--json and {} - both print on standard output: write {} to a file, or leave out --json",
+          flag, flag));
+    }
+    if (!first.empty()) {
+      throw InvalidInput(fmt::format(
+          "{} - and {} - both print on standard output: give one of them a file", first, flag));
+    }
+    first = flag;
+  }
+}
+
 void require_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs) {
   namespace fs = std::filesystem;
   std::vector<std::pair<std::string, fs::path>> seen;
   for (const auto& [flag, path] : outputs) {
-    if (path.empty()) continue;
+    if (path.empty() || is_standard_output(path)) continue;  // "-": require_one_stdout
     std::error_code ec;
     // weakly_canonical resolves "." and ".." and symbolic links of the parts that exist.
     fs::path norm = fs::weakly_canonical(fs::absolute(path), ec);
@@ -250,12 +332,16 @@ void plot_png(const std::string& path, const PlotSpec& spec) {
   const auto png = dir.path() / "plot.png";
   const auto script_path = dir.path() / "plot.gp";
   std::ostringstream gp;
-  gp << "set terminal pngcairo size 900,650 enhanced font 'DejaVu Sans,11'\n";
+  gp << "set encoding utf8\nset terminal pngcairo size 900,650 enhanced font 'DejaVu Sans,11'\n";
   gp << "set output " << gnuplot_string(png.string()) << "\n";
   gp << "set title " << gnuplot_string(spec.title) << " noenhanced\n";
   gp << "set xlabel " << gnuplot_string(spec.xlabel) << " noenhanced\n";
   gp << "set ylabel " << gnuplot_string(spec.ylabel) << " noenhanced\n";
   gp << "set grid\nset key outside right top noenhanced\n";
+  // A margin inside the frame, so that loop tips and end points are not drawn on it
+  // (`extra` may set its own).
+  if (!spec.logx && !spec.logy)
+    gp << "set offsets graph 0.02, graph 0.02, graph 0.05, graph 0.05\n";
   if (spec.logx) gp << "set logscale x\nset format x '10^{%T}'\n";
   if (spec.logy) gp << "set logscale y\nset format y '10^{%T}'\n";
   gp << spec.extra << "\n";
@@ -283,7 +369,8 @@ void plot_png(const std::string& path, const PlotSpec& spec) {
     // The user's environment, like an unwritable directory: exit 2 (README).
     throw InvalidInput(
         fmt::format("cannot draw \"{}\": gnuplot is not installed (no gnuplot on PATH); install it "
-                    "(scripts/setup.sh installs gnuplot-nox) or leave out the plot",
+                    "(scripts/setup.sh installs gnuplot-nox), or leave out the plots (--no-plots; "
+                    "--plot where a command has it)",
                     path));
   }
   std::error_code ec;

@@ -40,6 +40,10 @@ struct MaterialOptions {
   [[nodiscard]] ParsedMaterials parse_described() const;
 };
 
+/// `s` with ASCII letters in lower case (names given on the command line are
+/// case-insensitive: --model BKE is --model bke).
+std::string lowercase(std::string s);
+
 /// Parses an optional option's text as a quantity of the given dimension; the error
 /// names the flag.
 std::optional<double> quantity(const std::optional<std::string>& text, core::Dimension d,
@@ -51,6 +55,43 @@ double required_quantity(const std::optional<std::string>& text, core::Dimension
 /// Writes `content` to a temporary file next to `path` and renames it over `path`,
 /// so the file is written whole or not at all. Throws InvalidInput on failure.
 void write_file_atomically(const std::string& path, const std::string& content);
+
+/// "-" as an output file: standard output (for text outputs where that makes sense).
+inline bool is_standard_output(const std::string& path) {
+  return path == "-";
+}
+inline bool is_standard_output(const std::optional<std::string>& path) {
+  return path && *path == "-";
+}
+
+/// A CSV table as text: the header line, then one row per index, 12 significant digits.
+std::string csv_text(const std::vector<std::string>& header,
+                     const std::vector<std::vector<double>>& columns);
+
+/// Writes `content` to the file `path` (atomically), or, when `path` is "-", appends it
+/// to `stdout_text` (printed by run_guarded only on success: whole or not at all).
+void write_output(const std::string& path, const std::string& content, std::string& stdout_text);
+
+/// The line every command prints after writing files: "wrote a, b, c\n" (empty for no
+/// files). `files` excludes "-" (standard output). When stdout carries data (JSON, or a
+/// "-" output), the line goes to stderr so that stdout stays machine-readable.
+void report_written(const std::vector<std::string>& files, bool stdout_is_data, std::string& out);
+
+/// The line after writing an output directory: "wrote DIR/ (a, b, c)\n", to stdout or,
+/// when stdout carries data, to stderr (as report_written).
+void report_written_directory(const std::string& dir, const std::vector<std::string>& files,
+                              bool stdout_is_data, std::string& out);
+
+/// How an --out of a command that writes a directory is read: "-" is standard output
+/// (the command's main document only), a name ending in `extension` (".json", ".md") is
+/// that one file, anything else the directory.
+enum class OutKind { none, standard_output, file, directory };
+OutKind out_kind(const std::optional<std::string>& out, const std::string& extension);
+
+/// Refuses --json together with an output written to standard output ("-"): both would
+/// print on stdout. Each pair is (flag, path).
+void require_one_stdout(
+    bool json, const std::vector<std::pair<std::string, std::optional<std::string>>>& outputs);
 
 /// Throws InvalidInput when two output flags name the same file (after resolving
 /// ".", ".." and symbolic links). Each pair is (flag, path); empty paths are skipped.

@@ -26,6 +26,7 @@ struct DynamicsOptions {
   std::string case_file;
   std::optional<std::string> out_dir;
   bool no_plots = false;
+  bool json = false;
 };
 
 Json to_json(const SummaryValue& v) {
@@ -50,7 +51,14 @@ Json to_json(const SummaryValue& v) {
 }
 
 void run_dynamics(const DynamicsOptions& o, std::string& out) {
-  const bool files = o.out_dir.has_value();
+  const OutKind kind = out_kind(o.out_dir, ".json");
+  const bool files = kind == OutKind::directory;
+  if (kind == OutKind::standard_output && o.json)
+    throw InvalidInput("--json and --out - both print summary.json: give one of them");
+  const bool stdout_is_data = o.json || kind == OutKind::standard_output;
+  if (kind == OutKind::file) {
+    require_distinct_outputs({{"the case file", o.case_file}, {"--out", *o.out_dir}});
+  }
   if (files) {
     const auto name = std::filesystem::path(*o.out_dir).lexically_normal().filename().string();
     if (o.out_dir->empty() || name == "." || name == ".." || name.empty()) {
@@ -168,6 +176,21 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
   }
 
   for (const auto& w : r.warnings) fmt::print(stderr, "warning: {}\n", w);
+  if (stdout_is_data || kind == OutKind::file) {
+    const std::string summary_json = to_json(r.summary).dump(2) + "\n";
+    if (kind == OutKind::file) write_file_atomically(*o.out_dir, summary_json);
+    if (stdout_is_data) {
+      out += summary_json;
+      if (kind == OutKind::file) report_written({*o.out_dir}, true, out);
+      if (files) {
+        std::vector<std::string> list{"summary.json", "timeseries.csv"};
+        if (r.spectrum) list.emplace_back("spectrum.csv");
+        for (const auto& p : plots) list.push_back(p);
+        report_written_directory(*o.out_dir, list, true, out);
+      }
+      return;
+    }
+  }
 
   out += fmt::format(
       "{}: {} friction, {} excitation, eps = {:.4g}, {} steps ({} rejected), {} force evaluations, "
@@ -193,10 +216,12 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
   }
   out += fmt::format("energy balance error {:.3g} of the input work\n", tr.energy_balance_error());
   if (files) {
-    out += fmt::format("wrote {}/summary.json, timeseries.csv{}", *o.out_dir,
-                       r.spectrum ? ", spectrum.csv" : "");
-    for (const auto& p : plots) out += ", " + p;
-    out += "\n";
+    std::vector<std::string> list{"summary.json", "timeseries.csv"};
+    if (r.spectrum) list.emplace_back("spectrum.csv");
+    for (const auto& p : plots) list.push_back(p);
+    report_written_directory(*o.out_dir, list, false, out);
+  } else if (kind == OutKind::file) {
+    report_written({*o.out_dir}, false, out);
   } else {
     out += "no files written (--out DIR writes summary.json, the time history and plots)\n";
   }
@@ -218,8 +243,10 @@ void add_dynamics_command(CLI::App& app, std::function<int()>& action) {
       ->required();
   cmd->add_option("--out", o->out_dir,
                   "output directory, written whole (created; an existing one is replaced only "
-                  "if asperity wrote it); without it only the summary is printed");
-  cmd->add_flag("--no-plots", o->no_plots, "skip the PNG plots (no gnuplot needed)");
+                  "if asperity wrote it); a name ending in .json writes only summary.json there, "
+                  "- prints it; without --out only the summary is printed");
+  cmd->add_flag("--no-plots", o->no_plots, "do not draw PNG plots (no gnuplot needed)");
+  cmd->add_flag("--json", o->json, "print summary.json instead of the text summary");
   cmd->callback([o, &action] {
     action = [o] { return run_guarded([o](std::string& out) { run_dynamics(*o, out); }); };
   });

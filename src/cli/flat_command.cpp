@@ -94,7 +94,8 @@ void run_flat_case(const FlatOptions& o, std::string& out) {
 
 void run_flat(const FlatOptions& o, std::string& out) {
   if (o.case_file) return run_flat_case(o, out);
-  const auto model = contact::parse_model_name(o.model);
+  const auto model = contact::parse_model_name(lowercase(o.model));
+  const std::string model_name(contact::to_string(model));
   contact::FrictionParameters friction;
   if (o.mu_cfc) {
     friction.mu_cfc = number(o.mu_cfc, "--mu-cfc");
@@ -107,9 +108,9 @@ void run_flat(const FlatOptions& o, std::string& out) {
     core::require_positive("--zeta", friction.zeta);
   }
   surface::SlipScaling scaling;
-  if (o.slip_scaling == "elastic") {
+  if (lowercase(o.slip_scaling) == "elastic") {
     scaling = surface::SlipScaling::elastic;
-  } else if (o.slip_scaling == "own-law") {
+  } else if (lowercase(o.slip_scaling) == "own-law") {
     scaling = surface::SlipScaling::own_law;
   } else {
     throw InvalidInput(fmt::format(
@@ -185,6 +186,11 @@ void run_flat(const FlatOptions& o, std::string& out) {
     throw InvalidInput("--history needs --out FILE.csv for the forces");
   if (o.out_csv && !o.history_csv)
     throw InvalidInput("--out writes the force history of --history: give both");
+  if (is_standard_output(o.plot_png))
+    throw InvalidInput("--plot - is not allowed: a PNG goes to a file, give its name");
+  require_one_stdout(o.json, {{"--loop", o.loop_csv}, {"--out", o.out_csv}});
+  const bool stdout_is_data =
+      o.json || is_standard_output(o.loop_csv) || is_standard_output(o.out_csv);
   require_distinct_outputs({{"--loop", o.loop_csv.value_or("")},
                             {"--plot", o.plot_png.value_or("")},
                             {"--out", o.out_csv.value_or("")},
@@ -193,7 +199,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
   // behind by a later one that cannot be written).
   for (const auto& [flag, path] : {std::pair{"--loop", o.loop_csv}, std::pair{"--plot", o.plot_png},
                                    std::pair{"--out", o.out_csv}}) {
-    if (!path) continue;
+    if (!path || is_standard_output(*path)) continue;
     const auto dir = std::filesystem::absolute(*path).parent_path();
     if (!std::filesystem::is_directory(dir)) {
       throw InvalidInput(
@@ -240,7 +246,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
   if (need_table && !(Q_max > 0.0)) {
     if (o.loop_csv || o.plot_png || o.history_csv) {
       throw InvalidInput(
-          fmt::format("the {} model carries no friction force here (Q*_max = 0)", o.model));
+          fmt::format("the {} model carries no friction force here (Q*_max = 0)", model_name));
     }
   }
   std::shared_ptr<const surface::RoughFlatBackbone> table;
@@ -258,7 +264,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
 
   if (o.json) {
     Json j;
-    j["model"] = o.model;
+    j["model"] = model_name;
     j["beta"] = params.beta;
     j["psi"] = params.psi;
     j["nu"] = params.nu;
@@ -293,11 +299,11 @@ void run_flat(const FlatOptions& o, std::string& out) {
       }
     }
     out += j.dump(2) + "\n";
-  } else {
+  } else if (!stdout_is_data) {
     out += fmt::format(
         "rough flat, {} model: beta = {:.4g}, psi = {:.4g}, nu = {:.3g}, G*/E* = {:.4g}, "
         "sigma_a/sigma = {:.4g}, omega_c/sigma = {:.4g}\n",
-        o.model, params.beta, params.psi, params.nu, params.G_over_E, flat->sigma_a_over_sigma(),
+        model_name, params.beta, params.psi, params.nu, params.G_over_E, flat->sigma_a_over_sigma(),
         flat->omega_c_star());
     out += fmt::format(
         "  P* = {:.5g}   separation d* = {:.5g}   Q*_max = {:.5g}   mu = {:.4g}   "
@@ -348,20 +354,21 @@ void run_flat(const FlatOptions& o, std::string& out) {
       std::vector<double> xo(x), qo(q);
       for (auto& v : xo) v *= xs;
       for (auto& v : qo) v *= fs;
-      core::write_csv_table(*o.loop_csv,
-                            scales ? std::vector<std::string>{"delta[m]", "Q[N]"}
+      write_output(*o.loop_csv,
+                   csv_text(scales ? std::vector<std::string>{"delta[m]", "Q[N]"}
                                    : std::vector<std::string>{"delta_star", "Q_star"},
-                            {xo, qo});
+                            {xo, qo}),
+                   out);
     }
     if (o.plot_png) {
-      Series s{.title = o.model};
+      Series s{.title = model_name};
       for (std::size_t i = 0; i < x.size(); ++i) {
         s.x.push_back(scales ? x[i] * xs * 1e6 : x[i]);
         s.y.push_back(scales ? q[i] * fs : q[i]);
       }
       plot_png(*o.plot_png,
                PlotSpec{.title = "Fretting loop of the rough flat (Masing on Eq. 4.10)",
-                        .xlabel = scales ? "delta [um]" : "delta* = delta/sigma",
+                        .xlabel = scales ? "delta [µm]" : "delta* = delta/sigma",
                         .ylabel = scales ? "Q [N]" : "Q* = Q/(K H A0)",
                         .series = {s}});
     }
@@ -372,11 +379,16 @@ void run_flat(const FlatOptions& o, std::string& out) {
     if (history_si) {
       for (auto& v : history_star) v *= scales->sigma;
       for (auto& v : Q) v *= scales->force;
-      core::write_csv_table(*o.out_csv, {"delta[m]", "Q[N]"}, {history_star, Q});
+      write_output(*o.out_csv, csv_text({"delta[m]", "Q[N]"}, {history_star, Q}), out);
     } else {
-      core::write_csv_table(*o.out_csv, {"delta_star", "Q_star"}, {history_star, Q});
+      write_output(*o.out_csv, csv_text({"delta_star", "Q_star"}, {history_star, Q}), out);
     }
   }
+  std::vector<std::string> written;
+  for (const auto& f : {o.loop_csv, o.plot_png, o.out_csv}) {
+    if (f) written.push_back(*f);
+  }
+  report_written(written, stdout_is_data, out);
 }
 
 }  // namespace
@@ -393,7 +405,7 @@ void add_flat_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--nu", o->nu, "Poisson's ratio of the softer material");
   cmd->add_option("--P-star", o->P_star, "normal load over K H A0");
   cmd->add_option("--G-over-E", o->G_over_E,
-                  "G*/E* (default for identical materials: (1-nu)/(2(2-nu)))");
+                  "G*/E* (default: (1-nu)/(2(2-nu)), identical materials)");
   cmd->add_option("--delta-star-max", o->delta_star_max, "displacement amplitude over sigma");
   o->materials.add_to(cmd, "body 1", "body 2");
   for (const char* flag : {"--E1", "--nu1", "--E2", "--nu2"})
@@ -402,20 +414,22 @@ void add_flat_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--eta", o->eta, "areal density of asperities, e.g. 2.91e-4um^-2");
   cmd->add_option("--R", o->R, "mean asperity radius, e.g. 30.14um");
   cmd->add_option("--area", o->area, "nominal contact area, e.g. 170mm^2");
-  cmd->add_option("--P", o->P, "normal load, e.g. 526N");
+  cmd->add_option("--P,--preload", o->P, "normal load, e.g. 526N");
   cmd->add_option("--delta-max", o->delta_max, "displacement amplitude, e.g. 1um");
-  cmd->add_option("--model", o->model, "cfc, ceb, ke or bke")->default_str("bke");
+  cmd->add_option("--model", o->model, "cfc, ceb, ke or bke (default: bke)");
   cmd->add_option("--mu-cfc", o->mu_cfc, "friction coefficient of the cfc model");
-  cmd->add_option("--zeta", o->zeta, "CEB yield depth over contact radius (default 0.48)");
+  cmd->add_option("--zeta", o->zeta, "CEB yield depth over contact radius (default: 0.48)");
   cmd->add_option("--slip-scaling", o->slip_scaling,
-                  "elastic (Eq. 4.8, default) or own-law (each law's a/P)");
+                  "elastic (Eq. 4.8) or own-law (each law's a/P) (default: elastic)");
   cmd->add_flag("--json", o->json, "print one JSON object instead of a table");
   cmd->add_option("--history", o->history_csv,
                   "displacement history CSV (column delta_star, or delta[unit])");
-  cmd->add_option("--out", o->out_csv, "where --history writes the force history (CSV)");
-  cmd->add_option("--loop", o->loop_csv, "write the fretting loop to this CSV file");
+  cmd->add_option("--out", o->out_csv,
+                  "where --history writes the force history (CSV file; - for standard output)");
+  cmd->add_option("--loop", o->loop_csv,
+                  "write the fretting loop to this CSV file (- for standard output)");
   cmd->add_option("--plot", o->plot_png, "draw the fretting loop into this PNG file");
-  cmd->add_option("--points", o->points, "points per loop branch (default 201)");
+  cmd->add_option("--points", o->points, "points per loop branch, in [2, 100000] (default: 201)");
   cmd->add_option("--case", o->case_file,
                   "a joint case file (as for predict, with its [interface]): with --history "
                   "and --out, the force history on its backbone at --P (or its one preload)");

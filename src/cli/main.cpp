@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "suggest.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
   asperity::cli::add_flat_command(app, action);
   asperity::cli::add_roughness_command(app, action);
   asperity::cli::add_dynamics_command(app, action);
+  asperity::cli::add_vibration_command(app, action);
   asperity::cli::add_predict_command(app, action);
   asperity::cli::add_analyze_command(app, action);
   asperity::cli::add_synthesize_command(app, action);
@@ -29,8 +31,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return 2;  // bad input: exit 2 like every other input error
+    // One prefix for every error (ours and CLI11's), with the nearest command or option
+    // for a mistyped one; bad input: exit 2 like every other input error.
+    std::cerr << "asperity: error: " << asperity::cli::parse_error_message(app, e, argc, argv)
+              << "\n";
+    return 2;
   }
   return action ? action() : 2;
 }

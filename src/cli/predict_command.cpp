@@ -4,8 +4,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
+#include <optional>
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
@@ -281,22 +283,31 @@ void add_power_guides(PlotSpec& spec, double q0, double e0, double qmin, double 
   }
 }
 
+void set_energy_force_ranges(PlotSpec& spec, double qmin, double qmax, double emin, double emax) {
+  if (!(qmin > 0.0 && qmax >= qmin && emin > 0.0 && emax >= emin)) return;
+  spec.extra += fmt::format("set xrange [{:.10g}:{:.10g}]\nset yrange [{:.10g}:{:.10g}]\n",
+                            qmin / 1.25, qmax * 1.25, emin / 2.0, emax * 2.0);
+  std::string tics;
+  for (double decade = std::pow(10.0, std::floor(std::log10(qmin / 1.25))); decade <= qmax * 1.25;
+       decade *= 10.0) {
+    for (double m : {1.0, 2.0, 5.0}) {
+      const double t = m * decade;
+      if (t >= qmin / 1.25 && t <= qmax * 1.25)
+        tics += fmt::format("{}{:.10g}", tics.empty() ? "" : ", ", t);
+    }
+  }
+  if (!tics.empty()) spec.extra += fmt::format("set format x '%g'\nset xtics ({})\n", tics);
+}
+
 namespace {
 
 // More load cases than this: colour by preload (a colour scale) instead of a legend entry
 // per preload.
 constexpr std::size_t kMaxLegendLoads = 8;
 
-// Style and title of the series of load case `l` in a plot with `n` load cases.
-void load_series_style(Series& s, const joint::LoadPrediction& l, std::size_t n,
-                       const std::string& base) {
-  if (n > kMaxLegendLoads) {
-    s.style = fmt::format("{} lc palette cb {:.10g}", base, l.preload);
-    s.title = "";  // no key entry: the colour box names the preload
-  } else {
-    s.style = base;
-  }
-}
+// Distinct colours that stay apart in print (Okabe and Ito's palette, black last).
+constexpr std::array<const char*, 8> kColours{"#0072b2", "#d55e00", "#009e73", "#cc79a7",
+                                              "#e69f00", "#56b4e9", "#7f7f7f", "#000000"};
 
 std::string palette_commands(const joint::JointPrediction& p) {
   if (p.loads.size() <= kMaxLegendLoads) return "";
@@ -418,8 +429,9 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
   std::vector<std::vector<double>> lc(4);
   // energy.csv: numbers with 12 digits, and an empty imposed[um] field where the joint
   // amplitude was given directly (no PZT amplitude to report).
+  // Energy in uJ, as in the table and the plots (one unit per output).
   std::string energy_csv =
-      "preload[N],delta_max[um],Q_peak[N],energy[J],Q_peak_over_Q_max,gross_slip,imposed[um]\n";
+      "preload[N],delta_max[um],Q_peak[N],energy[uJ],Q_peak_over_Q_max,gross_slip,imposed[um]\n";
   for (const auto& l : p.loads) {
     for (const auto& a : l.amplitudes) {
       const auto [x, Q] = joint::steady_loop(*l.backbone, a.delta_max, 100);
@@ -430,7 +442,7 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
         lc[3].push_back(Q[i]);
       }
       energy_csv += fmt::format("{:.12g},{:.12g},{:.12g},{:.12g},{:.12g},{},{}\n", l.preload,
-                                a.delta_max * 1e6, a.Q_peak, a.energy, a.Q_ratio,
+                                a.delta_max * 1e6, a.Q_peak, a.energy * 1e6, a.Q_ratio,
                                 a.regime == "gross slip" ? 1 : 0,
                                 a.imposed ? fmt::format("{:.12g}", *a.imposed * 1e6) : "");
     }
@@ -447,77 +459,135 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
   if (!plots) return written;
   const bool sweep = p.loads.size() > 1;
   const std::size_t nl = p.loads.size();
+  const bool legend = nl <= kMaxLegendLoads;
+  const std::string title_name = c.name.empty() ? std::string("(unnamed joint)") : c.name;
+  // Colour of load case i (legend mode); palette mode colours by preload instead.
+  const auto colour = [&](const joint::LoadPrediction& l, std::size_t i) {
+    return legend ? fmt::format("lc rgb '{}'", kColours[i % kColours.size()])
+                  : fmt::format("lc palette cb {:.10g}", l.preload);
+  };
+  const auto partial = [](const joint::AmplitudePrediction& a) { return a.regime != "gross slip"; };
   if (amplitudes) {
-    PlotSpec loops{sweep ? fmt::format("Fretting loops at the largest amplitude: {}", c.name)
-                         : fmt::format("Fretting loops: {}", c.name),
-                   "delta [um]",
-                   "Q [N]",
-                   false,
-                   false,
-                   {},
-                   palette_commands(p)};
-    for (const auto& l : p.loads) {
-      for (std::size_t k = 0; k < l.amplitudes.size(); ++k) {
-        if (sweep && k + 1 != l.amplitudes.size())
-          continue;  // sweeps: the largest amplitude per preload
-        const auto& a = l.amplitudes[k];
+    // Sweeps: per preload the largest amplitude visibly in partial slip (Q_peak <= 0.9
+    // Q_max; above, the loop looks saturated although not every asperity slips) and the
+    // smallest gross-slip amplitude, solid and dashed, one colour per preload; one
+    // preload: every amplitude.
+    PlotSpec loops{
+        fmt::format("Fretting loops (solid: partial slip, dashed: gross slip): {}", title_name),
+        "delta [µm]",
+        "Q [N]",
+        false,
+        false,
+        {},
+        palette_commands(p) +
+            "set offsets graph 0.04, graph 0.04, graph 0.08, graph 0.08\n"
+            "set key below center horizontal maxcols 2\n"};
+    for (std::size_t i = 0; i < nl; ++i) {
+      const auto& l = p.loads[i];
+      std::vector<std::size_t> shown;
+      if (sweep) {
+        std::optional<std::size_t> last_partial, first_gross;
+        for (std::size_t k = 0; k < l.amplitudes.size(); ++k) {
+          if (partial(l.amplitudes[k])) {
+            if (!last_partial || l.amplitudes[k].Q_ratio <= 0.9) last_partial = k;
+          } else if (!first_gross) {
+            first_gross = k;
+          }
+        }
+        if (last_partial) shown.push_back(*last_partial);
+        if (first_gross) shown.push_back(*first_gross);
+      } else {
+        for (std::size_t k = 0; k < l.amplitudes.size(); ++k) shown.push_back(k);
+      }
+      for (std::size_t j = 0; j < shown.size(); ++j) {
+        const auto& a = l.amplitudes[shown[j]];
         auto [x, Q] = joint::steady_loop(*l.backbone, a.delta_max, 400);
         for (double& v : x) v *= 1e6;
-        Series sr{sweep ? fmt::format("P = {:.0f} N", l.preload)
-                        : fmt::format("{:.3g} um", a.delta_max * 1e6),
-                  x, Q};
-        load_series_style(sr, l, nl, "lines");
-        loops.series.push_back(sr);
+        const bool ps = partial(a);
+        std::string title =
+            sweep ? fmt::format("P = {:.0f} N, {:.3g} µm{}", l.preload, a.delta_max * 1e6,
+                                ps ? fmt::format(" (Q/Q_max = {:.2f})", a.Q_ratio)
+                                   : std::string(" (gross slip)"))
+                  : fmt::format("{:.3g} µm ({}, Q/Q_max = {:.2f})", a.delta_max * 1e6, a.regime,
+                                a.Q_ratio);
+        if (!legend) title = i == 0 ? (ps ? "partial slip" : "gross slip") : "";
+        // One preload: a colour per amplitude; a sweep: a colour per preload.
+        const std::string col =
+            sweep ? colour(l, i) : fmt::format("lc rgb '{}'", kColours[shown[j] % kColours.size()]);
+        loops.series.push_back(Series{title, x, Q, fmt::format("lines {} dt {}", col, ps ? 1 : 2)});
       }
     }
     plot_png(file("loops.png"), loops);
-    PlotSpec e{"Energy per cycle against peak force",
-               "peak force [N]",
-               "energy per cycle [J]",
+    // Energy per cycle in µJ, as in the table and energy.csv.
+    PlotSpec e{fmt::format("Energy per cycle against peak force: {}", title_name),
+               "peak force Q_peak [N]",
+               "energy per cycle [µJ]",
                true,
                true,
                {},
-               palette_commands(p) + "set key inside left top box opaque\n"};
-    double qmin = 1e300, qmax = 0.0;
-    for (const auto& l : p.loads) {
-      Series sr{fmt::format("P = {:.0f} N", l.preload), {}, {}, ""};
-      load_series_style(sr, l, nl, nl > kMaxLegendLoads ? "lines" : "linespoints pt 7");
+               palette_commands(p)};
+    double qmin = 1e300, qmax = 0.0, emin = 1e300, emax = 0.0;
+    Series gross{"gross slip", {}, {}, "points pt 6 ps 2.4 lc rgb 'black'"};
+    for (std::size_t i = 0; i < nl; ++i) {
+      const auto& l = p.loads[i];
+      Series sr{legend ? fmt::format("P = {:.0f} N", l.preload) : "", {}, {}, ""};
+      sr.style = fmt::format("{} {}", legend ? "linespoints pt 7 ps 1.2" : "lines", colour(l, i));
       for (const auto& a : l.amplitudes) {
         sr.x.push_back(a.Q_peak);
-        sr.y.push_back(a.energy);
+        sr.y.push_back(a.energy * 1e6);
+        if (!partial(a)) {
+          gross.x.push_back(a.Q_peak);
+          gross.y.push_back(a.energy * 1e6);
+        }
         qmin = std::min(qmin, a.Q_peak);
         qmax = std::max(qmax, a.Q_peak);
+        if (a.energy > 0.0) emin = std::min(emin, a.energy * 1e6);
+        emax = std::max(emax, a.energy * 1e6);
       }
       e.series.push_back(sr);
     }
+    if (!gross.x.empty()) e.series.push_back(gross);
     // Guides through the smallest-force point of the first preload.
     const auto& a0 = p.loads.front().amplitudes.front();
-    add_power_guides(e, a0.Q_peak, a0.energy, qmin, qmax);
+    add_power_guides(e, a0.Q_peak, a0.energy * 1e6, qmin, qmax);
+    if (emin < 1e300) set_energy_force_ranges(e, qmin, qmax, emin, emax);
     plot_png(file("energy_vs_force.png"), e);
   }
   if (sweep) {
-    Series mu{"mu = Q_max/P", {}, {}, "linespoints pt 7"},
-        k{"stiffness", {}, {}, "linespoints pt 7"};
+    Series mu{"asperity (predicted)", {}, {}, "linespoints pt 7 ps 1.3 lc rgb '#0072b2'"},
+        k{"stiffness", {}, {}, "linespoints pt 7 ps 1.3 lc rgb '#0072b2'"};
     for (const auto& l : p.loads) {
       mu.x.push_back(l.preload);
       mu.y.push_back(l.mu);
       k.x.push_back(l.preload);
       k.y.push_back(l.stiffness * 1e-6);
     }
-    plot_png(file("mu_vs_preload.png"), {"Friction coefficient against preload",
-                                         "preload [N]",
-                                         "friction coefficient",
-                                         false,
-                                         false,
-                                         {mu},
-                                         "set yrange [0:*]\nset key off"});
-    plot_png(file("stiffness_vs_preload.png"), {"Tangential stiffness against preload",
-                                                "preload [N]",
-                                                "stiffness [N/um]",
-                                                false,
-                                                false,
-                                                {k},
-                                                "set yrange [0:*]\nset key off"});
+    PlotSpec mu_plot{fmt::format("Friction coefficient against preload: {}", title_name),
+                     "preload P [N]",
+                     "friction coefficient mu = Q_max/P",
+                     false,
+                     false,
+                     {mu},
+                     // The range follows the data (not from 0, which hides the trend), with
+                     // room so that no point sits on the frame.
+                     "set offsets graph 0.05, graph 0.05, graph 0.15, graph 0.15\n"
+                     "set key inside top right box opaque\n"};
+    if (c.reference) {
+      Series ref{c.reference->source, c.reference->preloads, c.reference->mu,
+                 "points pt 5 ps 1.5 lc rgb '#d55e00'"};
+      mu_plot.series.push_back(ref);
+    } else {
+      mu_plot.extra += "set key off\n";
+    }
+    plot_png(file("mu_vs_preload.png"), mu_plot);
+    plot_png(file("stiffness_vs_preload.png"),
+             {fmt::format("Tangential stiffness against preload: {}", title_name),
+              "preload P [N]",
+              "tangential stiffness [N/µm]",
+              false,
+              false,
+              {k},
+              "set yrange [0:*]\nset offsets graph 0.05, graph 0.05, graph 0.1, 0\nset key off"});
   }
   return written;
 }
@@ -543,19 +613,30 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option(
       "--out", o->out,
       "write summary.json, loops.csv, energy.csv and plots into DIR (a new directory, or "
-      "one asperity wrote before)");
+      "one asperity wrote before); a name ending in .json writes only that JSON file, - prints "
+      "it");
   cmd->add_flag("--json", o->json, "print summary.json instead of the table");
   cmd->add_flag("--no-plots", o->no_plots, "do not draw PNG plots (no gnuplot needed)");
   cmd->callback([o, &action] {
     action = [o] {
       return run_guarded([o](std::string& out) {
+        const OutKind kind = out_kind(o->out, ".json");
+        const bool to_dir = kind == OutKind::directory;
+        if (kind == OutKind::standard_output && o->json)
+          throw InvalidInput("--json and --out - both print the JSON: give one of them");
         // Refuse an --out that is or holds an input, or a foreign directory, before the work.
-        if (o->out) {
+        if (to_dir) {
           joint::require_output_apart_from_inputs(*o->out, {{"the case file", o->case_file}});
           joint::require_replaceable_output(*o->out, *o->out);
+        } else if (kind == OutKind::file) {
+          require_distinct_outputs({{"the case file", o->case_file}, {"--out", *o->out}});
         }
         const auto c = joint::read_case_file(o->case_file);
-        if (o->out) joint::require_output_apart_from_inputs(*o->out, profile_inputs(c));
+        if (to_dir) joint::require_output_apart_from_inputs(*o->out, profile_inputs(c));
+        if (kind == OutKind::file) {
+          for (const auto& in : profile_inputs(c))
+            require_distinct_outputs({{in.what, in.path}, {"--out", *o->out}});
+        }
         std::vector<std::string> written;
         const bool bar = c.preloads.size() > 1 && isatty(STDERR_FILENO);
         const auto progress = [&](std::size_t i, std::size_t n) {
@@ -566,16 +647,20 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
                     << (i == n ? "\n" : "") << std::flush;
         };
         const auto p = joint::predict(c, progress);
-        if (o->out) {
+        const bool stdout_is_data = o->json || kind == OutKind::standard_output;
+        if (to_dir) {
           joint::StagedDirectory dir(*o->out, "asperity predict");
           written = write_prediction_files(c, p, dir, !o->no_plots, true, "");
           dir.commit();
         }
-        out = o->json ? prediction_json(c, p).dump(2) + "\n" : prediction_summary(c, p);
-        if (o->out && !o->json) {
-          std::string list;
-          for (const auto& f : written) list += (list.empty() ? "" : ", ") + f;
-          out += fmt::format("\nwrote {}/ ({})\n", *o->out, list);
+        out = stdout_is_data ? prediction_json(c, p).dump(2) + "\n" : prediction_summary(c, p);
+        if (kind == OutKind::file) {
+          write_file_atomically(*o->out, prediction_json(c, p).dump(2) + "\n");
+          report_written({*o->out}, stdout_is_data, out);
+        }
+        if (to_dir) {
+          if (!stdout_is_data) out += "\n";
+          report_written_directory(*o->out, written, stdout_is_data, out);
         }
       });
     };

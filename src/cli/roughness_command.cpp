@@ -110,6 +110,8 @@ double cutoff(const std::string& text, const std::string& flag) {
 void check_output_paths(const RoughnessOptions& o) {
   if (!o.plot) return;
   const std::string& plot = *o.plot;
+  if (is_standard_output(plot))
+    throw InvalidInput("--plot - is not allowed: a PNG goes to a file, give its name");
   std::error_code ec;
   if (std::filesystem::is_directory(plot, ec)) {
     throw InvalidInput(fmt::format(
@@ -435,10 +437,10 @@ struct Unit {
   const char* name;
 };
 Unit height_unit(double max_abs) {
-  return max_abs < 1e-6 ? Unit{1e9, "nm"} : Unit{1e6, "um"};
+  return max_abs < 1e-6 ? Unit{1e9, "nm"} : Unit{1e6, "µm"};
 }
 Unit length_unit(double max_x) {
-  return max_x < 1e-3 ? Unit{1e6, "um"} : Unit{1e3, "mm"};
+  return max_x < 1e-3 ? Unit{1e6, "µm"} : Unit{1e3, "mm"};
 }
 
 double max_abs(const std::vector<double>& z) {
@@ -530,7 +532,7 @@ void draw_plot(const std::string& path, const std::vector<AnalysedSurface>& surf
           : fmt::format("Gaussian, lc = {}, ls = {}",
                         settings.filter.lc > 0 ? fmt::format("{:.4g} mm", settings.filter.lc * 1e3)
                                                : "none",
-                        settings.filter.ls > 0 ? fmt::format("{:.4g} um", settings.filter.ls * 1e6)
+                        settings.filter.ls > 0 ? fmt::format("{:.4g} µm", settings.filter.ls * 1e6)
                                                : "none");
 
   // Histogram panel: the PlotSpec's own series.
@@ -604,14 +606,14 @@ void draw_plot(const std::string& path, const std::vector<AnalysedSurface>& surf
 
 void run_roughness(const RoughnessOptions& o, std::string& out) {
   Settings s;
-  s.level = surface::parse_levelling(o.level, "--level");
-  s.rule = surface::parse_isotropic_rule(o.rule, "--rule");
-  if (o.filter == "none") {
+  s.level = surface::parse_levelling(lowercase(o.level), "--level");
+  s.rule = surface::parse_isotropic_rule(lowercase(o.rule), "--rule");
+  if (lowercase(o.filter) == "none") {
     s.filter = GaussianFilter::none();
-  } else if (o.filter == "gaussian") {
+  } else if (lowercase(o.filter) == "gaussian") {
     s.filter.lc = cutoff(o.lc, "--lc");
     s.filter.ls = cutoff(o.ls, "--ls");
-    s.filter.end = surface::parse_end_effects(o.end, "--end");
+    s.filter.end = surface::parse_end_effects(lowercase(o.end), "--end");
     s.filter.truncation = core::parse_quantity(o.truncation, dim::dimensionless, "--truncation");
   } else {
     throw InvalidInput(
@@ -747,7 +749,10 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
       }
     }
   }
-  if (o.plot) draw_plot(*o.plot, surfaces, s);
+  if (o.plot) {
+    draw_plot(*o.plot, surfaces, s);
+    report_written({*o.plot}, o.json, out);
+  }
 }
 
 }  // namespace
@@ -771,20 +776,21 @@ void add_roughness_command(CLI::App& app, std::function<int()>& action) {
                               "sigma=1.763um,eta=3.34e-4um^-2,R=40.76um (repeatable)");
   surf->delimiter('\0');
   par->delimiter('\0');
-  cmd->add_option("--lc", o->lc, "long-wave cut-off (default 0.8mm; none to skip)");
-  cmd->add_option("--ls", o->ls, "short-wave cut-off (default 20um; none to skip)");
-  cmd->add_option("--filter", o->filter, "gaussian (ISO 16610-21, default) or none");
+  cmd->add_option("--lc", o->lc, "long-wave cut-off, or none to skip (default: 0.8mm)");
+  cmd->add_option("--ls", o->ls, "short-wave cut-off, or none to skip (default: 20um)");
+  cmd->add_option("--filter", o->filter, "gaussian (ISO 16610-21) or none (default: gaussian)");
   cmd->add_option("--level", o->level,
-                  "form removal before filtering: none, mean or line (default)");
+                  "form removal before filtering: none, mean or line (default: line)");
   cmd->add_option(
       "--end", o->end,
-      "filter end effects: discard (default, drop ct*cut-off at each end) or regression "
-      "(keep every point; Gaussian regression near the ends)");
+      "filter end effects: discard (drop ct*cut-off at each end) or regression (keep every "
+      "point; Gaussian regression near the ends) (default: discard)");
   cmd->add_option("--truncation", o->truncation,
-                  "ct: Gaussian weights kept within +-ct*cut-off, in [0.5, 3] (default 1)");
+                  "ct: Gaussian weights kept within +-ct*cut-off, in [0.5, 3] (default: 1)");
   cmd->add_option("--rule", o->rule,
                   "m2, m4 of the equivalent isotropic surface from max/min-slope scans: geometric "
-                  "(McCool, default) or arithmetic mean; m0 is always the arithmetic mean");
+                  "(McCool) or arithmetic mean; m0 is always the arithmetic mean (default: "
+                  "geometric)");
   cmd->add_option("--dx", o->dx,
                   "sampling interval of single-column (z only) text files, e.g. 0.5um");
   cmd->add_option("--E", o->E, "Young's modulus of both halves (for the plasticity index psi)");

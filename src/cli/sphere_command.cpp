@@ -158,7 +158,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
   if (o.R2) core::require_positive("--R2", R2);
   contact::InterferenceReading reading;
   try {
-    reading = contact::parse_interference_reading(o.interference);
+    reading = contact::parse_interference_reading(lowercase(o.interference));
   } catch (const InvalidInput& e) {
     throw InvalidInput(fmt::format("--interference: {}", e.what()));
   }
@@ -203,7 +203,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
         materials.softer_body == 0 ? std::string("1/--nu2")
                                    : std::to_string(materials.softer_body));
   }
-  if (o.model == "all") {
+  if (lowercase(o.model) == "all") {
     for (ModelName m : contact::kAllModels) {
       if (m == ModelName::bke && !bke_unusable.empty()) {
         skipped.push_back({m, bke_unusable});
@@ -213,7 +213,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     }
   } else {
     try {
-      models.push_back(contact::parse_model_name(o.model));
+      models.push_back(contact::parse_model_name(lowercase(o.model)));
     } catch (const InvalidInput& e) {
       throw InvalidInput(fmt::format("--model: {} (or all)", e.what()));
     }
@@ -277,6 +277,11 @@ void run_sphere(const SphereOptions& o, std::string& out) {
   if ((o.loop_csv || o.plot_png) && !(delta_amp || force_amp)) {
     throw InvalidInput("--loop and --plot need an amplitude: give --delta-max or --Q-max");
   }
+  if (is_standard_output(o.plot_png))
+    throw InvalidInput("--plot - is not allowed: a PNG goes to a file, give its name");
+  require_one_stdout(o.json, {{"--loop", o.loop_csv}, {"--energy-curve", o.energy_csv}});
+  const bool stdout_is_data =
+      o.json || is_standard_output(o.loop_csv) || is_standard_output(o.energy_csv);
   require_distinct_outputs({{"--loop", o.loop_csv.value_or("")},
                             {"--plot", o.plot_png.value_or("")},
                             {"--energy-curve", o.energy_csv.value_or("")}});
@@ -346,7 +351,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     j["models"] = jm;
     j["warnings"] = warnings;
     out += j.dump(2) + "\n";
-  } else {
+  } else if (!stdout_is_data) {
     out += fmt::format(
         "sphere on {}: R = {:.4g} mm, E* = {:.4g} GPa, G* = {:.4g} GPa, "
         "H = {:.4g} GPa, nu = {:.3g}, K = {:.4g}\n",
@@ -394,7 +399,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     std::ostringstream csv;
     csv << "model,branch,delta[m],Q[N]\n";
     PlotSpec plot{.title = "Fretting loops (Cattaneo-Mindlin with physics-based mu)",
-                  .xlabel = "tangential displacement delta [um]",
+                  .xlabel = "tangential displacement delta [µm]",
                   .ylabel = "tangential force Q [N]"};
     const char* branch_names[] = {"loading", "unloading", "reloading"};
     for (const auto& r : results) {
@@ -409,7 +414,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
       }
       plot.series.push_back(std::move(s));
     }
-    if (o.loop_csv) write_file_atomically(*o.loop_csv, csv.str());
+    if (o.loop_csv) write_output(*o.loop_csv, csv.str(), out);
     if (o.plot_png) plot_png(*o.plot_png, plot);
   }
   if (o.energy_csv) {
@@ -431,8 +436,13 @@ void run_sphere(const SphereOptions& o, std::string& out) {
                            r.model.contact().energy_per_cycle(d));
       }
     }
-    write_file_atomically(*o.energy_csv, csv.str());
+    write_output(*o.energy_csv, csv.str(), out);
   }
+  std::vector<std::string> written;
+  for (const auto& f : {o.loop_csv, o.plot_png, o.energy_csv}) {
+    if (f) written.push_back(*f);
+  }
+  report_written(written, stdout_is_data, out);
   for (const auto& text : warnings) fmt::print(stderr, "warning: {}\n", text);
 }
 
@@ -448,28 +458,28 @@ void add_sphere_command(CLI::App& app, std::function<int()>& action) {
   o->materials.add_to(cmd, "body 1 (the sphere)", "body 2 (the flat)");
   cmd->add_option("--R1", o->R1, "radius of body 1")->required();
   cmd->add_option("--R2", o->R2, "radius of body 2 (default: a flat)");
-  cmd->add_option("--P", o->P, "normal load");
+  cmd->add_option("--P,--preload", o->P, "normal load");
   cmd->add_option("--omega-star", o->omega_star, "interference over omega_c, instead of --P");
   cmd->add_option("--delta-max", o->delta_max, "tangential displacement amplitude");
   cmd->add_option("--Q-max", o->Q_max, "tangential force amplitude, instead of --delta-max");
   cmd->add_option("--model", o->model,
                   "cfc, ceb, ke, bke or all (all skips bke, with a note, when the softer "
-                  "material's nu is outside its fits' range, about (0.118, 0.5))")
-      ->default_str("all");
+                  "material's nu is outside its fits' range, about (0.118, 0.5)) (default: all)");
   cmd->add_option("--interference", o->interference,
                   "normal state of the models: hertz = Hertz's interference and contact radius "
                   "for every model, each with its own mu (the thesis's Table 3.2: 'the "
                   "penetration for all the models is estimated to be 2.77 um'); own = each "
-                  "model's own normal law (B.1-B.8) for the load")
-      ->default_str("hertz");
+                  "model's own normal law (B.1-B.8) for the load (default: hertz)");
   cmd->add_option("--mu-cfc", o->mu_cfc, "friction coefficient of the cfc model (s/H)");
-  cmd->add_option("--zeta", o->zeta, "CEB yield depth over contact radius (default 0.48)");
+  cmd->add_option("--zeta", o->zeta, "CEB yield depth over contact radius (default: 0.48)");
   cmd->add_flag("--json", o->json, "print one JSON object (SI units) instead of a table");
-  cmd->add_option("--loop", o->loop_csv, "write the fretting loop points to this CSV file");
+  cmd->add_option("--loop", o->loop_csv,
+                  "write the fretting loop points to this CSV file (- for standard output)");
   cmd->add_option("--plot", o->plot_png, "draw the fretting loops into this PNG file");
   cmd->add_option("--energy-curve", o->energy_csv,
-                  "write energy per cycle against displacement amplitude to this CSV file");
-  cmd->add_option("--points", o->points, "points per loop branch, in [2, 100000] (default 101)");
+                  "write energy per cycle against displacement amplitude to this CSV file (- for "
+                  "standard output)");
+  cmd->add_option("--points", o->points, "points per loop branch, in [2, 100000] (default: 101)");
   cmd->callback([o, &action] {
     action = [o] { return run_guarded([o](std::string& out) { run_sphere(*o, out); }); };
   });

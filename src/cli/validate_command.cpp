@@ -1,6 +1,7 @@
 // asperity validate [--out DIR]: the thesis's numbers recomputed, as a Markdown report.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iostream>
 
 #include "asperity/core/error.hpp"
@@ -14,10 +15,17 @@ namespace asperity::cli {
 
 namespace {
 
+struct ValidateOptions {
+  std::optional<std::string> out;
+  bool json = false;
+  bool no_plots = false;
+};
+
 // Issue 11's figures: stiffness (ch. 5 and 6) and the energy-force exponent (ch. 6)
 // against preload for every model variant, with the measured ranges.
-void write_variant_plots(const std::vector<joint::VariantPoint>& points,
-                         joint::StagedDirectory& dir) {
+std::vector<std::string> write_variant_plots(const std::vector<joint::VariantPoint>& points,
+                                             joint::StagedDirectory& dir) {
+  std::vector<std::string> written;
   const std::pair<const char*, const char*> joints[] = {{"ch. 5", "#000000"},
                                                         {"smooth Al", "#1f4e9a"},
                                                         {"rough Al", "#2ca02c"},
@@ -70,7 +78,9 @@ void write_variant_plots(const std::vector<joint::VariantPoint>& points,
           level("measured Al 30-65 N/um (Fig. 6.11)", 30.0, 330.0, 722.0, "#1f4e9a"));
       k.series.push_back(level("", 65.0, 330.0, 722.0, "#1f4e9a"));
     }
-    plot_png(dir.file(ch5 ? "ch5_stiffness_variants.png" : "ch6_stiffness_variants.png"), k);
+    const std::string name = ch5 ? "ch5_stiffness_variants.png" : "ch6_stiffness_variants.png";
+    plot_png(dir.file(name), k);
+    written.push_back(name);
   }
   PlotSpec n{"Ch. 6 joints: energy-force exponent at PZT 2.25 um against preload",
              "preload [N]",
@@ -88,39 +98,82 @@ void write_variant_plots(const std::vector<joint::VariantPoint>& points,
   n.series.push_back(level("measured range 2-3 (Fig. 6.12-6.14)", 2.0, 330.0, 722.0, "#777777"));
   n.series.push_back(level("", 3.0, 330.0, 722.0, "#777777"));
   plot_png(dir.file("ch6_exponent_vs_preload.png"), n);
+  written.push_back("ch6_exponent_vs_preload.png");
+  return written;
+}
+
+Json rows_json(const std::vector<joint::ValidationRow>& rows, int failures) {
+  Json a = Json::array();
+  for (const auto& r : rows) {
+    a.push_back(Json{
+        {"source", r.source},
+        {"quantity", r.quantity},
+        {"thesis", r.thesis},
+        {"ours", r.ours},
+        {"relative_difference",
+         std::isfinite(r.relative_difference()) ? Json(r.relative_difference()) : Json(nullptr)},
+        {"tolerance", r.tolerance},
+        {"verdict", r.verdict},
+        {"kind", r.kind()},
+        {"range", r.range_high > 0.0 ? Json::array({r.range_low, r.range_high}) : Json(nullptr)},
+        {"note", r.note}});
+  }
+  return Json{{"rows", a}, {"failures", failures}};
 }
 
 }  // namespace
 
 void add_validate_command(CLI::App& app, std::function<int()>& action) {
-  auto out_dir = std::make_shared<std::optional<std::string>>();
+  auto o = std::make_shared<ValidateOptions>();
   auto* cmd = app.add_subcommand(
       "validate",
       "Recompute the thesis's tables (3.2, 3.4, 4.1, 5.2, 5.4, 5.5, 6.2, 6.3, the ch. 5 friction "
       "coefficients, Fig. 4.4 statements; Tables 5.6 and 6.4 against the model) and print a "
       "Markdown report; exit 1 if a row that should agree does not.");
-  cmd->add_option("--out", *out_dir,
-                  "write DIR/validation.md and the chapter 5 figures (ch5_*.png) into DIR (a new "
-                  "directory, or one asperity wrote before)");
-  cmd->callback([out_dir, &action] {
-    action = [out_dir] {
+  cmd->add_option("--out", o->out,
+                  "write DIR/validation.md, the chapter 5 figures (ch5_*.png) and the model "
+                  "variants' stiffness and exponent plots (ch5_/ch6_*variants.png, "
+                  "ch6_exponent_vs_preload.png) into DIR (a new "
+                  "directory, or one asperity wrote before); a name ending in .md writes only "
+                  "the report, - prints it");
+  cmd->add_flag("--json", o->json,
+                "print the rows as JSON (source, quantity, thesis, ours, relative_difference, "
+                "tolerance, verdict, note) instead of Markdown");
+  cmd->add_flag("--no-plots", o->no_plots,
+                "do not draw the chapter 5 figures into --out DIR (no gnuplot needed)");
+  cmd->callback([o, &action] {
+    action = [o] {
       int failures = 0;
       const int rc = run_guarded([&](std::string& out) {
+        const OutKind kind = out_kind(o->out, ".md");
+        if (kind == OutKind::standard_output && o->json)
+          throw InvalidInput("--json and --out - both print on standard output: give one of them");
         // Refuse a foreign --out directory before the work.
-        if (*out_dir) joint::require_replaceable_output(**out_dir, **out_dir);
+        if (kind == OutKind::directory) joint::require_replaceable_output(*o->out, *o->out);
         std::vector<joint::VariantPoint> points;
         const auto rows = joint::validation_rows(&points);
         for (const auto& r : rows) failures += r.verdict == "FAIL";
         const auto md = joint::validation_markdown(rows);
-        if (*out_dir) {
-          joint::StagedDirectory dir(**out_dir, "asperity validate");
+        // The Markdown report is the document on stdout; "wrote" goes to stderr.
+        const bool stdout_is_data = true;
+        out = o->json ? rows_json(rows, failures).dump(2) + "\n" : md;
+        if (kind == OutKind::directory) {
+          joint::StagedDirectory dir(*o->out, "asperity validate");
           write_file_atomically(dir.file("validation.md"), md);
-          const auto c = joint::chapter5_joint();
-          write_prediction_files(c, joint::predict(c), dir, true, false, "ch5_");
-          write_variant_plots(points, dir);
+          std::vector<std::string> written{"validation.md"};
+          if (!o->no_plots) {
+            const auto c = joint::chapter5_joint();
+            for (const auto& f :
+                 write_prediction_files(c, joint::predict(c), dir, true, false, "ch5_"))
+              written.push_back(f);
+            for (const auto& f : write_variant_plots(points, dir)) written.push_back(f);
+          }
           dir.commit();
+          report_written_directory(*o->out, written, stdout_is_data, out);
+        } else if (kind == OutKind::file) {
+          write_file_atomically(*o->out, md);
+          report_written({*o->out}, stdout_is_data, out);
         }
-        out = md;
       });
       if (rc != 0) return rc;
       if (failures > 0) {

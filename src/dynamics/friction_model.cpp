@@ -106,6 +106,14 @@ double SegalmanBackbone::force(double x) const {
          x * (R_ * (std::pow(phi_max_, c + 1.0) - std::pow(x, c + 1.0)) / (c + 1.0) + S_);
 }
 
+double SegalmanBackbone::stiffness(double x) const {
+  core::require_non_negative("x", x);
+  if (x >= phi_max_) return 0.0;
+  // d/dx of force(): the elements not yet slipped, R (phi_max^{chi+1} - x^{chi+1})/(chi+1) + S.
+  const double c = p_.chi;
+  return R_ * (std::pow(phi_max_, c + 1.0) - std::pow(x, c + 1.0)) / (c + 1.0) + S_;
+}
+
 double SegalmanBackbone::displacement(double Q) const {
   core::require_non_negative("force", Q);
   if (Q >= p_.F_S) {

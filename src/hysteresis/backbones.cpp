@@ -42,6 +42,14 @@ double MindlinBackbone::initial_stiffness() const {
   return contact_.stiffness();
 }
 
+double MindlinBackbone::stiffness(double x) const {
+  core::require_non_negative("x", x);
+  // d/dx of mu P (1 - (1 - x/s)^{3/2}) (B.15 solved for Q).
+  const double s = contact_.slip_displacement();
+  if (x >= s) return 0.0;
+  return 1.5 * contact_.Q_max() / s * std::sqrt(1.0 - x / s);
+}
+
 double MindlinBackbone::integral(double x) const {
   core::require_non_negative("x", x);
   // Int_0^x mu P (1 - (1 - t/s)^{3/2}) dt = mu P (x - 2 s/5 (1 - (1 - x/s)^{5/2})) for

@@ -31,6 +31,13 @@ double Backbone::integral(double x) const {
       .value;
 }
 
+double Backbone::stiffness(double x) const {
+  core::require_non_negative("x", x);
+  const double h = 1e-6 * (x + 1e-12 * limit() / initial_stiffness());
+  if (x < h) return (force(x + h) - force(x)) / h;
+  return (force(x + h) - force(x - h)) / (2.0 * h);
+}
+
 double energy_per_cycle(const Backbone& backbone, double x_max) {
   core::require_non_negative("displacement amplitude", x_max);
   const double w = 8.0 * backbone.integral(x_max) - 4.0 * x_max * backbone.force(x_max);

@@ -549,7 +549,7 @@ JointCase parse_case(std::string_view text, const std::string& source,
     throw InvalidInput(fmt::format("{}:{}: TOML syntax error: {}", source, e.source().begin.line,
                                    e.description()));
   }
-  r.check_keys(root, "", {"joint", "load", "excitation", "profiles", "interface"});
+  r.check_keys(root, "", {"joint", "load", "excitation", "profiles", "reference", "interface"});
 
   JointCase c;
   c.source = source;
@@ -784,6 +784,25 @@ JointCase parse_case(std::string_view text, const std::string& source,
         r.fail(ap, "excitation.apparatus",
                "is used only with imposed amplitudes (imposed = [...])");
     }
+  }
+  if (const auto* rn = root.get("reference")) {
+    const auto* t = rn->as_table();
+    if (!t) r.fail(rn, "reference", "must be a table");
+    r.check_keys(*t, "reference", {"source", "preloads", "mu"});
+    const auto* pn = t->get("preloads");
+    const auto* mn = t->get("mu");
+    if (!pn || !mn)
+      r.fail(rn, "reference", "needs preloads = [\"234 N\", ...] and mu = [0.354, ...]");
+    ReferenceMu ref;
+    ref.source = r.string(*t, "source", "reference", "reference");
+    ref.preloads = r.quantity_list(*pn, dim::force, "reference.preloads", true);
+    ref.mu = r.quantity_list(*mn, dim::dimensionless, "reference.mu", true);
+    if (ref.mu.size() != ref.preloads.size()) {
+      r.fail(mn, "reference.mu",
+             fmt::format("has {} values for {} preloads: give one mu per preload", ref.mu.size(),
+                         ref.preloads.size()));
+    }
+    c.reference = std::move(ref);
   }
   std::sort(c.amplitudes.begin(), c.amplitudes.end());
   std::sort(c.imposed.begin(), c.imposed.end());

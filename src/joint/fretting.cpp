@@ -14,6 +14,8 @@
 
 #include <boost/math/distributions/students_t.hpp>
 
+#include <Eigen/LU>
+
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
 
@@ -88,31 +90,16 @@ double loop_energy(const std::vector<double>& x, const std::vector<double>& y, s
   return A;
 }
 
-// Solves the n x n system A z = b (row-major, small n) by Gaussian elimination with
-// partial pivoting; NaN when singular.
-std::vector<double> solve_small(std::vector<double> A, std::vector<double> b) {
-  const std::size_t n = b.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    std::size_t piv = k;
-    for (std::size_t i = k + 1; i < n; ++i) {
-      if (std::abs(A[i * n + k]) > std::abs(A[piv * n + k])) piv = i;
-    }
-    if (!(std::abs(A[piv * n + k]) > 0.0))
-      return std::vector<double>(n, std::numeric_limits<double>::quiet_NaN());
-    for (std::size_t l = 0; l < n; ++l) std::swap(A[k * n + l], A[piv * n + l]);
-    std::swap(b[k], b[piv]);
-    for (std::size_t i = k + 1; i < n; ++i) {
-      const double f = A[i * n + k] / A[k * n + k];
-      for (std::size_t l = k; l < n; ++l) A[i * n + l] -= f * A[k * n + l];
-      b[i] -= f * b[k];
-    }
-  }
-  std::vector<double> z(n);
-  for (std::size_t k = n; k-- > 0;) {
-    double v = b[k];
-    for (std::size_t l = k + 1; l < n; ++l) v -= A[k * n + l] * z[l];
-    z[k] = v / A[k * n + k];
-  }
+// Solves the n x n system A z = b (row-major, small n) by LU with partial pivoting
+// (Eigen); NaN when singular (an exactly zero pivot).
+std::vector<double> solve_small(const std::vector<double>& A, const std::vector<double>& b) {
+  const auto n = static_cast<Eigen::Index>(b.size());
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Eigen::Map<const RowMajor>(A.data(), n, n));
+  std::vector<double> z(b.size(), std::numeric_limits<double>::quiet_NaN());
+  if (n == 0 || !(lu.matrixLU().diagonal().cwiseAbs().minCoeff() > 0.0)) return z;
+  Eigen::Map<Eigen::VectorXd>(z.data(), n) =
+      lu.solve(Eigen::Map<const Eigen::VectorXd>(b.data(), n));
   return z;
 }
 

@@ -359,8 +359,10 @@ void chapter5_6(Builder& b) {
     }
   }
   // Chapter 5 BKE friction coefficients (section 5.3).
-  const auto flat = chapter5_joint().rough_flat();
-  const double P[] = {234, 331, 526, 721}, mu[] = {0.354, 0.334, 0.335, 0.347};
+  const auto ch5 = chapter5_joint();
+  const auto flat = ch5.rough_flat();
+  const double* const P = ch5.reference->preloads.data();  // 234, 331, 526, 721 N
+  const double* const mu = ch5.reference->mu.data();
   for (int i = 0; i < 4; ++i) {
     const auto lp = predict_load(flat, P[i], {});
     b.add("Ch. 5 mu (BKE)", fmt::format("mu at {} N", P[i]), mu[i], lp.mu, 5e-2,
@@ -549,6 +551,10 @@ JointCase chapter5_joint() {
   }
   c.bolts = bolts;
   c.amplitudes = {0.05e-6, 0.1e-6, 0.25e-6, 0.5e-6, 1e-6, 2e-6, 4e-6};
+  // Section 5.3: the thesis's BKE mu at the four preloads (also a row of validation_rows).
+  c.reference = ReferenceMu{.source = "thesis section 5.3 (BKE)",
+                            .preloads = {234, 331, 526, 721},
+                            .mu = {0.354, 0.334, 0.335, 0.347}};
   return c;
 }
 

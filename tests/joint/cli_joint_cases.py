@@ -79,7 +79,7 @@ elif case == "out_dir_safety":
     # An unrelated existing directory is refused and left intact, by every command.
     expect_refused(["predict", os.path.join(ex, "steel420_two_bolts.toml")], os.path.join(tmp, "precious"))
     expect_refused(["validate"], os.path.join(tmp, "docs"))
-    data = synth("d.csv", "--imposed", "6.75um", "--preload", "526N")
+    data = synth("d.csv", "--imposed", "6.75um", "--P", "526N")
     expect_refused(["analyze", data, "--P", "526N"], os.path.join(tmp, "mine"))
     # A previous asperity output is replaced as a whole (its old files go).
     out = os.path.join(tmp, "out")
@@ -169,7 +169,7 @@ elif case == "predict_json_keys":
         check((a["regime"] == "gross slip") == (a["delta_max"] >= s["gross_slip_amplitude"]), a)
     check(s["amplitudes"][0]["delta_max"] == 0.05e-6, s["amplitudes"][0])
 elif case == "analyze_synthetic":
-    data = synth("d.csv", "--imposed", "6.75um", "--preload", "526N", "--seed", "11")
+    data = synth("d.csv", "--imposed", "6.75um", "--P", "526N", "--seed", "11")
     out = os.path.join(tmp, "an")
     p = run("analyze", data, "--P", "526N", "--model", os.path.join(ex, "steel420_two_bolts.toml"), "--json",
             "--out", out)
@@ -197,7 +197,7 @@ elif case == "analyze_runs_power_law":
     # Noise-free runs: the exponent equals the Masing exponent of the model over the same
     # runs (the model's Q_peak and energy at each run's measured delta_max) to 1e-3: the
     # measured energies are all 0.11 % low (moving average), which cancels in the slope.
-    files = [synth(f"r{i}.csv", "--imposed", a, "--preload", "721N", "--noise-delta", "0um", "--noise-Q", "0N")
+    files = [synth(f"r{i}.csv", "--imposed", a, "--P", "721N", "--noise-delta", "0um", "--noise-Q", "0N")
              for i, a in enumerate(["1um", "1.5um", "2um"])]
     j = json.loads(run("analyze", *files, "--P", "721N", "--json", "--model",
                        os.path.join(ex, "steel420_two_bolts.toml")).stdout)
@@ -211,7 +211,7 @@ elif case == "analyze_runs_power_law":
     # With the noise (0.1 um, 1 N) at 526 N: the thin loops of 0.5 and 1 um imposed
     # are below their noise floor and left out; the exponent of the others has an interval
     # that holds the model's.
-    files = [synth(f"n{i}.csv", "--imposed", a, "--preload", "526N", "--seed", str(i + 3))
+    files = [synth(f"n{i}.csv", "--imposed", a, "--P", "526N", "--seed", str(i + 3))
              for i, a in enumerate(["0.5um", "1um", "2um", "3um", "4um"])]
     p = run("analyze", *files, "--P", "526N", "--json", "--model", os.path.join(ex, "steel420_two_bolts.toml"))
     j = json.loads(p.stdout)
@@ -294,7 +294,7 @@ elif case == "synthesize_limits":
     p = run("synthesize", cf, "--imposed", "6.75um", "--rate", "50Hz", "--out", out)
     check("551 samples" in p.stdout, p.stdout)
     run("analyze", out, "--P", "234N")
-    for flag, value in [("--frequency", "0Hz"), ("--preload", "-1N"), ("--imposed", "0um"),
+    for flag, value in [("--frequency", "0Hz"), ("--P", "-1N"), ("--imposed", "0um"),
                         ("--cycles", "0")]:
         p = run("synthesize", cf, "--imposed", "6.75um", flag, value, "--out", out, code=2)
         check(flag in p.stderr, p.stderr)
@@ -317,7 +317,7 @@ elif case == "analyze_power_law_note":
     # Noise-free runs at 526 N, all in partial slip by the model (Q/Q_s 0.59-1.0): the
     # exponent is above 3 as the model's is near saturation; no run is called gross slip.
     cf = os.path.join(ex, "steel420_two_bolts.toml")
-    files = [synth(f"q{a}.csv", "--imposed", f"{a}um", "--preload", "526N", "--noise-delta",
+    files = [synth(f"q{a}.csv", "--imposed", f"{a}um", "--P", "526N", "--noise-delta",
                    "0um", "--noise-Q", "0N") for a in (3, 5, 8, 12)]
     p = run("analyze", *files[:3], "--P", "526N", "--model", cf, "--json")
     j = json.loads(p.stdout)
@@ -388,6 +388,10 @@ elif case == "validate_docs_current":
           "`asperity validate > docs/validation.md`")
 elif case == "bad.unknown_key":
     bad_case(BASE.replace('model = "bke"', 'modle = "bke"'), "joint.modle", "unknown key", "case.toml:8:")
+elif case == "bad.reference_count":
+    # [reference] (published mu drawn on mu_vs_preload.png): one mu per preload.
+    bad_case(BASE.replace("mu = [0.354, 0.334, 0.335, 0.347]", "mu = [0.354, 0.334]"),
+             "reference.mu", "2 values for 4 preloads")
 elif case == "bad.wrong_unit":
     bad_case(BASE.replace('area = "170 mm^2"', 'area = "3 N"'), "joint.area", "case.toml:7:")
 elif case == "bad.missing_half":

@@ -183,6 +183,7 @@ class SegalmanBackbone final : public hysteresis::Backbone {
   [[nodiscard]] double displacement(double Q) const override;
   [[nodiscard]] double limit() const override { return p_.F_S; }
   [[nodiscard]] double initial_stiffness() const override { return p_.K_T; }
+  [[nodiscard]] double stiffness(double x) const override;
   [[nodiscard]] double integral(double x) const override;
   [[nodiscard]] double phi_max() const { return phi_max_; }
   [[nodiscard]] double R() const { return R_; }

@@ -18,6 +18,11 @@ class Backbone {
   [[nodiscard]] virtual double limit() const = 0;
   /// dQ_l/dx at x = 0: the stiffness at every reversal.
   [[nodiscard]] virtual double initial_stiffness() const = 0;
+  /// dQ_l/dx for x >= 0 (the tangent on the virgin curve; 0 where Q_l has reached its
+  /// limit). Default: a central difference of force() with step 1e-6 (x + h) (one-sided at
+  /// x < h), relative accuracy ~1e-10 on a smooth backbone; the library's backbones
+  /// override it with their exact derivative.
+  [[nodiscard]] virtual double stiffness(double x) const;
   /// Integral of Q_l from 0 to x (x >= 0), for energy per cycle. Default: adaptive
   /// quadrature of force().
   [[nodiscard]] virtual double integral(double x) const;

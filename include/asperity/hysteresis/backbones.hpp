@@ -18,6 +18,7 @@ class MindlinBackbone final : public Backbone {
   [[nodiscard]] double displacement(double Q) const override;
   [[nodiscard]] double limit() const override;
   [[nodiscard]] double initial_stiffness() const override;
+  [[nodiscard]] double stiffness(double x) const override;
   [[nodiscard]] double integral(double x) const override;
 
  private:
@@ -32,6 +33,8 @@ class JenkinsBackbone final : public Backbone {
   [[nodiscard]] double displacement(double Q) const override;
   [[nodiscard]] double limit() const override { return F_; }
   [[nodiscard]] double initial_stiffness() const override { return k_; }
+  /// k below the slip displacement F/k, 0 from there on.
+  [[nodiscard]] double stiffness(double x) const override { return k_ * x < F_ ? k_ : 0.0; }
   [[nodiscard]] double integral(double x) const override;
 
  private:
@@ -48,6 +51,9 @@ class ScaledBackbone final : public Backbone {
   [[nodiscard]] double displacement(double Q) const override;
   [[nodiscard]] double limit() const override;
   [[nodiscard]] double initial_stiffness() const override;
+  [[nodiscard]] double stiffness(double x) const override {
+    return Q_scale_ / x_scale_ * inner_->stiffness(x / x_scale_);
+  }
   [[nodiscard]] double integral(double x) const override;
   [[nodiscard]] const Backbone& inner() const { return *inner_; }
   [[nodiscard]] double x_scale() const { return x_scale_; }

@@ -63,6 +63,44 @@ class TabulatedBackbone : public Backbone {
   [[nodiscard]] double limit() const final { return limit_; }
   [[nodiscard]] double initial_stiffness() const final { return k0_; }
   [[nodiscard]] double integral(double x) const final;
+  /// dQ_l/dx of the same interpolant that force() evaluates (fast cells, or the
+  /// reference where a cell defers to it); 0 where the value is capped at the limit.
+  [[nodiscard]] double stiffness(double x) const final {
+    if (!(x >= 0.0)) reject_displacement(x);
+    return slope_non_negative(x);
+  }
+  [[nodiscard]] double slope_non_negative(double x) const noexcept {
+    const std::uint64_t i = (std::bit_cast<std::uint64_t>(x) >> shift_) - base_;
+    if (i >= fast_.size()) [[unlikely]]
+      return x >= x_end_ ? 0.0 : slope_reference(x);
+    const FastCell& c = fast_[i];
+    if (c.fallback) [[unlikely]]
+      return slope_reference(x);
+    const FastPiece& p = c.piece[x >= c.split ? 1 : 0];
+    const double u = (x - p.x0) * p.inv_w;
+    const double u2 = u * u;
+    const double Q =
+        (p.c[0] + p.c[1] * u) + u2 * ((p.c[2] + p.c[3] * u) + u2 * (p.c[4] + p.c[5] * u));
+    if (!(Q < limit_)) return 0.0;
+    return ((p.c[1] + 2.0 * p.c[2] * u) +
+            u2 * ((3.0 * p.c[3] + 4.0 * p.c[4] * u) + 5.0 * p.c[5] * u2)) *
+           p.inv_w;
+  }
+  /// dQ_l/dx of the reference interpolant: Q = x G(s), dQ/dx = G + s G'(s)/2.
+  [[nodiscard]] double slope_reference(double x) const noexcept {
+    if (x >= x_end_) return 0.0;
+    const double s = std::sqrt(x);
+    const Cell& c = cells_[locate(s)];
+    const double t = (s - c.s0) * c.inv_h;
+    const double t2 = t * t;
+    const double G =
+        (c.c[0] + c.c[1] * t) + t2 * ((c.c[2] + c.c[3] * t) + t2 * (c.c[4] + c.c[5] * t));
+    if (!(x * G < limit_)) return 0.0;
+    const double dG = ((c.c[1] + 2.0 * c.c[2] * t) +
+                       t2 * ((3.0 * c.c[3] + 4.0 * c.c[4] * t) + 5.0 * c.c[5] * t2)) *
+                      c.inv_h;
+    return G + 0.5 * s * dG;
+  }
 
   /// Q_l(x) for any x: 0 for x <= 0 or NaN, else evaluate_non_negative(x).
   [[nodiscard]] double evaluate(double x) const noexcept {

@@ -76,6 +76,14 @@ struct Apparatus {
   }
 };
 
+/// Published friction coefficients to compare with (the optional [reference] table of a
+/// case file): drawn over the predicted mu against preload, never used in a computation.
+struct ReferenceMu {
+  std::string source;            ///< where the values come from, e.g. "thesis section 5.3"
+  std::vector<double> preloads;  ///< [N]
+  std::vector<double> mu;        ///< one per preload
+};
+
 struct JointCase {
   std::string name;
   std::string source;  ///< the case file (or "<string>")
@@ -101,6 +109,8 @@ struct JointCase {
   /// "FILE:LINE: key" of each load case and of the roughness, for errors found later
   /// (a preload beyond the model's range, a roughness the model cannot take).
   std::vector<std::string> preload_origin;
+  /// Published mu against preload to overlay on the plots (may be absent).
+  std::optional<ReferenceMu> reference;
   std::string roughness_origin;
 
   /// The halves' moments added (Eq. 5.1).

@@ -1,0 +1,189 @@
+// Benchmarks of the vibration layer (issue 10), with ratios against references measured
+// in the same run:
+//  - the AFT residual + analytic Jacobian of one Jenkins element, H = 3 (harmonics 0..3),
+//    N_t = 1024 (target < 20 us; tmdsimpy needs about 1 ms), against the element's own
+//    two passes over the samples (the irreducible time-domain work);
+//  - the whole EPMC continuation of the Jenkins SDOF of the issue (m = k = 1, c = 0.01,
+//    k_t = 0.25, F_s = 0.2, log10 a from -2 to 5; target < 50 ms);
+//  - a forced response curve of the rough-flat SDOF of Table 7.2 (section 7.2's
+//    non-dimensional base-excited system, eps = 0.032, the rough contact with A0 = 1 cm^2,
+//    A = 18 um, P = 5 k A as in bench/dynamics_bench.cpp) against reaching the same steady
+//    states by time integration (200 periods per frequency: the transient decays as
+//    exp(-eps/2 * 2 pi * 200) < 1e-8 of its start), target >= 100 times faster.
+// g++ 12 reports writes into Eigen's dynamic matrices as potential null dereferences
+// (a known false positive of -Wnull-dereference at -O3).
+#pragma GCC diagnostic ignored "-Wnull-dereference"
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "../ratio_reporter.hpp"
+#include "asperity/dynamics/epb.hpp"
+#include "asperity/dynamics/system.hpp"
+#include "asperity/hysteresis/backbones.hpp"
+#include "asperity/vibration/analysis.hpp"
+
+namespace {
+
+using namespace asperity;
+using namespace asperity::vibration;
+
+HarmonicBalance jenkins_sdof(std::vector<int> harmonics, std::size_t N) {
+  Structure s{Eigen::MatrixXd::Constant(1, 1, 1.0), Eigen::MatrixXd::Constant(1, 1, 1.0),
+              Eigen::MatrixXd::Constant(1, 1, 0.01)};
+  return HarmonicBalance(
+      s, {{make_jenkins_element(0.25, 0.2), Eigen::MatrixXd::Ones(1, 1), "jenkins"}},
+      HarmonicBalanceOptions{std::move(harmonics), N});
+}
+
+Eigen::VectorXd jenkins_state(const HarmonicBalance& hb) {
+  // A state in gross slip: amplitude 2 on the first harmonic, some of the others.
+  Eigen::VectorXd U = Eigen::VectorXd::Zero(hb.unknowns());
+  U(hb.index(0, 1)) = 2.0;
+  U(hb.index(0, 2)) = 0.3;
+  U(hb.index(0, 5)) = 0.1;
+  return U;
+}
+
+void BM_AftJenkinsResidualJacobian(benchmark::State& state) {
+  const auto hb = jenkins_sdof({0, 1, 2, 3}, 1024);
+  const Eigen::VectorXd U = jenkins_state(hb);
+  const Eigen::VectorXd F = Eigen::VectorXd::Zero(hb.unknowns());
+  Eigen::VectorXd R, dRw;
+  Eigen::MatrixXd J;
+  for (auto _ : state) {
+    hb.residual(U, 1.1, F, R, &J, &dRw);
+    benchmark::DoNotOptimize(J.data());
+  }
+}
+BENCHMARK(BM_AftJenkinsResidualJacobian)->Unit(benchmark::kMicrosecond);
+
+void BM_JenkinsElementTwoPasses(benchmark::State& state) {
+  const auto hb = jenkins_sdof({0, 1, 2, 3}, 1024);
+  const Eigen::MatrixXd u = hb.basis().synthesis() * jenkins_state(hb);
+  PeriodicResponse r;
+  for (auto _ : state) {
+    hb.elements()[0].element->periodic_response(u, Eigen::MatrixXd(), false, r);
+    benchmark::DoNotOptimize(r.f.data());
+  }
+}
+BENCHMARK(BM_JenkinsElementTwoPasses)->Unit(benchmark::kMicrosecond);
+
+std::size_t g_epmc_points = 0;
+void BM_EpmcJenkinsSdof(benchmark::State& state) {
+  const auto hb = jenkins_sdof({0, 1, 2, 3}, 1024);
+  NonlinearModeOptions opt;
+  opt.log10_amplitude_from = -2.0;
+  opt.log10_amplitude_to = 5.0;
+  for (auto _ : state) {
+    const auto r = nonlinear_mode(hb, opt, {0});
+    g_epmc_points = r.amplitude.size();
+    benchmark::DoNotOptimize(r.omega.data());
+  }
+  state.counters["points"] = static_cast<double>(g_epmc_points);
+}
+BENCHMARK(BM_EpmcJenkinsSdof)->Unit(benchmark::kMillisecond);
+
+// Table 7.2's rough contact in the non-dimensional variables of section 7.2.
+constexpr double kK = 1e5, kA = 18e-6, kEps = 0.032;
+std::shared_ptr<const hysteresis::Backbone> rough_flat_nondimensional() {
+  static const auto bb = [] {
+    auto c = dynamics::table_7_2_rough();
+    c.A0 = 1e-4;
+    c.P = 5.0 * kK * kA;
+    return std::shared_ptr<const hysteresis::Backbone>(std::make_shared<hysteresis::ScaledBackbone>(
+        dynamics::epb_backbone(c), 1.0 / kA, 1.0 / (kK * kA)));
+  }();
+  return bb;
+}
+
+std::size_t g_frf_points = 0;
+double g_omega_from = 0.6, g_omega_to = 1.4;
+void BM_FrfRoughFlatSdof(benchmark::State& state) {
+  Structure s{Eigen::MatrixXd::Constant(1, 1, 1.0), Eigen::MatrixXd::Constant(1, 1, 1.0),
+              Eigen::MatrixXd::Constant(1, 1, kEps)};
+  const HarmonicBalance hb(
+      s,
+      {{make_rough_flat_element(rough_flat_nondimensional(), {}), Eigen::MatrixXd::Ones(1, 1), ""}},
+      HarmonicBalanceOptions{{0, 1, 2, 3}, 256});
+  FrequencyResponseOptions opt;
+  // Base motion y = sin(Omega tau): force y + eps y' = sin + eps Omega cos (Eq. 7.1).
+  opt.force = Eigen::VectorXd::Zero(hb.unknowns());
+  opt.force(hb.index(0, 2)) = 1.0;
+  opt.force_per_omega = Eigen::VectorXd::Zero(hb.unknowns());
+  opt.force_per_omega(hb.index(0, 1)) = kEps;
+  opt.omega_from = g_omega_from;
+  opt.omega_to = g_omega_to;
+  for (auto _ : state) {
+    const auto c = frequency_response(hb, opt, {0});
+    g_frf_points = c[0].omega.size();
+    benchmark::DoNotOptimize(c[0].omega.data());
+  }
+  state.counters["points"] = static_cast<double>(g_frf_points);
+}
+BENCHMARK(BM_FrfRoughFlatSdof)->Unit(benchmark::kMillisecond);
+
+void BM_TimeIntegrationRoughFlatSdof200Periods(benchmark::State& state) {
+  const auto model = dynamics::make_physics_based(
+      [] {
+        auto c = dynamics::table_7_2_rough();
+        c.A0 = 1e-4;
+        c.P = 5.0 * kK * kA;
+        return dynamics::epb_backbone(c);
+      }(),
+      kK, kA);
+  const double Omega = 0.5 * (g_omega_from + g_omega_to);
+  const double f = Omega / (2.0 * std::numbers::pi);
+  dynamics::SimulationOptions o;
+  o.duration = 200.0 / f;
+  o.output_interval = 0.1;
+  for (auto _ : state) {
+    const auto tr = dynamics::simulate(
+        {.epsilon = kEps}, dynamics::HarmonicExcitation{.frequency = f, .amplitude = 1.0}, *model,
+        o);
+    benchmark::DoNotOptimize(tr.u.back());
+  }
+}
+BENCHMARK(BM_TimeIntegrationRoughFlatSdof200Periods)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  asperity::bench::RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  const auto& t = reporter.seconds();
+  auto get = [&](const char* name) {
+    const auto it = t.find(name);
+    return it == t.end() ? 0.0 : it->second;
+  };
+  const double aft = get("BM_AftJenkinsResidualJacobian");
+  const double element = get("BM_JenkinsElementTwoPasses");
+  const double epmc = get("BM_EpmcJenkinsSdof");
+  const double frf = get("BM_FrfRoughFlatSdof");
+  const double integ = get("BM_TimeIntegrationRoughFlatSdof200Periods");
+  std::printf("\nRatios (same run):\n");
+  if (aft > 0) {
+    std::printf("  AFT residual + Jacobian, Jenkins, H = 3, N_t = 1024 = %7.2f us (target < 20)\n",
+                aft * 1e6);
+  }
+  if (aft > 0 && element > 0) {
+    std::printf("  AFT residual + Jacobian / element's two passes alone = %7.2f\n", aft / element);
+  }
+  if (epmc > 0) {
+    std::printf("  EPMC continuation, Jenkins SDOF, %zu points       = %7.2f ms (target < 50)\n",
+                g_epmc_points, epmc * 1e3);
+  }
+  if (frf > 0 && integ > 0) {
+    std::printf(
+        "  time integration to the same %zu steady states / forced response curve = %7.1f "
+        "(target >= 100)\n",
+        g_frf_points, integ * static_cast<double>(g_frf_points) / frf);
+  }
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,147 @@
+#pragma once
+// A vibration case file (TOML, read by `asperity vibration` and the Python package): a
+// structure with joint elements, the harmonic-balance settings and the analyses to run
+// (nonlinear mode by EPMC, forced response curves, quasi-static modal estimate). Running
+// it gives the curves and the summary that summary.json holds; the CLI and Python share
+// this code, so both report the same numbers under the same names.
+//
+// Case file (SI throughout; every value that has a dimension may instead be a quantity
+// string with units, "2.5e7 N/m", see core/units.hpp; unknown keys are errors naming the
+// key and its line):
+//
+//   [structure]
+//   mass = [[1.0]]              # or mass_file = "M.mtx" (MatrixMarket, relative to the
+//   stiffness = [[1.0]]         #    case file); same for stiffness / stiffness_file
+//   damping = [[0.01]]          # or damping_file, or rayleigh = { alpha = .., beta = .. }
+//                               #    (C = alpha M + beta K); none of them: C = 0
+//   output_dofs = [0]           # 0-based; default: every DOF
+//
+//   [[element]]                 # any number, each acting on u = T x
+//   type = "jenkins"            # rough_flat | jenkins | iwan4 | coulomb | elastic_dry_friction_2d
+//   name = "bolt 1"             # optional
+//   T = [[1.0]]                 # rows: element directions; columns: structure DOFs
+//                               #    (one direction may be written as a flat list)
+//     jenkins:   k_t [N/m], F_s [N]
+//     coulomb:   F_s [N], k_tan [s/m]              (f = F_s tanh(k_tan v), Eq. 7.3)
+//     iwan4:     F_S [N], K_T [N/m], chi, beta      (Segalman's four parameters)
+//     elastic_dry_friction_2d: k_t, k_n [N/m], mu, N0 [N] (optional, 0); T has 2 rows
+//                               (tangential, normal)
+//     rough_flat: the rough flat at one normal load, through Masing's rules, from
+//       backbone = "dimensional": E_star, G_star, H, sigma, R, eta, A0, P (quantities),
+//                                 nu, asperity_model (bke), mu_cfc (optional)
+//       backbone = "normalized":  beta, psi, nu, G_over_E, P_star = P/(K H A0),
+//                                 sigma [m] and force_scale = K H A0 [N] (the SI scales),
+//                                 asperity_model, mu_cfc (optional)
+//       backbone = "joint":       the case file's [joint], [load] (one preload, or bolts
+//                                 with one torque) and [profiles] tables, exactly as for
+//                                 `asperity predict` (joint::parse_case)
+//       (backbone may be left out: "normalized" with beta, "dimensional" with E_star,
+//       "joint" when the file has a [joint] table)
+//
+//   [harmonic_balance]
+//   harmonics = [0, 1, 2, 3]    # or max = 3 (0 .. 3); must hold 1
+//   time_points = 1024          # N_t per period (default 256)
+//
+//   [nonlinear_mode]            # EPMC of one mode
+//   mode = 1
+//   log10_amplitude = { from = -2.0, to = 5.0 }   # modal amplitude a [sqrt(kg) m]
+//   continuation = { step, min_step, max_step, max_points, target_iterations, max_angle,
+//                    max_iterations, step_tolerance, residual_tolerance }  # all optional
+//
+//   [[frequency_response]]      # any number
+//   force_cos = [[0.0], [3.3]]  # rows: harmonics in `harmonics` order (missing rows are
+//   force_sin = [[0.0], [0.0]]  #   zero); columns: DOFs [N]; harmonic 0 has no sine part
+//   force_per_omega_cos = ..    # optional, same layout: F_ex = force + omega force_per_omega
+//   force_per_omega2_cos = ..   #   + omega^2 force_per_omega2 (and _sin): base excitation,
+//                               #   e.g. y = Y sin(omega t) through k, c: force_sin = k Y,
+//                               #   force_per_omega_cos = c Y [N s]
+//   force_scales = [0.5, 1.0]   # optional, default [1.0]: one curve per scale
+//   omega = { from = 0.2, to = 0.4 }   # rad/s as numbers, or quantity strings in Hz
+//                                      # ("10 Hz", converted by 2 pi) or rad/s ("62.8 rad/s")
+//   continuation = { ... }      # as above
+//
+//   [quasi_static_mode]         # Masing-based estimate of one mode
+//   mode = 1
+//   amplitude = { from = 1e-3, to = 1e3 }   # modal amplitude a [sqrt(kg) m]
+//   points = 60
+//
+// Usage (the CLI and Python):
+//   const VibrationCase c = read_case_file("case.toml");   // or parse_case_text(...)
+//   const VibrationResult r = run_case(c, progress);       // r.summary -> summary.json
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "asperity/dynamics/case.hpp"
+#include "asperity/vibration/analysis.hpp"
+#include "asperity/vibration/elements.hpp"
+#include "asperity/vibration/harmonic_balance.hpp"
+#include "asperity/vibration/structure.hpp"
+
+namespace asperity::vibration {
+
+using dynamics::SummaryArray;
+using dynamics::SummaryObject;
+using dynamics::SummaryValue;
+
+/// One [[frequency_response]] table: the force at scale 1 as given (harmonics in the
+/// order of `harmonics` x DOFs) and the options with the force in the unknowns' layout.
+struct FrequencyResponseCase {
+  Eigen::MatrixXd force_cos;
+  Eigen::MatrixXd force_sin;
+  FrequencyResponseOptions options;
+};
+
+struct VibrationCase {
+  std::string source;  ///< the case file (or "<string>")
+  Structure structure;
+  std::string damping = "none";  ///< "matrix", "rayleigh" or "none"
+  RayleighDamping rayleigh;      ///< when damping == "rayleigh"
+  std::vector<Eigen::Index> output_dofs;
+  std::vector<PlacedElement> elements;
+  HarmonicBalanceOptions harmonic_balance;
+  std::optional<NonlinearModeOptions> nonlinear_mode;
+  std::vector<FrequencyResponseCase> frequency_responses;
+  std::optional<QuasiStaticModeOptions> quasi_static_mode;
+  /// The `joint` section when a rough_flat element comes from a [joint] table.
+  std::optional<SummaryObject> joint;
+};
+
+/// Parses a case file's text; `source` names it in errors, `base_dir` resolves the
+/// .mtx files and the profiles of a [joint]. Throws InvalidInput naming the key (and
+/// line) and what is allowed.
+[[nodiscard]] VibrationCase parse_case_text(const std::string& text, const std::string& source,
+                                            const std::string& base_dir);
+/// Reads and parses a case file (base_dir: its directory).
+[[nodiscard]] VibrationCase read_case_file(const std::string& path);
+
+/// Progress of a run: the analysis ("nonlinear_mode", "frequency_response",
+/// "quasi_static_mode") and the fraction of its range covered, in [0, 1].
+using CaseProgress = std::function<void(const std::string& analysis, double fraction)>;
+
+struct VibrationResult {
+  std::optional<NonlinearModeResult> nonlinear_mode;
+  /// Every curve of every [[frequency_response]] table, in order (tables, then scales).
+  std::vector<FrequencyResponseCurve> frequency_response;
+  std::vector<std::size_t> frequency_response_table;  ///< the table (0-based) of each curve
+  std::optional<QuasiStaticModeResult> quasi_static_mode;
+  /// Every continuation reached its end (false: a curve stalled, hit max_points or
+  /// turned back; its points are kept and `stop_reason` says why).
+  bool complete = true;
+  std::string stop_reason;
+  std::vector<std::string> warnings;
+  /// summary.json: case, structure, elements, harmonic_balance, joint (if any),
+  /// nonlinear_mode, frequency_response, quasi_static_mode, solver, warnings.
+  SummaryObject summary;
+};
+
+/// Runs the analyses of the case. A continuation that cannot start (its first point does
+/// not converge) and a quasi-static push without equilibrium are bad input: InvalidInput
+/// with what to change. A continuation that stops early is not an exception: the result
+/// has complete = false and every point computed.
+[[nodiscard]] VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress = {});
+
+}  // namespace asperity::vibration

@@ -1,0 +1,80 @@
+#pragma once
+// Newton's method with a line search, and pseudo-arclength continuation with step-size
+// control that follows turning points (Keller 1977; Allgower & Georg, "Introduction to
+// Numerical Continuation Methods", 2003, ch. 2 and 6).
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace asperity::vibration {
+
+/// Newton settings. Convergence: the scaled step max|dy_i / scale_i| < step_tolerance
+/// and |R| <= residual_tolerance * residual_scale.
+struct NewtonOptions {
+  int max_iterations = 20;           ///< >= 1
+  double step_tolerance = 1e-9;      ///< (0, 1)
+  double residual_tolerance = 1e-9;  ///< (0, 1)
+  void validate() const;
+};
+
+/// R(y) (m equations) and, when J is non-null, dR/dy (m x unknowns).
+using SystemFunction =
+    std::function<void(const Eigen::VectorXd& y, Eigen::VectorXd& R, Eigen::MatrixXd* J)>;
+
+struct NewtonResult {
+  Eigen::VectorXd y;
+  bool converged = false;
+  int iterations = 0;
+  double residual_norm = 0.0;
+};
+
+/// Square system (m = unknowns): Newton with a backtracking line search on |R|^2
+/// (Armijo, halving down to 1/64). `scale` is the typical magnitude of each unknown.
+[[nodiscard]] NewtonResult solve_newton(const SystemFunction& f, Eigen::VectorXd y0,
+                                        const Eigen::VectorXd& scale, double residual_scale,
+                                        const NewtonOptions& options);
+
+struct ContinuationOptions {
+  double step = 0.05;      ///< initial arclength step in scaled unknowns; > 0
+  double min_step = 1e-6;  ///< below this the continuation has stalled; > 0
+  double max_step = 0.5;   ///< >= step
+  std::size_t max_points = 2000;
+  int target_iterations = 4;  ///< Newton iterations per point the step size aims at
+  double max_angle = 0.35;    ///< [rad] largest turn of the tangent between points
+  NewtonOptions newton;
+  void validate() const;
+};
+
+/// A one-parameter family R(y) = 0 with unknowns = m + 1. The continuation runs from y0
+/// (a solution, or a guess that Newton corrects at fixed parameter) in the direction of
+/// increasing (or decreasing) y[parameter] until it passes `parameter_end`.
+struct ContinuationProblem {
+  SystemFunction f;
+  Eigen::Index parameter = 0;   ///< index of the continuation parameter in y
+  Eigen::VectorXd scale;        ///< typical magnitude of each unknown (> 0)
+  double residual_scale = 1.0;  ///< typical magnitude of R (> 0)
+  double parameter_end = 0.0;
+};
+
+struct ContinuationResult {
+  std::vector<Eigen::VectorXd> points;  ///< converged solutions in order along the curve
+  std::size_t newton_iterations = 0;
+  std::size_t rejected_steps = 0;
+  std::size_t turning_points = 0;  ///< sign changes of d parameter / d s
+  bool complete = false;           ///< the parameter end was reached
+  std::string stop_reason;         ///< why it stopped (for messages and summaries)
+};
+
+/// Progress callback: fraction of the parameter range covered, in [0, 1].
+using ProgressFunction = std::function<void(double)>;
+
+/// Pseudo-arclength continuation. Never throws for a stall: it returns what it has with
+/// complete = false and the reason; throws NumericalError if y0 cannot be corrected.
+[[nodiscard]] ContinuationResult continue_curve(const ContinuationProblem& problem,
+                                                const Eigen::VectorXd& y0,
+                                                const ContinuationOptions& options,
+                                                const ProgressFunction& progress = {});
+
+}  // namespace asperity::vibration

@@ -1,0 +1,204 @@
+#pragma once
+// Nonlinear joint elements of the vibration layer. An element acts on the relative
+// displacement u = T x of the structure (one row of T per element direction) and
+// returns its force to the structure as T^T f.
+//
+// For harmonic balance (AFT) an element gives its steady periodic response to sampled
+// displacements (and velocities) over one period: the force at each sample, its local
+// tangent, and, for hysteretic elements, how the force depends on the displacement at
+// earlier samples (the reversal or last-slip points). Hysteretic elements start from
+// their virgin state at u = 0 (the assembled joint at rest), move to the first sample,
+// run the period twice and keep the second pass: under Masing's rules (and for a
+// slider) the second pass is periodic once the first has visited the extremes.
+// Reversals are taken at the samples where the direction of motion changes (the AFT
+// sampling of the path), so every force is a function of the sample values alone and
+// its derivative with respect to them is exact.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "asperity/dynamics/case.hpp"
+#include "asperity/dynamics/friction_model.hpp"
+#include "asperity/hysteresis/backbone.hpp"
+
+namespace asperity::vibration {
+
+/// d f_d(t_i) / d u_{d_src}(t_j): a force's dependence on the displacement at another
+/// sample (j may equal i only through the history of a reversal, never for the local
+/// tangent, which is in PeriodicResponse::du).
+struct HistoryTerm {
+  std::uint32_t i = 0;      ///< sample of the force
+  std::uint32_t j = 0;      ///< sample of the displacement
+  std::uint16_t d = 0;      ///< direction of the force
+  std::uint16_t d_src = 0;  ///< direction of the displacement
+  double value = 0.0;
+};
+
+/// The steady periodic response of an element over one period of N samples.
+struct PeriodicResponse {
+  Eigen::MatrixXd f;   ///< N x directions: force
+  Eigen::MatrixXd du;  ///< N x directions^2: d f_d(t_i)/d u_e(t_i) in column d + D e
+  Eigen::MatrixXd dv;  ///< N x directions^2: d f_d(t_i)/d v_e(t_i); empty unless velocity dependent
+  std::vector<HistoryTerm> history;
+};
+
+/// A joint element.
+class Element {
+ public:
+  virtual ~Element() = default;
+  Element() = default;
+  Element(const Element&) = default;
+  Element& operator=(const Element&) = default;
+
+  /// "rough_flat", "jenkins", "iwan4", "coulomb", "elastic_dry_friction_2d".
+  [[nodiscard]] virtual std::string type() const = 0;
+  /// Number of directions (rows of T).
+  [[nodiscard]] virtual std::size_t directions() const { return 1; }
+  /// True if the force depends on the velocity (regularized Coulomb).
+  [[nodiscard]] virtual bool velocity_dependent() const { return false; }
+  /// Steady response to the samples u, v (N x directions each) of one period; the
+  /// tangents (du, dv, history) only when `tangent`. Throws InvalidInput for a
+  /// non-finite sample.
+  virtual void periodic_response(const Eigen::MatrixXd& u, const Eigen::MatrixXd& v, bool tangent,
+                                 PeriodicResponse& out) const = 0;
+  /// Force at u reached from the virgin state by a monotone (proportional) push, and its
+  /// tangent d f/d u (directions x directions): the static response of a quasi-static
+  /// modal analysis. Velocity-dependent elements give zero.
+  virtual void static_response(const Eigen::VectorXd& u, Eigen::VectorXd& f,
+                               Eigen::MatrixXd& K) const = 0;
+  /// Tangent stiffness at rest (u = 0, virgin): the stuck joint of the linear modes.
+  [[nodiscard]] virtual Eigen::MatrixXd initial_stiffness() const = 0;
+  /// Largest force the element can carry along direction 0 (its slip limit; +inf when
+  /// unbounded): for messages and scales.
+  [[nodiscard]] virtual double slip_force() const = 0;
+  /// The parameters in SI, for summaries.
+  [[nodiscard]] virtual dynamics::SummaryObject describe() const = 0;
+};
+
+/// Any Masing backbone (SI: N against m) as an element: the rough flat at a preload,
+/// Segalman's four-parameter Iwan model (exactly Masing), a Jenkins or a
+/// Cattaneo-Mindlin backbone. Branch rules as hysteresis::Hysteresis (loop memory);
+/// the tangent after a reversal at (x_r, Q_r) is Q_l'(|x - x_r|/2) at x and its negative
+/// at x_r, plus the dependence of Q_r on earlier samples.
+class MasingElement final : public Element {
+ public:
+  MasingElement(std::shared_ptr<const hysteresis::Backbone> backbone, std::string type,
+                dynamics::SummaryObject parameters);
+  [[nodiscard]] std::string type() const override { return type_; }
+  void periodic_response(const Eigen::MatrixXd& u, const Eigen::MatrixXd& v, bool tangent,
+                         PeriodicResponse& out) const override;
+  void static_response(const Eigen::VectorXd& u, Eigen::VectorXd& f,
+                       Eigen::MatrixXd& K) const override;
+  [[nodiscard]] Eigen::MatrixXd initial_stiffness() const override;
+  [[nodiscard]] double slip_force() const override { return backbone_->limit(); }
+  [[nodiscard]] dynamics::SummaryObject describe() const override { return parameters_; }
+  [[nodiscard]] const hysteresis::Backbone& backbone() const { return *backbone_; }
+  [[nodiscard]] std::shared_ptr<const hysteresis::Backbone> backbone_ptr() const {
+    return backbone_;
+  }
+
+ private:
+  std::shared_ptr<const hysteresis::Backbone> backbone_;
+  std::string type_;
+  dynamics::SummaryObject parameters_;
+};
+
+/// Jenkins element: spring k_t in series with a Coulomb slider of slip force F_s.
+struct JenkinsParameters {
+  double k_t = 0.0;  ///< [N/m], > 0
+  double F_s = 0.0;  ///< [N], > 0
+  void validate() const;
+};
+class JenkinsElement final : public Element {
+ public:
+  explicit JenkinsElement(JenkinsParameters p);
+  [[nodiscard]] std::string type() const override { return "jenkins"; }
+  void periodic_response(const Eigen::MatrixXd& u, const Eigen::MatrixXd& v, bool tangent,
+                         PeriodicResponse& out) const override;
+  void static_response(const Eigen::VectorXd& u, Eigen::VectorXd& f,
+                       Eigen::MatrixXd& K) const override;
+  [[nodiscard]] Eigen::MatrixXd initial_stiffness() const override;
+  [[nodiscard]] double slip_force() const override { return p_.F_s; }
+  [[nodiscard]] dynamics::SummaryObject describe() const override;
+  [[nodiscard]] const JenkinsParameters& parameters() const { return p_; }
+
+ private:
+  JenkinsParameters p_;
+};
+
+/// Regularized Coulomb friction, Eq. 7.3 in SI: f = F_s tanh(k_tan v).
+struct CoulombParameters {
+  double F_s = 0.0;    ///< [N], > 0
+  double k_tan = 0.0;  ///< [s/m], > 0: the slope at v = 0 over F_s
+  void validate() const;
+};
+class CoulombElement final : public Element {
+ public:
+  explicit CoulombElement(CoulombParameters p);
+  [[nodiscard]] std::string type() const override { return "coulomb"; }
+  [[nodiscard]] bool velocity_dependent() const override { return true; }
+  void periodic_response(const Eigen::MatrixXd& u, const Eigen::MatrixXd& v, bool tangent,
+                         PeriodicResponse& out) const override;
+  void static_response(const Eigen::VectorXd& u, Eigen::VectorXd& f,
+                       Eigen::MatrixXd& K) const override;
+  [[nodiscard]] Eigen::MatrixXd initial_stiffness() const override;
+  [[nodiscard]] double slip_force() const override { return p_.F_s; }
+  [[nodiscard]] dynamics::SummaryObject describe() const override;
+
+ private:
+  CoulombParameters p_;
+};
+
+/// Elastic dry friction in two directions (tangential 0, normal 1): a normal contact
+/// force f_n = max(N0 + k_n u_n, 0) (u_n > 0 presses the surfaces together; f_n = 0 is
+/// separation) and a tangential spring k_t in series with a slider that slips at
+/// mu f_n. In separation the tangential force is zero and the slider follows. The
+/// preload N0 is carried by the bolt (outside the model): the structure receives the
+/// normal force's change f_n - N0, so that u = 0 is the equilibrium at rest; with N0 = 0
+/// (the default) the structure receives f_n itself.
+struct ElasticDryFriction2dParameters {
+  double k_t = 0.0;  ///< [N/m], > 0
+  double k_n = 0.0;  ///< [N/m], > 0
+  double mu = 0.0;   ///< > 0
+  double N0 = 0.0;   ///< [N], >= 0: normal force at u_n = 0 (a preload the structure carries)
+  void validate() const;
+};
+class ElasticDryFriction2dElement final : public Element {
+ public:
+  explicit ElasticDryFriction2dElement(ElasticDryFriction2dParameters p);
+  [[nodiscard]] std::string type() const override { return "elastic_dry_friction_2d"; }
+  [[nodiscard]] std::size_t directions() const override { return 2; }
+  void periodic_response(const Eigen::MatrixXd& u, const Eigen::MatrixXd& v, bool tangent,
+                         PeriodicResponse& out) const override;
+  void static_response(const Eigen::VectorXd& u, Eigen::VectorXd& f,
+                       Eigen::MatrixXd& K) const override;
+  [[nodiscard]] Eigen::MatrixXd initial_stiffness() const override;
+  [[nodiscard]] double slip_force() const override;
+  [[nodiscard]] dynamics::SummaryObject describe() const override;
+
+ private:
+  ElasticDryFriction2dParameters p_;
+};
+
+/// An element placed in a structure: u = T x (T: directions x dofs).
+struct PlacedElement {
+  std::shared_ptr<const Element> element;
+  Eigen::MatrixXd T;
+  std::string name;  ///< for messages and summaries ("element 1" when not given)
+};
+
+/// Factories with the elements' usual parameters.
+[[nodiscard]] std::shared_ptr<const Element> make_jenkins_element(double k_t, double F_s);
+[[nodiscard]] std::shared_ptr<const Element> make_iwan4_element(
+    const dynamics::SegalmanIwanParameters& p);
+[[nodiscard]] std::shared_ptr<const Element> make_coulomb_element(double F_s, double k_tan);
+[[nodiscard]] std::shared_ptr<const Element> make_elastic_dry_friction_2d_element(
+    const ElasticDryFriction2dParameters& p);
+/// The rough flat (or any SI backbone) as an element; `parameters` describe it.
+[[nodiscard]] std::shared_ptr<const Element> make_rough_flat_element(
+    std::shared_ptr<const hysteresis::Backbone> backbone_si, dynamics::SummaryObject parameters);
+
+}  // namespace asperity::vibration

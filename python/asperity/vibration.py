@@ -1,0 +1,569 @@
+"""Vibration of jointed structures: harmonic balance, nonlinear modes, frequency response.
+
+The Python face of the C++ layer ``vibration/`` (docs/vibration.md); every number comes
+from the same C++ code as ``asperity vibration``. SI units throughout.
+
+* :class:`Structure` - mass, stiffness and damping matrices from numpy arrays (damping as
+  a matrix or Rayleigh ``alpha M + beta K``) or MatrixMarket files.
+* Joint elements, each placed by ``T`` (one row per element direction, one column per
+  DOF; it acts on ``u = T x`` and returns ``T^T f``): :class:`Jenkins`, :class:`Iwan4`,
+  :class:`Coulomb`, :class:`ElasticDryFriction2d`, :class:`RoughFlat` (any SI backbone
+  under Masing's rules: from :func:`asperity.epb_backbone`, a joint case file or
+  :func:`asperity.predict`).
+* :func:`run_case` / :func:`run_case_text` - a case file of ``asperity vibration``
+  (the same parser and run function as the command): the summary (summary.json as a
+  dict) and each analysis's arrays; :meth:`HarmonicBalance.from_case` - a case file's
+  system, for residuals and analyses of one's own.
+* :class:`HarmonicBalance` - the AFT system (harmonics kept, ``N_t`` samples per
+  period): residual and analytic Jacobian as numpy arrays, the force vector from cosine
+  and sine parts, and the analyses :meth:`HarmonicBalance.nonlinear_mode` (EPMC, Krack
+  2015), :meth:`HarmonicBalance.frequency_response` and
+  :meth:`HarmonicBalance.quasi_static_mode` (also as module functions of the same names).
+
+The unknowns ``U`` stack per DOF the coefficients ``[a_0, a_h1, b_h1, a_h2, b_h2, ...]``
+of ``x(t) = a_0 + sum_h a_h cos(h omega t) + b_h sin(h omega t)``: ``U[dof * n_c + c]``;
+:meth:`HarmonicBalance.index` finds one. Results are :class:`Result` objects (dicts whose
+keys are also attributes) of numpy arrays; warnings of the solvers (a continuation that
+stopped early, negative damping) are also issued as :class:`RuntimeWarning`.
+:func:`plot_mode` and :func:`plot_response` draw them with matplotlib.
+"""
+from __future__ import annotations
+
+import math
+import os
+import warnings
+from typing import Iterable, Mapping, Sequence
+
+import numpy as np
+
+from . import _core
+
+_v = _core._vibration
+
+__all__ = [
+    "Structure", "Element", "Jenkins", "Iwan4", "Coulomb", "ElasticDryFriction2d",
+    "RoughFlat", "HarmonicBalance", "Result", "nonlinear_mode", "frequency_response",
+    "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
+    "run_case_text", "plot_mode", "plot_response",
+]
+
+
+class Result(dict):
+    """A dict of named numpy arrays whose keys are also attributes (``r.omega``)."""
+
+    def __getattr__(self, name):
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+    def __dir__(self):
+        return list(self.keys()) + list(super().__dir__())
+
+
+def _issue(result: Mapping, source: str):
+    for w in result.get("warnings", []):
+        warnings.warn(f"{source}: {w}", RuntimeWarning, stacklevel=3)
+
+
+def _matrix(a, name: str) -> np.ndarray:
+    m = np.array(a, dtype=float, ndmin=2, copy=True)
+    if m.ndim != 2:
+        raise _core.InvalidInput(f"{name} must be a 2-D array (got {m.ndim} dimensions)")
+    return np.ascontiguousarray(m)
+
+
+def read_matrix_market(path: str | os.PathLike) -> np.ndarray:
+    """A MatrixMarket file (coordinate or array; real or integer; general or symmetric)
+    as a dense numpy array."""
+    return np.asarray(_v.read_matrix_market(os.fspath(path)))
+
+
+def rayleigh(M, K, alpha: float = 0.0, beta: float = 0.0) -> np.ndarray:
+    """Rayleigh damping ``C = alpha M + beta K`` (alpha [1/s], beta [s], both >= 0)."""
+    return np.asarray(_v.rayleigh(_matrix(M, "M"), _matrix(K, "K"), alpha, beta))
+
+
+def linear_modes(K, M):
+    """``(omega [rad/s] ascending, shapes)`` of (K, M): shapes are columns, mass-normalized
+    (``phi^T M phi = 1``), each with its largest-magnitude entry positive."""
+    w, s = _v.linear_modes(_matrix(K, "K"), _matrix(M, "M"))
+    return np.asarray(w), np.asarray(s)
+
+
+class Structure:
+    """``M x'' + C x' + K x = f(t)`` with dense matrices of any size (SI).
+
+    ``Structure(M, K, C=None, rayleigh=None)``: ``C`` a matrix, or ``rayleigh=(alpha, beta)``
+    (or a dict with those keys) for ``C = alpha M + beta K``; neither means no damping.
+    Raises :class:`asperity.InvalidInput` for sizes that differ, non-finite entries, M or K
+    not symmetric, or M not positive definite.
+    """
+
+    def __init__(self, M, K, C=None, *, rayleigh=None):
+        M = _matrix(M, "M")
+        K = _matrix(K, "K")
+        if C is not None and rayleigh is not None:
+            raise _core.InvalidInput("give the damping as C or as rayleigh, not both")
+        if rayleigh is not None:
+            if isinstance(rayleigh, Mapping):
+                alpha, beta = rayleigh.get("alpha", 0.0), rayleigh.get("beta", 0.0)
+            else:
+                alpha, beta = rayleigh
+            if M.shape != K.shape:
+                raise _core.InvalidInput(f"M is {M.shape} but K is {K.shape}: sizes differ")
+            C = _v.rayleigh(M, K, float(alpha), float(beta))
+        C = np.zeros((0, 0)) if C is None else _matrix(C, "C")
+        self._core = _v.Structure(M, K, C)
+
+    @classmethod
+    def from_matrix_market(cls, mass, stiffness, damping=None, *, rayleigh=None) -> "Structure":
+        """From MatrixMarket files (``damping`` a file too, or ``rayleigh=(alpha, beta)``)."""
+        C = read_matrix_market(damping) if damping is not None else None
+        return cls(read_matrix_market(mass), read_matrix_market(stiffness), C, rayleigh=rayleigh)
+
+    @property
+    def M(self) -> np.ndarray:
+        return np.array(self._core.M)
+
+    @property
+    def K(self) -> np.ndarray:
+        return np.array(self._core.K)
+
+    @property
+    def C(self) -> np.ndarray:
+        return np.array(self._core.C)
+
+    @property
+    def dofs(self) -> int:
+        return int(self._core.dofs)
+
+    def linear_modes(self):
+        """``(omega, shapes)`` of the structure without its elements (see
+        :func:`linear_modes`)."""
+        return linear_modes(self.K, self.M)
+
+    def __repr__(self) -> str:
+        return f"Structure(dofs={self.dofs})"
+
+
+class Element:
+    """A joint element placed in a structure by ``T`` (directions x DOFs; a 1-D array is
+    one row). ``core`` is the C++ element: ``core.periodic_response(u, v)`` gives its
+    steady response to sampled displacements, ``core.static_response(u)`` its monotone
+    push, ``core.describe()`` its parameters."""
+
+    def __init__(self, core, T, name: str | None = None):
+        self.core = core
+        self.T = _matrix(T, "T")
+        if self.T.shape[0] != core.directions:
+            raise _core.InvalidInput(
+                f"T has {self.T.shape[0]} rows: a {core.type} element has {core.directions} "
+                "direction(s), one row each")
+        self.name = name
+
+    @property
+    def type(self) -> str:
+        return self.core.type
+
+    def describe(self) -> dict:
+        return self.core.describe()
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self.core.describe()}, T={self.T.tolist()})"
+
+
+class Jenkins(Element):
+    """Spring ``k_t`` [N/m] in series with a Coulomb slider of slip force ``F_s`` [N]."""
+
+    def __init__(self, k_t: float, F_s: float, T=1.0, name: str | None = None):
+        super().__init__(_v.jenkins(k_t, F_s), T, name)
+
+
+class Iwan4(Element):
+    """Segalman's four-parameter Iwan model (SI): ``F_S`` [N], ``K_T`` [N/m], ``chi`` in
+    (-1, 0], ``beta`` >= 0; exactly Masing."""
+
+    def __init__(self, F_S: float, K_T: float, chi: float, beta: float, T=1.0,
+                 name: str | None = None):
+        super().__init__(_v.iwan4(F_S, K_T, chi, beta), T, name)
+
+
+class Coulomb(Element):
+    """Regularized Coulomb friction ``f = F_s tanh(k_tan v)`` (Eq. 7.3 in SI): ``F_s`` [N],
+    ``k_tan`` [s/m]."""
+
+    def __init__(self, F_s: float, k_tan: float, T=1.0, name: str | None = None):
+        super().__init__(_v.coulomb(F_s, k_tan), T, name)
+
+
+class ElasticDryFriction2d(Element):
+    """Tangential Jenkins slider (row 0 of ``T``) that slips at ``mu f_n``, with a unilateral
+    normal spring ``f_n = max(N0 + k_n u_n, 0)`` (row 1; ``u_n > 0`` presses): separation
+    and normal-tangential coupling. The structure receives ``f_n - N0``."""
+
+    def __init__(self, k_t: float, k_n: float, mu: float, T, N0: float = 0.0,
+                 name: str | None = None):
+        super().__init__(_v.elastic_dry_friction_2d(k_t, k_n, mu, N0), T, name)
+
+
+class RoughFlat(Element):
+    """The rough flat (or any SI backbone ``Q [N]`` against ``x [m]``) under Masing's rules.
+
+    ``RoughFlat(backbone, T)`` takes a backbone object (:func:`asperity.epb_backbone`,
+    ``asperity.predict(...)["loads"][i]["backbone"]``, a :class:`asperity.JenkinsBackbone`
+    ...); :meth:`from_contact`, :meth:`from_normalized` and :meth:`from_joint_case` build
+    one.
+    """
+
+    def __init__(self, backbone, T=1.0, name: str | None = None,
+                 parameters: Mapping | None = None, type: str = "rough_flat"):
+        super().__init__(_v.masing(backbone, type, dict(parameters or {})), T, name)
+        self.backbone = backbone
+
+    @classmethod
+    def from_contact(cls, contact, T=1.0, name: str | None = None) -> "RoughFlat":
+        """From an :class:`asperity.EpbContact` (Table 7.2's properties, A0 and P set)."""
+        contact.validate()
+        params = {"A0": contact.A0, "P": contact.P, "model": contact.model,
+                  "sigma": contact.sigma, "E_star": contact.E_star}
+        return cls(_core.epb_backbone(contact), T, name, params)
+
+    @classmethod
+    def from_normalized(cls, flat, P_star: float, sigma: float, force_scale: float, T=1.0,
+                        name: str | None = None) -> "RoughFlat":
+        """From a normalized :class:`asperity.RoughFlat` at the load ``P_star = P/(K H A0)``
+        and its SI scales ``sigma`` [m] (lengths) and ``force_scale = K H A0`` [N]: the
+        backbone at the separation of ``P_star`` (Eq. 4.4 inverted), as
+        ``backbone = "normalized"`` of a case file."""
+        for field, v in (("P_star", P_star), ("sigma", sigma), ("force_scale", force_scale)):
+            if not (math.isfinite(v) and v > 0):
+                raise _core.InvalidInput(f"{field} = {v}: must be finite and > 0")
+        d_star = flat.separation_star(P_star)
+        bb = _core.ScaledBackbone(flat.backbone(d_star), sigma, force_scale)
+        params = {"backbone": "normalized", "beta": flat.beta, "psi": flat.psi,
+                  "P_star": P_star, "d_star": d_star, "sigma_m": sigma,
+                  "force_scale_N": force_scale}
+        return cls(bb, T, name, params)
+
+    @classmethod
+    def from_joint_case(cls, path: str | os.PathLike, T=1.0, load: int = 0,
+                        name: str | None = None) -> "RoughFlat":
+        """From a joint case file (docs/joints.md) at its load case ``load`` (0-based)."""
+        p = _core.predict(os.fspath(path))
+        loads = p["loads"]
+        if not 0 <= load < len(loads):
+            raise _core.InvalidInput(
+                f"load = {load}: the case has load cases 0 .. {len(loads) - 1}")
+        L = loads[load]
+        params = {"case": os.fspath(path), "preload": L["preload"], "Q_max": L["Q_max"],
+                  "stiffness": L["stiffness"]}
+        return cls(L["backbone"], T, name, params)
+
+
+class HarmonicBalance:
+    """The harmonic-balance (AFT) system of a structure with joint elements.
+
+    ``HarmonicBalance(structure, elements, harmonics=None, max_harmonic=None,
+    time_points=256)``: ``harmonics`` a list of the harmonics kept (ascending, holding 1),
+    or ``max_harmonic`` H for ``0..H`` (the default is 0..3).
+    """
+
+    def __init__(self, structure: Structure, elements: Sequence[Element] = (),
+                 harmonics: Iterable[int] | None = None, max_harmonic: int | None = None,
+                 time_points: int = 256):
+        if harmonics is not None and max_harmonic is not None:
+            raise _core.InvalidInput("give harmonics or max_harmonic, not both")
+        if max_harmonic is not None:
+            if int(max_harmonic) < 1:
+                raise _core.InvalidInput(f"max_harmonic = {max_harmonic}: must be >= 1")
+            harmonics = range(int(max_harmonic) + 1)
+        harmonics = [0, 1, 2, 3] if harmonics is None else [int(h) for h in harmonics]
+        if isinstance(elements, Element):
+            elements = [elements]
+        elements = list(elements)
+        for k, e in enumerate(elements):
+            if not isinstance(e, Element):
+                raise _core.InvalidInput(f"elements[{k}] is a {type(e).__name__}, not an Element")
+        names = [e.name or f"element {k + 1}" for k, e in enumerate(elements)]
+        self.structure = structure
+        self.elements = elements
+        self._core = _v.HarmonicBalance(structure._core, [e.core for e in elements],
+                                        [e.T for e in elements], names, harmonics,
+                                        int(time_points))
+
+    @classmethod
+    def from_case(cls, path: str | os.PathLike) -> "HarmonicBalance":
+        """The structure, placed elements and harmonic-balance settings of a vibration case
+        file (its analyses are not run; ``output_dofs`` of the case in ``.output_dofs``)."""
+        d = _v.case_system(os.fspath(path))
+        return cls._from_system(d)
+
+    @classmethod
+    def _from_system(cls, d) -> "HarmonicBalance":
+        s = Structure.__new__(Structure)
+        s._core = d["structure"]
+        elements = []
+        for core, T, name in d["elements"]:
+            e = Element.__new__(Element)
+            e.core, e.T, e.name = core, np.asarray(T), name
+            elements.append(e)
+        hb = cls(s, elements, harmonics=d["harmonics"], time_points=d["time_points"])
+        hb.output_dofs = list(d["output_dofs"])
+        return hb
+
+    # -- layout ---------------------------------------------------------------------------
+    @property
+    def dofs(self) -> int:
+        return int(self._core.dofs)
+
+    @property
+    def unknowns(self) -> int:
+        return int(self._core.unknowns)
+
+    @property
+    def harmonics(self) -> list:
+        return list(self._core.harmonics)
+
+    @property
+    def coefficients(self) -> int:
+        """n_c, coefficients per DOF."""
+        return int(self._core.coefficients)
+
+    @property
+    def time_points(self) -> int:
+        return int(self._core.time_points)
+
+    def index(self, dof: int, h: int, kind: int = 0) -> int:
+        """Index in ``U`` of harmonic ``h`` of ``dof``: cosine (``kind`` 0) or sine (1)."""
+        return int(self._core.index(dof, h, kind))
+
+    def force(self, cos=None, sin=None) -> np.ndarray:
+        """The excitation vector in the layout of ``U`` from its cosine and sine parts.
+
+        Each of ``cos``/``sin`` is a dict ``{h: vector over DOFs}`` or an array with one row
+        per harmonic in :attr:`harmonics` order and one column per DOF (as ``force_cos`` of
+        a case file; the sine row of harmonic 0 must be zero)."""
+        F = np.zeros(self.unknowns)
+        for part, kind in ((cos, 0), (sin, 1)):
+            if part is None:
+                continue
+            if isinstance(part, Mapping):
+                items = part.items()
+            else:
+                rows = np.array(part, dtype=float, ndmin=2)
+                if rows.shape != (len(self.harmonics), self.dofs):
+                    raise _core.InvalidInput(
+                        f"force_{'cos' if kind == 0 else 'sin'} is {rows.shape}: expected "
+                        f"({len(self.harmonics)}, {self.dofs}) (harmonics x DOFs)")
+                items = zip(self.harmonics, rows)
+            for h, vec in items:
+                vec = np.asarray(vec, dtype=float).reshape(-1)
+                if vec.size != self.dofs:
+                    raise _core.InvalidInput(
+                        f"force of harmonic {h} has {vec.size} entries: expected {self.dofs}")
+                if h == 0 and kind == 1:
+                    if np.any(vec != 0.0):
+                        raise _core.InvalidInput("harmonic 0 has no sine part")
+                    continue
+                for dof in range(self.dofs):
+                    F[self.index(dof, int(h), kind)] += vec[dof]
+        return F
+
+    def coefficients_of(self, U, dof: int) -> np.ndarray:
+        """The n_c coefficients of ``dof`` in ``U``."""
+        U = np.asarray(U, dtype=float)
+        n = self.coefficients
+        return U[dof * n:(dof + 1) * n].copy()
+
+    # -- evaluation -------------------------------------------------------------------------
+    def residual(self, U, omega: float, F_ex=None, jacobian: bool = True):
+        """``R = A(omega) U + F_nl(U, omega) - F_ex``; with ``jacobian`` returns
+        ``(R, dR_dU, dR_domega)`` (analytic), else ``R``."""
+        U = np.ascontiguousarray(U, dtype=float)
+        F = np.zeros(0) if F_ex is None else np.ascontiguousarray(F_ex, dtype=float)
+        d = self._core.residual(U, float(omega), F, bool(jacobian))
+        if not jacobian:
+            return np.asarray(d["R"])
+        return np.asarray(d["R"]), np.asarray(d["dR_dU"]), np.asarray(d["dR_domega"])
+
+    def nonlinear_force(self, U, omega: float) -> np.ndarray:
+        """Coefficients of the elements' forces on the structure, ``sum_e T_e^T f_e``."""
+        return np.asarray(self._core.nonlinear_force(np.ascontiguousarray(U, dtype=float),
+                                                     float(omega)))
+
+    def dynamic_stiffness(self, omega: float) -> np.ndarray:
+        """``A(omega)`` (unknowns x unknowns) with the structure's damping."""
+        return np.asarray(self._core.dynamic_stiffness(float(omega)))
+
+    def stuck_stiffness(self) -> np.ndarray:
+        """``K`` plus every element's initial stiffness (the joints stuck)."""
+        return np.asarray(self._core.stuck_stiffness())
+
+    def time_history(self, U, dof: int, samples: int = 0) -> np.ndarray:
+        """``x_dof(t_i)`` over one period: ``N_t`` samples (or ``samples`` equally spaced),
+        ``t_i = i T / N``."""
+        return np.asarray(self._core.time_history(np.ascontiguousarray(U, dtype=float), dof,
+                                                  int(samples)))
+
+    def harmonic_amplitude(self, U, dof: int, h: int = 1) -> float:
+        """``sqrt(a_h^2 + b_h^2)`` of ``dof`` (``|a_0|`` for h = 0)."""
+        return float(self._core.harmonic_amplitude(np.ascontiguousarray(U, dtype=float), dof, h))
+
+    @property
+    def counters(self) -> dict:
+        """Residual and Jacobian evaluations so far."""
+        return dict(self._core.counters)
+
+    # -- analyses ---------------------------------------------------------------------------
+    def nonlinear_mode(self, mode: int = 1, log10_amplitude=(-6.0, -3.0),
+                       output_dofs: Sequence[int] = (), **continuation) -> Result:
+        """Nonlinear mode by EPMC (Krack 2015): unknowns ``[harmonics, omega, xi, log10 a]``,
+        damping ``C - xi M``; ``a`` the modal amplitude of the mass-normalized first
+        harmonic. Returns arrays ``log10_amplitude, amplitude, omega [rad/s],
+        frequency_hz, xi [1/s], damping_ratio (xi / 2 omega), output_amplitude (points x
+        outputs), harmonics (points x unknowns: U = a Psi)``, ``linear_omega``,
+        ``linear_damping_ratio``, ``continuation`` and ``warnings``. Keyword options of the
+        continuation: see :meth:`frequency_response`."""
+        lo, hi = log10_amplitude
+        r = Result(_v.nonlinear_mode(self._core, int(mode), float(lo), float(hi),
+                                     [int(d) for d in output_dofs], dict(continuation)))
+        _issue(r, "nonlinear_mode")
+        return r
+
+    def frequency_response(self, force, omega, force_scales: Sequence[float] = (1.0,),
+                           output_dofs: Sequence[int] = (), *, force_per_omega=None,
+                           force_per_omega2=None, **continuation) -> list:
+        """Forced response curves by continuation in ``omega = (from, to)`` [rad/s] for each
+        force scale; ``force`` in the layout of ``U`` (see :meth:`force`). The excitation
+        is ``force + omega force_per_omega + omega^2 force_per_omega2`` (the last two
+        optional: base excitation, e.g. ``y = Y sin(w t)`` through k and c gives
+        ``force = force(sin={1: k Y})`` and ``force_per_omega = force(cos={1: c Y})``).
+        One :class:`Result` per scale: ``force_scale, omega, output_amplitude (points x
+        outputs, first harmonic), harmonic_amplitude (per output: points x harmonics),
+        max_displacement (points x outputs), harmonics (points x unknowns), continuation,
+        warnings``.
+
+        Keyword options of the continuation (each optional; the analysis's own defaults
+        otherwise, as in a case file's ``continuation`` table): step, min_step, max_step
+        (arclength in scaled unknowns), max_points, target_iterations, max_angle [rad],
+        max_iterations, step_tolerance, residual_tolerance (Newton)."""
+        w0, w1 = omega
+
+        def vec(x):
+            return np.zeros(0) if x is None else np.ascontiguousarray(x, dtype=float)
+
+        curves = _v.frequency_response(self._core, vec(force), vec(force_per_omega),
+                                       vec(force_per_omega2), [float(s) for s in force_scales],
+                                       float(w0), float(w1), [int(d) for d in output_dofs],
+                                       dict(continuation))
+        out = []
+        for c in curves:
+            r = Result(c)
+            _issue(r, "frequency_response")
+            out.append(r)
+        return out
+
+    def quasi_static_mode(self, mode: int = 1, amplitude=(1e-7, 1e-4), points: int = 60) -> Result:
+        """Quasi-static modal estimate (static push along the stuck mode, Masing's rules):
+        arrays ``amplitude (modal, log-spaced), omega, frequency_hz, damping_ratio,
+        modal_force, dissipation [J]``, ``linear_omega``, ``newton_iterations``,
+        ``warnings``."""
+        a0, a1 = amplitude
+        r = Result(_v.quasi_static_mode(self._core, int(mode), float(a0), float(a1),
+                                        int(points)))
+        _issue(r, "quasi_static_mode")
+        return r
+
+    def __repr__(self) -> str:
+        return (f"HarmonicBalance(dofs={self.dofs}, elements={len(self.elements)}, "
+                f"harmonics={self.harmonics}, time_points={self.time_points})")
+
+
+def nonlinear_mode(hb: HarmonicBalance, mode: int = 1, log10_amplitude=(-6.0, -3.0),
+                   output_dofs: Sequence[int] = (), **continuation) -> Result:
+    """:meth:`HarmonicBalance.nonlinear_mode`."""
+    return hb.nonlinear_mode(mode, log10_amplitude, output_dofs, **continuation)
+
+
+def frequency_response(hb: HarmonicBalance, force, omega, force_scales=(1.0,),
+                       output_dofs: Sequence[int] = (), **kwargs) -> list:
+    """:meth:`HarmonicBalance.frequency_response`."""
+    return hb.frequency_response(force, omega, force_scales, output_dofs, **kwargs)
+
+
+def quasi_static_mode(hb: HarmonicBalance, mode: int = 1, amplitude=(1e-7, 1e-4),
+                      points: int = 60) -> Result:
+    """:meth:`HarmonicBalance.quasi_static_mode`."""
+    return hb.quasi_static_mode(mode, amplitude, points)
+
+
+def _case_result(d: dict, source: str) -> Result:
+    out = Result(summary=d["summary"], complete=d["complete"], stop_reason=d["stop_reason"],
+                 warnings=list(d["warnings"]))
+    out["nonlinear_mode"] = Result(d["nonlinear_mode"]) if d["nonlinear_mode"] is not None else None
+    out["frequency_response"] = [Result(c) for c in d["frequency_response"]]
+    out["quasi_static_mode"] = (Result(d["quasi_static_mode"])
+                                if d["quasi_static_mode"] is not None else None)
+    out["system"] = HarmonicBalance._from_system(d["system"])
+    _issue(out, source)
+    return out
+
+
+def run_case(path: str | os.PathLike) -> Result:
+    """Runs a vibration case file (docs/vibration.md) through the same C++ code as
+    ``asperity vibration``. Returns a :class:`Result` with ``summary`` (summary.json as a
+    dict), ``nonlinear_mode`` and ``quasi_static_mode`` (:class:`Result` of arrays or None),
+    ``frequency_response`` (one :class:`Result` per curve, ``table`` its
+    ``[[frequency_response]]`` index), ``complete`` (every continuation reached its end),
+    ``stop_reason``, ``warnings`` (also issued as RuntimeWarning) and ``system`` (the
+    case's :class:`HarmonicBalance`)."""
+    return _case_result(_v.run_case(os.fspath(path)), os.fspath(path))
+
+
+def run_case_text(text: str, base_dir: str | os.PathLike = ".") -> Result:
+    """:func:`run_case` for case-file text (``base_dir`` resolves .mtx files and a
+    [joint]'s profiles)."""
+    return _case_result(_v.run_case_text(text, os.fspath(base_dir)), "<string>")
+
+
+# -- matplotlib helpers ----------------------------------------------------------------------
+def _axes(ax, n=1):
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        _, ax = plt.subplots(n, 1, sharex=True, squeeze=False)
+        return list(ax[:, 0])
+    return list(ax) if n > 1 else [ax]
+
+
+def plot_mode(mode: Mapping, axes=None, label: str | None = None, quasi_static: Mapping | None = None):
+    """Frequency [Hz] and damping ratio against the modal amplitude (log axes) of a
+    :meth:`HarmonicBalance.nonlinear_mode` result, with a quasi-static estimate dashed if
+    given. ``axes``: two matplotlib axes (created when None). Returns the axes."""
+    ax_f, ax_z = _axes(axes, 2)
+    line, = ax_f.semilogx(mode["amplitude"], mode["frequency_hz"], label=label or "EPMC")
+    ax_z.loglog(mode["amplitude"], mode["damping_ratio"], color=line.get_color())
+    if quasi_static is not None:
+        ax_f.semilogx(quasi_static["amplitude"], quasi_static["frequency_hz"], "--",
+                      color=line.get_color(), label="quasi-static")
+        ax_z.loglog(quasi_static["amplitude"], quasi_static["damping_ratio"], "--",
+                    color=line.get_color())
+    ax_f.set_ylabel("frequency [Hz]")
+    ax_z.set_ylabel("damping ratio")
+    ax_z.set_xlabel("modal amplitude [sqrt(kg) m]")
+    ax_f.legend()
+    return ax_f, ax_z
+
+
+def plot_response(curves: Sequence[Mapping], output: int = 0, ax=None):
+    """First-harmonic amplitude of output ``output`` against frequency [rad/s] of
+    :meth:`HarmonicBalance.frequency_response` curves, one line per force scale."""
+    (ax,) = _axes(ax)
+    for c in curves:
+        ax.plot(c["omega"], c["output_amplitude"][:, output],
+                label=f"force x {c['force_scale']:g}")
+    ax.set_xlabel("omega [rad/s]")
+    ax.set_ylabel("amplitude [m]")
+    ax.legend()
+    return ax

@@ -1,0 +1,362 @@
+// asperity vibration: nonlinear modes (EPMC), forced response curves and the
+// quasi-static modal estimate of a structure with joint elements, by harmonic balance,
+// from a TOML case file (format: asperity/vibration/case.hpp, which also parses, runs
+// and summarises the case; this file writes the outputs and plots).
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <numbers>
+#include <optional>
+
+#include "asperity/core/error.hpp"
+#include "asperity/joint/output_dir.hpp"
+#include "asperity/vibration/case.hpp"
+#include "commands.hpp"
+#include "common.hpp"
+
+namespace asperity::cli {
+
+namespace {
+
+using namespace asperity::vibration;
+
+struct VibrationOptions {
+  std::string case_file;
+  std::optional<std::string> out_dir;
+  bool json = false;
+  bool no_plots = false;
+};
+
+Json to_json(const SummaryValue& v) {
+  return std::visit(
+      [](const auto& x) -> Json {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, std::nullptr_t>) {
+          return Json(nullptr);
+        } else if constexpr (std::is_same_v<T, SummaryArray>) {
+          Json a = Json::array();
+          for (const auto& e : x) a.push_back(to_json(e));
+          return a;
+        } else if constexpr (std::is_same_v<T, SummaryObject>) {
+          Json o = Json::object();
+          for (const auto& [k, e] : x) o[k] = to_json(e);
+          return o;
+        } else {
+          return Json(x);
+        }
+      },
+      v.data);
+}
+
+std::string num(double x) {
+  return fmt::format("{:.12g}", x);
+}
+
+// One CSV: a header line and one line per row, every value with 12 significant digits.
+std::string csv(const std::vector<std::string>& header,
+                const std::vector<std::vector<double>>& columns) {
+  std::string s;
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (i) s += ',';
+    s += header[i];
+  }
+  s += '\n';
+  const std::size_t n = columns.empty() ? 0 : columns.front().size();
+  for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      if (i) s += ',';
+      s += num(columns[i][k]);
+    }
+    s += '\n';
+  }
+  return s;
+}
+
+std::vector<double> vec(const Eigen::VectorXd& v) {
+  return {v.data(), v.data() + v.size()};
+}
+
+// Series of y against x keeping only points a log axis can show.
+Series positive_series(const std::string& title, const Eigen::VectorXd& x, const Eigen::VectorXd& y,
+                       bool logy, const std::string& style) {
+  Series s{.title = title, .style = style};
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    if (x(i) > 0.0 && std::isfinite(y(i)) && (!logy || y(i) > 0.0)) {
+      s.x.push_back(x(i));
+      s.y.push_back(y(i));
+    }
+  }
+  return s;
+}
+
+std::vector<std::string> write_files(const VibrationCase& c, const VibrationResult& r,
+                                     joint::StagedDirectory& dir, bool plots) {
+  std::vector<std::string> written;
+  auto write = [&](const std::string& name, const std::string& content) {
+    write_file_atomically(dir.file(name), content);
+    written.push_back(name);
+  };
+  write("summary.json", to_json(SummaryValue(r.summary)).dump(2) + "\n");
+  if (r.nonlinear_mode) {
+    const auto& m = *r.nonlinear_mode;
+    std::vector<std::string> h{"log10_amplitude", "amplitude",     "omega_rad_s",
+                               "frequency_hz",    "damping_ratio", "xi_per_s"};
+    std::vector<std::vector<double>> cols{vec(m.log10_amplitude), vec(m.amplitude),
+                                          vec(m.omega),           vec(m.frequency_hz),
+                                          vec(m.damping_ratio),   vec(m.xi)};
+    for (std::size_t o = 0; o < c.output_dofs.size(); ++o) {
+      h.push_back(fmt::format("amplitude_dof{}_m", c.output_dofs[o]));
+      cols.push_back(vec(m.output_amplitude.col(static_cast<Eigen::Index>(o))));
+    }
+    write("nonlinear_mode.csv", csv(h, cols));
+  }
+  const auto& harmonics = c.harmonic_balance.harmonics;
+  for (std::size_t k = 0; k < r.frequency_response.size(); ++k) {
+    const auto& cv = r.frequency_response[k];
+    std::vector<std::string> h{"omega_rad_s", "frequency_hz"};
+    std::vector<std::vector<double>> cols{vec(cv.omega), vec(cv.omega / (2.0 * std::numbers::pi))};
+    for (std::size_t o = 0; o < c.output_dofs.size(); ++o) {
+      const auto oi = static_cast<Eigen::Index>(o);
+      const auto d = c.output_dofs[o];
+      h.push_back(fmt::format("amplitude_dof{}_m", d));
+      cols.push_back(vec(cv.output_amplitude.col(oi)));
+      h.push_back(fmt::format("max_displacement_dof{}_m", d));
+      cols.push_back(vec(cv.max_displacement.col(oi)));
+      for (std::size_t hh = 0; hh < harmonics.size(); ++hh) {
+        h.push_back(fmt::format("harmonic{}_dof{}_m", harmonics[hh], d));
+        cols.push_back(vec(cv.harmonic_amplitude[o].col(static_cast<Eigen::Index>(hh))));
+      }
+    }
+    write(fmt::format("frequency_response_{}.csv", k + 1), csv(h, cols));
+  }
+  if (r.quasi_static_mode) {
+    const auto& q = *r.quasi_static_mode;
+    write("quasi_static_mode.csv",
+          csv({"amplitude", "omega_rad_s", "frequency_hz", "damping_ratio", "modal_force",
+               "dissipation_J"},
+              {vec(q.amplitude), vec(q.omega), vec(q.frequency_hz), vec(q.damping_ratio),
+               vec(q.modal_force), vec(q.dissipation)}));
+  }
+  if (!plots) return written;
+
+  // omega(a) and zeta(a): EPMC and the quasi-static estimate on one log amplitude axis.
+  if (r.nonlinear_mode || r.quasi_static_mode) {
+    PlotSpec f{.title = "Nonlinear mode: natural frequency against modal amplitude",
+               .xlabel = "modal amplitude a [sqrt(kg) m]",
+               .ylabel = "frequency [Hz]",
+               .logx = true};
+    PlotSpec z{.title = "Nonlinear mode: damping ratio against modal amplitude",
+               .xlabel = "modal amplitude a [sqrt(kg) m]",
+               .ylabel = "damping ratio zeta",
+               .logx = true};
+    bool zpos = true;
+    if (r.nonlinear_mode) zpos = zpos && (r.nonlinear_mode->damping_ratio.array() > 0.0).all();
+    if (r.quasi_static_mode)
+      zpos = zpos && (r.quasi_static_mode->damping_ratio.array() > 0.0).all();
+    z.logy = zpos;
+    if (r.nonlinear_mode) {
+      const auto& m = *r.nonlinear_mode;
+      f.series.push_back(
+          positive_series("EPMC (harmonic balance)", m.amplitude, m.frequency_hz, false, "lines"));
+      z.series.push_back(
+          positive_series("EPMC (harmonic balance)", m.amplitude, m.damping_ratio, zpos, "lines"));
+    }
+    if (r.quasi_static_mode) {
+      const auto& q = *r.quasi_static_mode;
+      f.series.push_back(positive_series("quasi-static (Masing)", q.amplitude, q.frequency_hz,
+                                         false, "linespoints pt 6 ps 0.7 dt 2"));
+      z.series.push_back(positive_series("quasi-static (Masing)", q.amplitude, q.damping_ratio,
+                                         zpos, "linespoints pt 6 ps 0.7 dt 2"));
+    }
+    plot_png(dir.file("modal_frequency.png"), f);
+    written.push_back("modal_frequency.png");
+    plot_png(dir.file("modal_damping.png"), z);
+    written.push_back("modal_damping.png");
+  }
+  if (!r.frequency_response.empty()) {
+    for (std::size_t o = 0; o < c.output_dofs.size(); ++o) {
+      PlotSpec p{.title = fmt::format("Forced response of DOF {}: first-harmonic amplitude",
+                                      c.output_dofs[o]),
+                 .xlabel = "excitation frequency [Hz]",
+                 .ylabel = "amplitude [m]",
+                 .logy = true};
+      for (std::size_t k = 0; k < r.frequency_response.size(); ++k) {
+        const auto& cv = r.frequency_response[k];
+        Series s{.title = fmt::format("curve {} (table {}, force scale {:.4g})", k + 1,
+                                      r.frequency_response_table[k] + 1, cv.force_scale),
+                 .style = "lines"};
+        for (Eigen::Index i = 0; i < cv.omega.size(); ++i) {
+          const double y = cv.output_amplitude(i, static_cast<Eigen::Index>(o));
+          if (!(y > 0.0)) continue;  // a log axis: a DOF at rest has no point to draw
+          s.x.push_back(cv.omega(i) / (2.0 * std::numbers::pi));
+          s.y.push_back(y);
+        }
+        p.series.push_back(std::move(s));
+      }
+      const std::string name = c.output_dofs.size() == 1
+                                   ? std::string("frequency_response.png")
+                                   : fmt::format("frequency_response_dof{}.png", c.output_dofs[o]);
+      plot_png(dir.file(name), p);
+      written.push_back(name);
+    }
+  }
+  return written;
+}
+
+std::string text_summary(const VibrationCase& c, const VibrationResult& r) {
+  std::string out;
+  std::string types;
+  for (const auto& e : c.elements) {
+    if (!types.empty()) types += ", ";
+    types += e.element->type();
+  }
+  std::string hs;
+  for (int h : c.harmonic_balance.harmonics) {
+    if (!hs.empty()) hs += ',';
+    hs += std::to_string(h);
+  }
+  out += fmt::format("{}: {} DOF(s), {} element(s){}, harmonics {}, {} time points\n", c.source,
+                     c.structure.dofs(), c.elements.size(), types.empty() ? "" : " (" + types + ")",
+                     hs, c.harmonic_balance.time_points);
+  if (r.nonlinear_mode) {
+    const auto& m = *r.nonlinear_mode;
+    const auto np = m.amplitude.size();
+    if (np > 0) {
+      out += fmt::format(
+          "nonlinear mode {}: {} points, a = {:.4g} .. {:.4g}: frequency {:.6g} .. {:.6g} Hz "
+          "(linear {:.6g} Hz), damping ratio {:.4g} .. {:.4g} (max {:.4g})\n",
+          c.nonlinear_mode->mode, np, m.amplitude(0), m.amplitude(np - 1), m.frequency_hz(0),
+          m.frequency_hz(np - 1), m.linear_omega / (2.0 * std::numbers::pi), m.damping_ratio(0),
+          m.damping_ratio(np - 1), m.damping_ratio.maxCoeff());
+    }
+  }
+  for (std::size_t k = 0; k < r.frequency_response.size(); ++k) {
+    const auto& cv = r.frequency_response[k];
+    if (cv.omega.size() == 0 || c.output_dofs.empty()) continue;
+    Eigen::Index i = 0;
+    const double peak = cv.output_amplitude.col(0).maxCoeff(&i);
+    out += fmt::format(
+        "frequency response {} (force scale {:.4g}): {} points, peak amplitude of DOF {} {:.6g} m "
+        "at {:.6g} Hz\n",
+        k + 1, cv.force_scale, cv.omega.size(), c.output_dofs[0], peak,
+        cv.omega(i) / (2.0 * std::numbers::pi));
+  }
+  if (r.quasi_static_mode) {
+    const auto& q = *r.quasi_static_mode;
+    const auto np = q.amplitude.size();
+    out += fmt::format(
+        "quasi-static mode {}: {} points, frequency {:.6g} .. {:.6g} Hz, damping ratio {:.4g} .. "
+        "{:.4g}\n",
+        c.quasi_static_mode->mode, np, q.frequency_hz(0), q.frequency_hz(np - 1),
+        q.damping_ratio(0), q.damping_ratio(np - 1));
+  }
+  const SummaryValue s(r.summary);
+  const auto* sv = s.find("solver");
+  auto geti = [&](const char* k) { return std::get<std::int64_t>(sv->find(k)->data); };
+  out += fmt::format(
+      "solver: {} points, {} Newton iterations, {} residual and {} Jacobian evaluations, {} "
+      "rejected steps, {} turning points, {:.3g} s\n",
+      geti("points"), geti("newton_iterations"), geti("residual_evaluations"),
+      geti("jacobian_evaluations"), geti("rejected_steps"), geti("turning_points"),
+      std::get<double>(sv->find("wall_time_s")->data));
+  return out;
+}
+
+void run_vibration(const VibrationOptions& o, std::string& out) {
+  const bool files = o.out_dir.has_value();
+  if (files) {
+    const auto name = std::filesystem::path(*o.out_dir).lexically_normal().filename().string();
+    if (o.out_dir->empty() || name == "." || name == ".." || name.empty()) {
+      throw InvalidInput(fmt::format(
+          "--out \"{}\": name a directory to create (or replace whole), not . or ..", *o.out_dir));
+    }
+    joint::require_output_apart_from_inputs(*o.out_dir, {{"the case file", o.case_file}});
+    joint::require_replaceable_output(*o.out_dir, *o.out_dir);
+  }
+  const VibrationCase c = read_case_file(o.case_file);
+  const bool bar = isatty(STDERR_FILENO) != 0;
+  bool bar_drawn = false;
+  const CaseProgress progress = [&](const std::string& analysis, double x) {
+    if (!bar) return;
+    const std::size_t width = 30;
+    const auto done = static_cast<std::size_t>(std::clamp(x, 0.0, 1.0) * width);
+    std::cerr << fmt::format("\r[{}{}] {:3.0f}% {:<20}", std::string(done, '#'),
+                             std::string(width - done, ' '), 100.0 * x, analysis)
+              << std::flush;
+    bar_drawn = true;
+  };
+  VibrationResult r;
+  try {
+    r = run_case(c, progress);
+  } catch (...) {
+    if (bar_drawn) std::cerr << "\n";
+    throw;
+  }
+  if (bar_drawn) std::cerr << "\n";
+
+  std::vector<std::string> written;
+  if (files) {
+    joint::StagedDirectory dir(*o.out_dir, "asperity vibration");
+    written = write_files(c, r, dir, !o.no_plots);
+    dir.commit();
+  }
+  for (const auto& w : r.warnings) fmt::print(stderr, "warning: {}\n", w);
+  out = o.json ? to_json(SummaryValue(r.summary)).dump(2) + "\n" : text_summary(c, r);
+  if (!o.json) {
+    if (files) {
+      std::string list;
+      for (const auto& f : written) {
+        if (!list.empty()) list += ", ";
+        list += f;
+      }
+      out += fmt::format("wrote {}/ ({})\n", *o.out_dir, list);
+    } else {
+      out += "no files written (--out DIR writes summary.json, the curves as CSV and plots)\n";
+    }
+  }
+  if (!r.complete) {
+    // The points computed are written whole (complete = false in summary.json); the
+    // run itself failed to cover its range: numerical failure, exit 3.
+    std::fputs(out.c_str(), stdout);
+    std::fflush(stdout);
+    out.clear();
+    throw NumericalError(fmt::format(
+        "{}; the {} points computed are kept{} (solver.complete = false): loosen the "
+        "continuation settings (min_step, max_iterations, max_points) or shorten the range",
+        r.stop_reason,
+        std::get<std::int64_t>(SummaryValue(r.summary).find("solver")->find("points")->data),
+        files ? fmt::format(" in {}", *o.out_dir) : std::string()));
+  }
+}
+
+}  // namespace
+
+void add_vibration_command(CLI::App& app, std::function<int()>& action) {
+  auto o = std::make_shared<VibrationOptions>();
+  auto* cmd = app.add_subcommand(
+      "vibration",
+      "Vibration of a structure with joint elements by harmonic balance: amplitude-dependent "
+      "natural frequency and damping (nonlinear modes, EPMC), forced response curves and the "
+      "quasi-static modal estimate. Writes summary.json, one CSV per curve and PNG plots "
+      "(format: docs/vibration.md, examples/vibration).");
+  cmd->add_option("case", o->case_file,
+                  "TOML case file with [structure], [[element]], [harmonic_balance] and the "
+                  "analyses ([nonlinear_mode], [[frequency_response]], [quasi_static_mode])")
+      ->required();
+  cmd->add_option("--out", o->out_dir,
+                  "output directory, written whole (created; an existing one is replaced only "
+                  "if asperity wrote it); without it only the summary is printed");
+  cmd->add_flag("--json", o->json, "print summary.json instead of the text summary");
+  cmd->add_flag("--no-plots", o->no_plots, "skip the PNG plots (no gnuplot needed)");
+  cmd->callback([o, &action] {
+    action = [o] { return run_guarded([o](std::string& out) { run_vibration(*o, out); }); };
+  });
+}
+
+}  // namespace asperity::cli

@@ -1,0 +1,321 @@
+#include "asperity/vibration/continuation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <Eigen/LU>
+
+#include "asperity/core/error.hpp"
+#include "asperity/core/validate.hpp"
+
+namespace asperity::vibration {
+
+void NewtonOptions::validate() const {
+  if (max_iterations < 1 || max_iterations > 1000) {
+    throw InvalidInput(
+        fmt::format("newton.max_iterations = {}: must be in [1, 1000]", max_iterations));
+  }
+  core::require_in_half_open("newton.step_tolerance", step_tolerance, 1e-15, 1.0);
+  core::require_in_half_open("newton.residual_tolerance", residual_tolerance, 1e-15, 1.0);
+}
+
+void ContinuationOptions::validate() const {
+  core::require_positive("continuation.step", step);
+  core::require_positive("continuation.min_step", min_step);
+  core::require_positive("continuation.max_step", max_step);
+  if (!(min_step <= step && step <= max_step)) {
+    throw InvalidInput(fmt::format(
+        "continuation steps: need min_step <= step <= max_step, got {} <= {} <= {}",
+        core::format_value(min_step), core::format_value(step), core::format_value(max_step)));
+  }
+  if (max_points < 2 || max_points > 1000000) {
+    throw InvalidInput(
+        fmt::format("continuation.max_points = {}: must be in [2, 1e6]", max_points));
+  }
+  if (target_iterations < 1 || target_iterations > newton.max_iterations) {
+    throw InvalidInput(fmt::format(
+        "continuation.target_iterations = {}: must be in [1, newton.max_iterations = {}]",
+        target_iterations, newton.max_iterations));
+  }
+  core::require_in_half_open("continuation.max_angle", max_angle, 1e-3, 1.5);
+  newton.validate();
+}
+
+namespace {
+
+double scaled_max(const Eigen::VectorXd& dy, const Eigen::VectorXd& scale) {
+  return (dy.array() / scale.array()).abs().maxCoeff();
+}
+
+// Newton with backtracking on |R|^2 for a square system g(y) = 0.
+NewtonResult newton_square(const SystemFunction& g, Eigen::VectorXd y, const Eigen::VectorXd& scale,
+                           double residual_scale, const NewtonOptions& opt) {
+  NewtonResult res;
+  Eigen::VectorXd R;
+  Eigen::MatrixXd J;
+  g(y, R, &J);
+  if (!R.allFinite()) {
+    res.y = y;
+    res.residual_norm = std::numeric_limits<double>::infinity();
+    return res;
+  }
+  double r0 = R.squaredNorm();
+  for (int it = 1; it <= opt.max_iterations; ++it) {
+    res.iterations = it;
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu(J);
+    Eigen::VectorXd dy = lu.solve(-R);
+    if (!dy.allFinite()) break;
+    // Line search: halve the step while |R|^2 does not decrease (Armijo, c = 1e-4).
+    double t = 1.0;
+    Eigen::VectorXd y_new, R_new;
+    Eigen::MatrixXd J_new;
+    bool accepted = false;
+    for (int ls = 0; ls < 7; ++ls) {
+      y_new = y + t * dy;
+      g(y_new, R_new, &J_new);
+      if (R_new.allFinite() && R_new.squaredNorm() <= (1.0 - 2e-4 * t) * r0) {
+        accepted = true;
+        break;
+      }
+      t *= 0.5;
+    }
+    if (!accepted) {
+      // Take the full step anyway if it stays finite: piecewise-smooth residuals (stick-slip
+      // kinks) can need a step that first increases |R|.
+      y_new = y + dy;
+      g(y_new, R_new, &J_new);
+      if (!R_new.allFinite()) break;
+      t = 1.0;
+    }
+    const double step = t * scaled_max(dy, scale);
+    y = y_new;
+    R = R_new;
+    J = J_new;
+    r0 = R.squaredNorm();
+    const double rn = R.cwiseAbs().maxCoeff();
+    if (step < opt.step_tolerance && rn <= opt.residual_tolerance * residual_scale) {
+      res.converged = true;
+      break;
+    }
+    if (rn == 0.0) {
+      res.converged = true;
+      break;
+    }
+  }
+  res.y = y;
+  res.residual_norm =
+      R.allFinite() ? R.cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
+  return res;
+}
+
+}  // namespace
+
+NewtonResult solve_newton(const SystemFunction& f, Eigen::VectorXd y0, const Eigen::VectorXd& scale,
+                          double residual_scale, const NewtonOptions& options) {
+  options.validate();
+  if (scale.size() != y0.size() || !(scale.array() > 0.0).all()) {
+    throw InvalidInput("newton: scale must be positive, one entry per unknown");
+  }
+  return newton_square(f, std::move(y0), scale, residual_scale, options);
+}
+
+namespace {
+
+// Unit tangent of R(y) = 0 in scaled unknowns z = y / scale: [J S; t_ref^T] t = [0; 1].
+Eigen::VectorXd tangent_of(const Eigen::MatrixXd& J, const Eigen::VectorXd& scale,
+                           const Eigen::VectorXd& t_ref) {
+  const Eigen::Index m = J.rows(), n = J.cols();
+  Eigen::MatrixXd A(n, n);
+  A.topRows(m) = J * scale.asDiagonal();
+  A.row(m) = t_ref.transpose();
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+  b(m) = 1.0;
+  Eigen::VectorXd t = Eigen::PartialPivLU<Eigen::MatrixXd>(A).solve(b);
+  if (!t.allFinite() || t.norm() == 0.0) return {};
+  return t / t.norm();
+}
+
+}  // namespace
+
+ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::VectorXd& y0,
+                                  const ContinuationOptions& opt,
+                                  const ProgressFunction& progress) {
+  opt.validate();
+  const Eigen::Index n = y0.size();
+  const Eigen::Index p = pb.parameter;
+  if (pb.scale.size() != n || !(pb.scale.array() > 0.0).all() || !pb.scale.allFinite()) {
+    throw InvalidInput("continuation: scale must be positive and finite, one entry per unknown");
+  }
+  if (p < 0 || p >= n) throw InvalidInput("continuation: parameter index out of range");
+  const double lambda0 = y0(p);
+  const double lambda_end = pb.parameter_end;
+  const double range = lambda_end - lambda0;
+  if (!(std::abs(range) > 0.0)) {
+    throw InvalidInput("continuation: the parameter's start and end are equal");
+  }
+  const double sense = range > 0.0 ? 1.0 : -1.0;
+  ContinuationResult out;
+
+  // Correct the start at fixed parameter.
+  auto fixed_parameter = [&](double lambda) {
+    return [&, lambda](const Eigen::VectorXd& x, Eigen::VectorXd& R, Eigen::MatrixXd* J) {
+      Eigen::VectorXd y(n);
+      y << x.head(p), lambda, x.tail(n - p - 1);
+      Eigen::VectorXd r;
+      Eigen::MatrixXd Jy;
+      pb.f(y, r, J ? &Jy : nullptr);
+      R = r;
+      if (J) {
+        J->resize(n - 1, n - 1);
+        J->leftCols(p) = Jy.leftCols(p);
+        J->rightCols(n - p - 1) = Jy.rightCols(n - p - 1);
+      }
+    };
+  };
+  auto without = [&](const Eigen::VectorXd& v) {
+    Eigen::VectorXd x(n - 1);
+    x << v.head(p), v.tail(n - p - 1);
+    return x;
+  };
+  auto with = [&](const Eigen::VectorXd& x, double lambda) {
+    Eigen::VectorXd y(n);
+    y << x.head(p), lambda, x.tail(n - p - 1);
+    return y;
+  };
+  {
+    const auto start = newton_square(fixed_parameter(lambda0), without(y0), without(pb.scale),
+                                     pb.residual_scale, opt.newton);
+    out.newton_iterations += static_cast<std::size_t>(start.iterations);
+    if (!start.converged) {
+      throw NumericalError(fmt::format(
+          "the continuation cannot start: Newton did not converge at the start (parameter {}, "
+          "residual {} after {} iterations); start from a smaller amplitude or force, or nearer "
+          "a solution",
+          core::format_value(lambda0), core::format_value(start.residual_norm), start.iterations));
+    }
+    out.points.push_back(with(start.y, lambda0));
+  }
+
+  Eigen::VectorXd R;
+  Eigen::MatrixXd J;
+  pb.f(out.points.back(), R, &J);
+  Eigen::VectorXd e_p = Eigen::VectorXd::Zero(n);
+  e_p(p) = 1.0;
+  Eigen::VectorXd t = tangent_of(J, pb.scale, e_p);
+  if (t.size() == 0) {
+    throw NumericalError(
+        "the continuation cannot start: the tangent at the start is undefined (a "
+        "singular Jacobian)");
+  }
+  if (t(p) * sense < 0.0) t = -t;
+  double h = opt.step;
+  double last_dir = t(p) > 0.0 ? 1.0 : -1.0;
+
+  while (true) {
+    const Eigen::VectorXd& y = out.points.back();
+    if (progress) progress(std::clamp((y(p) - lambda0) / range, 0.0, 1.0));
+    if (out.points.size() >= opt.max_points) {
+      out.stop_reason = fmt::format("reached max_points = {} at parameter {}", opt.max_points,
+                                    core::format_value(y(p)));
+      break;
+    }
+    if (h < opt.min_step) {
+      out.stop_reason = fmt::format(
+          "stalled at parameter {}: the step size fell below min_step = {} (Newton did not "
+          "converge on smaller steps)",
+          core::format_value(y(p)), core::format_value(opt.min_step));
+      break;
+    }
+    const Eigen::VectorXd z = (y.array() / pb.scale.array()).matrix();
+    const Eigen::VectorXd z_pred = z + h * t;
+    const double lambda_pred = z_pred(p) * pb.scale(p);
+    // Past the end: land the last point on it at fixed parameter.
+    if ((lambda_pred - lambda_end) * sense >= 0.0 && t(p) * sense > 0.0) {
+      const double frac = (lambda_end - y(p)) / (lambda_pred - y(p));
+      const Eigen::VectorXd guess = (z + frac * h * t).cwiseProduct(pb.scale);
+      const auto end = newton_square(fixed_parameter(lambda_end), without(guess), without(pb.scale),
+                                     pb.residual_scale, opt.newton);
+      out.newton_iterations += static_cast<std::size_t>(end.iterations);
+      if (end.converged) {
+        out.points.push_back(with(end.y, lambda_end));
+        out.complete = true;
+        out.stop_reason = "reached the end of the parameter range";
+        if (progress) progress(1.0);
+        break;
+      }
+      ++out.rejected_steps;
+      h *= 0.5;
+      continue;
+    }
+    // Corrector: R(y) = 0 and t^T (z - z_pred) = 0.
+    const Eigen::VectorXd t_fixed = t;
+    auto bordered = [&](const Eigen::VectorXd& yy, Eigen::VectorXd& Rb, Eigen::MatrixXd* Jb) {
+      Eigen::VectorXd r;
+      Eigen::MatrixXd Jy;
+      pb.f(yy, r, Jb ? &Jy : nullptr);
+      Rb.resize(n);
+      Rb.head(n - 1) = r;
+      const Eigen::VectorXd zz = (yy.array() / pb.scale.array()).matrix();
+      // The arclength equation in residual units, so that the line search weighs it fairly.
+      Rb(n - 1) = pb.residual_scale * t_fixed.dot(zz - z_pred);
+      if (Jb) {
+        Jb->resize(n, n);
+        Jb->topRows(n - 1) = Jy;
+        Jb->row(n - 1) =
+            pb.residual_scale * (t_fixed.array() / pb.scale.array()).matrix().transpose();
+      }
+    };
+    const auto corr = newton_square(bordered, z_pred.cwiseProduct(pb.scale), pb.scale,
+                                    pb.residual_scale, opt.newton);
+    out.newton_iterations += static_cast<std::size_t>(corr.iterations);
+    if (!corr.converged) {
+      ++out.rejected_steps;
+      h *= 0.5;
+      continue;
+    }
+    // A corrector that wandered far from the predictor has jumped to another branch of
+    // the curve (seen at lightly damped resonances with large steps): a shorter step.
+    const double wander = ((corr.y.array() / pb.scale.array()).matrix() - z_pred).norm();
+    if (wander > std::max(2.0 * h, 10.0 * opt.min_step) && h > opt.min_step * 2.0) {
+      ++out.rejected_steps;
+      h *= 0.5;
+      continue;
+    }
+    pb.f(corr.y, R, &J);
+    Eigen::VectorXd t_new = tangent_of(J, pb.scale, t);
+    if (t_new.size() == 0) {
+      ++out.rejected_steps;
+      h *= 0.5;
+      continue;
+    }
+    if (t_new.dot(t) < 0.0) t_new = -t_new;
+    const double angle = std::acos(std::clamp(t_new.dot(t), -1.0, 1.0));
+    // A kink of the solution curve (stick-slip onset, separation) turns the tangent by a
+    // finite angle however short the step: past a few halvings the point is accepted.
+    if (angle > opt.max_angle && h > std::max(16.0 * opt.min_step, opt.step / 64.0)) {
+      ++out.rejected_steps;
+      h *= 0.5;
+      continue;
+    }
+    out.points.push_back(corr.y);
+    const double dir = t_new(p) > 0.0 ? 1.0 : -1.0;
+    if (dir != last_dir) ++out.turning_points;
+    last_dir = dir;
+    t = t_new;
+    // Step control: aim at target_iterations per point and a bounded turn.
+    const double ratio = static_cast<double>(opt.target_iterations) /
+                         static_cast<double>(std::max(1, corr.iterations));
+    double factor = std::clamp(ratio, 0.5, 2.0);
+    if (angle > 0.5 * opt.max_angle) factor = std::min(factor, 1.0);
+    h = std::clamp(h * factor, opt.min_step * 0.5, opt.max_step);
+    // Leaving the range backwards (the curve turned round and went past the start).
+    if ((corr.y(p) - lambda0) * sense < -std::abs(range)) {
+      out.stop_reason = "the curve turned back past the start of the parameter range";
+      break;
+    }
+  }
+  return out;
+}
+
+}  // namespace asperity::vibration

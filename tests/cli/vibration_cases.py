@@ -1,0 +1,521 @@
+#!/usr/bin/env python3
+"""Behaviour of `asperity vibration`: the summary.json contract of issue 10, whole CSVs,
+the shipped examples, bad input (exit 2, one line naming what to change, nothing on
+stdout) and a continuation that stalls (exit 3, the points it has written whole).
+
+Usage: vibration_cases.py ASPERITY_EXE CASE. Standard library only. Exit 0 = pass.
+Registered in tests/cli/CMakeLists.txt, one CTest per case (cli.vibration.<case>).
+"""
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+EXAMPLES = os.path.join(HERE, "..", "..", "examples", "vibration")
+
+# The issue's Jenkins SDOF (m = 1, k = 1, c = 0.01, k_t = 0.25, F_s = 0.2).
+JENKINS = """[structure]
+mass = [[1.0]]
+stiffness = [[1.0]]
+damping = [[0.01]]
+output_dofs = [0]
+[[element]]
+type = "jenkins"
+T = [[1.0]]
+k_t = 0.25
+F_s = 0.2
+[harmonic_balance]
+max = 3
+time_points = 256
+"""
+EPMC = """[nonlinear_mode]
+log10_amplitude = { from = -2.0, to = 5.0 }
+"""
+FRF = """[[frequency_response]]
+force_cos = [[0.0], [0.1]]
+omega = { from = 0.7, to = 1.5 }
+"""
+
+NONLINEAR_MODE_KEYS = ["log10_amplitude", "amplitude", "omega_rad_s", "frequency_hz",
+                       "damping_ratio", "output_amplitude"]
+FRF_KEYS = ["force_scale", "omega_rad_s", "output_amplitude", "max_displacement",
+            "harmonic_amplitude"]
+QS_KEYS = ["amplitude", "omega_rad_s", "damping_ratio"]
+SOLVER_KEYS = ["points", "newton_iterations", "residual_evaluations", "jacobian_evaluations",
+               "rejected_steps", "turning_points", "wall_time_s", "complete", "stop_reason"]
+
+
+def fail(msg):
+    print("FAIL:", msg, file=sys.stderr)
+    return 1
+
+
+def run(exe, case_text, tmp, extra=("--no-plots",), name="case.toml"):
+    path = os.path.join(tmp, name)
+    with open(path, "w") as f:
+        f.write(case_text)
+    out = os.path.join(tmp, "out")
+    return subprocess.run([exe, "vibration", path, "--out", out, *extra],
+                          capture_output=True, text=True, timeout=300), out
+
+
+def bad(exe, case_text, must_contain, code=2):
+    with tempfile.TemporaryDirectory() as tmp:
+        r, out = run(exe, case_text, tmp)
+        if os.path.exists(out):
+            return fail(f"bad input wrote {out}")
+    if r.returncode != code:
+        return fail(f"expected exit {code}, got {r.returncode}; stderr: {r.stderr}")
+    if r.stdout:
+        return fail(f"stdout not empty: {r.stdout!r}")
+    lines = [l for l in r.stderr.splitlines() if l.strip()]
+    if len(lines) != 1:
+        return fail(f"expected one line on stderr: {r.stderr!r}")
+    for word in [must_contain] if isinstance(must_contain, str) else must_contain:
+        if word.lower() not in r.stderr.lower():
+            return fail(f"message does not mention {word!r}: {r.stderr}")
+    return 0
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    header, data = rows[0], rows[1:]
+    for i, row in enumerate(data):
+        if len(row) != len(header):
+            raise ValueError(f"{path}: row {i} has {len(row)} fields, header {len(header)}")
+        for v in row:
+            if not math.isfinite(float(v)):
+                raise ValueError(f"{path}: non-finite value {v} in row {i}")
+    return header, [[float(v) for v in row] for row in data]
+
+
+def check_summary(j, want_qs=True, want_frf=True, want_nm=True):
+    """Returns a message for the first key the issue lists that is missing, else None."""
+    for k in ["case", "structure", "elements", "harmonic_balance", "solver", "warnings"]:
+        if k not in j:
+            return f"missing {k}"
+    for k in SOLVER_KEYS:
+        if k not in j["solver"]:
+            return f"missing solver.{k}"
+    if want_nm:
+        for k in NONLINEAR_MODE_KEYS:
+            if k not in j["nonlinear_mode"]:
+                return f"missing nonlinear_mode.{k}"
+        n = len(j["nonlinear_mode"]["amplitude"])
+        for k in NONLINEAR_MODE_KEYS:
+            if len(j["nonlinear_mode"][k]) != n:
+                return f"nonlinear_mode.{k} has {len(j['nonlinear_mode'][k])} points, not {n}"
+    if want_frf:
+        for c in j["frequency_response"]:
+            for k in FRF_KEYS:
+                if k not in c:
+                    return f"missing frequency_response[].{k}"
+            n = len(c["omega_rad_s"])
+            if not (len(c["output_amplitude"]) == len(c["max_displacement"]) ==
+                    len(c["harmonic_amplitude"]) == n):
+                return "frequency_response arrays of different lengths"
+            nh = len(j["harmonic_balance"]["harmonics"])
+            if any(len(per_output) != nh for p in c["harmonic_amplitude"] for per_output in p):
+                return "harmonic_amplitude: not one value per harmonic"
+    if want_qs:
+        for k in QS_KEYS:
+            if k not in j["quasi_static_mode"]:
+                return f"missing quasi_static_mode.{k}"
+    return None
+
+
+def summary_keys(exe):
+    case = JENKINS + EPMC + FRF.replace("omega", "force_scales = [0.5, 1.0]\nomega") + """
+[quasi_static_mode]
+amplitude = { from = 1e-2, to = 1e4 }
+points = 30
+"""
+    with tempfile.TemporaryDirectory() as tmp:
+        r, out = run(exe, case, tmp, extra=())
+        if r.returncode != 0:
+            return fail(f"exit {r.returncode}: {r.stderr}")
+        j = json.load(open(os.path.join(out, "summary.json")))
+        msg = check_summary(j)
+        if msg:
+            return fail(msg)
+        if not j["solver"]["complete"]:
+            return fail(f"incomplete: {j['solver']['stop_reason']}")
+        files = sorted(os.listdir(out))
+        want = ["frequency_response.png", "frequency_response_1.csv", "frequency_response_2.csv",
+                "modal_damping.png", "modal_frequency.png", "nonlinear_mode.csv",
+                "quasi_static_mode.csv", "summary.json"]
+        if [f for f in files if not f.startswith(".")] != want:
+            return fail(f"files {files}")
+        # CSVs whole: one row per point of the summary, the same numbers.
+        h, rows = read_csv(os.path.join(out, "nonlinear_mode.csv"))
+        nm = j["nonlinear_mode"]
+        if len(rows) != len(nm["amplitude"]) or len(rows) != j["nonlinear_mode"]["solver"]["points"]:
+            return fail("nonlinear_mode.csv rows != points")
+        for i, row in enumerate(rows):
+            # 12 significant digits in the CSV.
+            if abs(row[h.index("frequency_hz")] - nm["frequency_hz"][i]) > 1e-11 * nm["frequency_hz"][i]:
+                return fail(f"nonlinear_mode.csv row {i} differs from summary.json")
+        for k, c in enumerate(j["frequency_response"]):
+            h, rows = read_csv(os.path.join(out, f"frequency_response_{k + 1}.csv"))
+            if len(rows) != len(c["omega_rad_s"]):
+                return fail(f"frequency_response_{k + 1}.csv rows")
+            if "harmonic3_dof0_m" not in h or "max_displacement_dof0_m" not in h:
+                return fail(f"header {h}")
+        h, rows = read_csv(os.path.join(out, "quasi_static_mode.csv"))
+        if len(rows) != 30:
+            return fail("quasi_static_mode.csv rows")
+        # --json prints the same summary (wall times aside).
+        r2 = subprocess.run([exe, "vibration", os.path.join(tmp, "case.toml"), "--json"],
+                            capture_output=True, text=True, timeout=300)
+        if r2.returncode != 0:
+            return fail(f"--json exit {r2.returncode}")
+        j2 = json.loads(r2.stdout)
+        if j2["nonlinear_mode"]["frequency_hz"] != nm["frequency_hz"]:
+            return fail("--json differs from summary.json")
+    # Physics of the Jenkins SDOF: stuck omega = sqrt(k + k_t) = sqrt(1.25) at small a;
+    # slipped omega -> sqrt(k) = 1 at a = 1e5 (the slider adds ~F_s/a = 2e-6); damping
+    # zeta -> c/(2 m omega) = 0.005 (friction adds ~4 F_s/(2 pi a) ~ 1e-6).
+    f = nm["omega_rad_s"]
+    if abs(f[0] - math.sqrt(1.25)) > 1e-6 * math.sqrt(1.25):
+        return fail(f"omega at a = 0.01: {f[0]}")
+    if abs(f[-1] - 1.0) > 1e-4:
+        return fail(f"omega at a = 1e5: {f[-1]}")
+    if abs(nm["damping_ratio"][-1] - 0.005) > 0.005 * 1e-2:
+        return fail(f"zeta at a = 1e5: {nm['damping_ratio'][-1]}")
+    return 0
+
+
+def examples(exe):
+    for name in ["jenkins_sdof", "steel420_sdof", "steel420_2dof"]:
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "out")
+            r = subprocess.run([exe, "vibration", os.path.join(EXAMPLES, name + ".toml"),
+                                "--out", out], capture_output=True, text=True, timeout=300)
+            if r.returncode != 0:
+                return fail(f"{name}: exit {r.returncode}: {r.stderr}")
+            j = json.load(open(os.path.join(out, "summary.json")))
+            msg = check_summary(j)
+            if msg:
+                return fail(f"{name}: {msg}")
+            if not j["solver"]["complete"] or j["warnings"]:
+                return fail(f"{name}: {j['solver']['stop_reason']} {j['warnings']}")
+            if name.startswith("steel420"):
+                # Table 5.5: 2.7 lbf*in total on the two bolts gives 526 N (docs/joints.md).
+                if abs(j["joint"]["preload_N"] - 526.0) > 1.0:
+                    return fail(f"{name}: preload {j['joint']['preload_N']}")
+                # With the joint stuck its stiffness k_t adds to the structure's.
+                kt = j["elements"][0]["k_t_N_per_m"]
+                if name == "steel420_sdof":
+                    f0 = math.sqrt(1e8 + kt) / (2 * math.pi)
+                    got = j["structure"]["linear_frequencies_hz_elements_stuck"][0]
+                    if abs(got - f0) > 1e-9 * f0:
+                        return fail(f"{name}: stuck frequency {got}, expected {f0}")
+                # The mode softens from stuck to slipped.
+                fh = j["nonlinear_mode"]["frequency_hz"]
+                slipped = j["structure"]["linear_frequencies_hz_without_elements"]
+                mode = j["nonlinear_mode"]["mode"]
+                if not (fh[0] > fh[-1] and abs(fh[-1] - slipped[mode - 1]) < 0.01 * slipped[mode - 1]):
+                    return fail(f"{name}: frequency {fh[0]} -> {fh[-1]}, slipped {slipped}")
+    return 0
+
+
+def stall(exe):
+    # A genuine stall: Newton may take 2 iterations per point and the step may not fall
+    # below 0.25 (in log10 a). The stuck branch is linear (1 iteration per point); at the
+    # onset of slip (a = F_s/k_t = 0.8) the corrector needs more than 2 iterations on
+    # every step >= 0.25, so the continuation stops there.
+    case = JENKINS + """[nonlinear_mode]
+log10_amplitude = { from = -2.0, to = 5.0 }
+continuation = { step = 0.5, min_step = 0.25, max_step = 0.5, max_iterations = 2, target_iterations = 1 }
+"""
+    with tempfile.TemporaryDirectory() as tmp:
+        r, out = run(exe, case, tmp)
+        if r.returncode != 3:
+            return fail(f"expected exit 3, got {r.returncode}: {r.stderr}")
+        if "stalled" not in r.stderr or "kept" not in r.stderr:
+            return fail(f"message: {r.stderr}")
+        j = json.load(open(os.path.join(out, "summary.json")))
+        msg = check_summary(j, want_qs=False, want_frf=False)
+        if msg:
+            return fail(msg)
+        if j["solver"]["complete"] is not False or "stalled" not in j["solver"]["stop_reason"]:
+            return fail(f"solver {j['solver']}")
+        n = len(j["nonlinear_mode"]["amplitude"])
+        if n < 2 or j["nonlinear_mode"]["log10_amplitude"][-1] >= 5.0:
+            return fail(f"points {j['nonlinear_mode']['log10_amplitude']}")
+        _, rows = read_csv(os.path.join(out, "nonlinear_mode.csv"))
+        if len(rows) != n:
+            return fail(f"nonlinear_mode.csv has {len(rows)} rows, summary {n} points")
+        if not any("stalled" in w for w in j["warnings"]):
+            return fail(f"warnings {j['warnings']}")
+    return 0
+
+
+def matrix_market(exe):
+    # The same structure from .mtx files (relative to the case file) gives the same curve.
+    with tempfile.TemporaryDirectory() as tmp:
+        os.mkdir(os.path.join(tmp, "m"))
+        with open(os.path.join(tmp, "m", "M.mtx"), "w") as f:
+            f.write("%%MatrixMarket matrix array real general\n1 1\n1.0\n")
+        with open(os.path.join(tmp, "m", "K.mtx"), "w") as f:
+            f.write("%%MatrixMarket matrix coordinate real symmetric\n1 1 1\n1 1 1.0\n")
+        inline, _ = run(exe, JENKINS + EPMC, tmp, extra=("--no-plots", "--json"))
+        files = JENKINS.replace("mass = [[1.0]]", 'mass_file = "m/M.mtx"').replace(
+            "stiffness = [[1.0]]", 'stiffness_file = "m/K.mtx"')
+        os.mkdir(os.path.join(tmp, "sub"))
+        with open(os.path.join(tmp, "sub2.toml"), "w") as f:
+            f.write(files + EPMC)
+        r = subprocess.run([exe, "vibration", os.path.join(tmp, "sub2.toml"), "--json"],
+                           capture_output=True, text=True, timeout=300)
+    if inline.returncode != 0 or r.returncode != 0:
+        return fail(f"exit {inline.returncode} {r.returncode}: {inline.stderr} {r.stderr}")
+    a, b = json.loads(inline.stdout), json.loads(r.stdout)
+    if a["nonlinear_mode"]["frequency_hz"] != b["nonlinear_mode"]["frequency_hz"]:
+        return fail("mtx and inline structures differ")
+    return 0
+
+
+def omega_in_hz(exe):
+    # "0.15 Hz" is 2 pi 0.15 rad/s; missing force rows are zero.
+    a_case = JENKINS + FRF.replace("omega = { from = 0.7", 'omega = { from = "0.12 Hz"')
+    b_case = JENKINS + FRF.replace("omega = { from = 0.7", f"omega = {{ from = {2 * math.pi * 0.12!r}").replace(
+        "[[0.0], [0.1]]", "[[0.0], [0.1], [0.0], [0.0]]")
+    with tempfile.TemporaryDirectory() as tmp:
+        a, _ = run(exe, a_case, tmp, extra=("--no-plots", "--json"), name="a.toml")
+        b, _ = run(exe, b_case, tmp, extra=("--no-plots", "--json"), name="b.toml")
+    if a.returncode != 0 or b.returncode != 0:
+        return fail(f"exit {a.returncode} {b.returncode}: {a.stderr} {b.stderr}")
+    ja, jb = json.loads(a.stdout), json.loads(b.stdout)
+    wa = ja["frequency_response"][0]["omega_rad_s"]
+    if abs(wa[0] - 2 * math.pi * 0.12) > 1e-12 * wa[0]:
+        return fail(f"omega from {wa[0]}")
+    if wa != jb["frequency_response"][0]["omega_rad_s"]:
+        return fail("Hz and rad/s cases differ")
+    return 0
+
+
+def without_out_prints_the_summary(exe):
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "case.toml")
+        with open(path, "w") as f:
+            f.write(JENKINS + EPMC)
+        r = subprocess.run([exe, "vibration", path], capture_output=True, text=True, timeout=300)
+        if r.returncode != 0 or "nonlinear mode 1" not in r.stdout or "no files written" not in r.stdout:
+            return fail(f"exit {r.returncode}: {r.stdout} {r.stderr}")
+        if sorted(os.listdir(tmp)) != ["case.toml"]:
+            return fail(f"wrote {os.listdir(tmp)}")
+    return 0
+
+
+TWO_DOF = """[structure]
+mass = [[1.0, 0.0], [0.0, 1.0]]
+stiffness = [[2.0, -1.0], [-1.0, 2.0]]
+rayleigh = { alpha = 0.01 }
+[harmonic_balance]
+max = 3
+time_points = 256
+[nonlinear_mode]
+log10_amplitude = { from = -2.0, to = 1.0 }
+"""
+
+
+def element_types(exe):
+    # Every element type of the issue parses and runs; parameters with units convert.
+    elements = {
+        "iwan4": 'type = "iwan4"\nT = [1.0, 0.0]\nF_S = "0.2 N"\nK_T = 0.25\nchi = -0.5\nbeta = 0.1',
+        "coulomb": 'type = "coulomb"\nT = [1.0, 0.0]\nF_s = 0.05\nk_tan = "100 s/m"',
+        "elastic_dry_friction_2d": 'type = "elastic_dry_friction_2d"\nT = [[1.0, 0.0], [0.0, 1.0]]\n'
+                                   'k_t = "0.25 N/m"\nk_n = 1.0\nmu = 0.3\nN0 = 0.5',
+        "jenkins": 'type = "jenkins"\nname = "left"\nT = [[1.0, -1.0]]\nk_t = 0.25\nF_s = 0.2',
+    }
+    for name, text in elements.items():
+        with tempfile.TemporaryDirectory() as tmp:
+            r, out = run(exe, TWO_DOF + "[[element]]\n" + text + "\n", tmp)
+            if r.returncode != 0:
+                return fail(f"{name}: exit {r.returncode}: {r.stderr}")
+            j = json.load(open(os.path.join(out, "summary.json")))
+            e = j["elements"][0]
+            if e["type"] != name or not j["solver"]["complete"]:
+                return fail(f"{name}: {e} {j['solver']}")
+            if name == "jenkins" and (e["name"] != "left" or e["T"] != [[1.0, -1.0]]):
+                return fail(f"element echo {e}")
+            # Parameters echoed in SI: "0.2 N" and "100 s/m" as given.
+            if name == "iwan4" and (e["F_S_N"] != 0.2 or e["chi"] != -0.5):
+                return fail(f"iwan4 echo {e}")
+            if name == "coulomb" and e["k_tan_s_per_m"] != 100.0:
+                return fail(f"coulomb echo {e}")
+    return 0
+
+
+def rough_flat_forms(exe):
+    # The same rough flat written dimensionally and normalized (beta = sigma R eta, psi on
+    # sigma_a = sigma sqrt(1 - 3.717e-4/beta^2), K = 0.454 + 0.41 nu, force scale K H A0,
+    # P* = P/(K H A0); rough_flat.hpp) gives the same Q_max and k_t to round-off.
+    E, G, H, nu, sig, R, eta, A0, P = 106e9, 22.9e9, 5.8e9, 0.3, 2.7e-6, 30.1e-6, 2.9e8, 1e-4, 500.0
+    K = 0.454 + 0.41 * nu
+    beta = sig * R * eta
+    sig_a = sig * math.sqrt(1 - 3.717e-4 / beta ** 2)
+    psi = 2 * E / (math.pi * K * H) * math.sqrt(sig_a / R)
+    fs = K * H * A0
+    base = """[structure]
+mass = [[1.0]]
+stiffness = [[1e8]]
+damping = [[20.0]]
+[harmonic_balance]
+max = 1
+time_points = 64
+[quasi_static_mode]
+amplitude = { from = 1e-9, to = 1e-7 }
+points = 4
+[[element]]
+type = "rough_flat"
+T = [[1.0]]
+"""
+    dim = (f'E_star = "106 GPa"\nG_star = "22.9 GPa"\nH = "5.8 GPa"\nnu = 0.3\nsigma = "2.7 um"\n'
+           f'R = "30.1 um"\neta = "2.9e8 m^-2"\nA0 = "1 cm^2"\nP = "500 N"\n')
+    nrm = (f"beta = {beta!r}\npsi = {psi!r}\nnu = 0.3\nG_over_E = {G / E!r}\nP_star = {P / fs!r}\n"
+           f"sigma = {sig!r}\nforce_scale = {fs!r}\n")
+    got = []
+    for text in [dim, nrm]:
+        with tempfile.TemporaryDirectory() as tmp:
+            r, out = run(exe, base + text, tmp)
+            if r.returncode != 0:
+                return fail(f"exit {r.returncode}: {r.stderr}")
+            got.append(json.load(open(os.path.join(out, "summary.json")))["elements"][0])
+    for k in ["Q_max_N", "k_t_N_per_m"]:
+        a, b = got[0][k], got[1][k]
+        if not (a > 0 and abs(a - b) < 1e-9 * a):
+            return fail(f"{k}: dimensional {a}, normalized {b}")
+    if got[0]["backbone"] != "dimensional" or got[1]["backbone"] != "normalized":
+        return fail(f"backbones {got[0]['backbone']} {got[1]['backbone']}")
+    return 0
+
+
+def base_excitation(exe):
+    # A linear SDOF (m = 1, k = 1, c = 0.1) on a base moving as y = Y sin(omega t),
+    # Y = 0.01: force_sin = k Y, force_per_omega_cos = c Y. Closed form (transmissibility):
+    # |X| = Y sqrt(k^2 + (c omega)^2) / sqrt((k - m omega^2)^2 + (c omega)^2).
+    case = """[structure]
+mass = [[1.0]]
+stiffness = [[1.0]]
+damping = [[0.1]]
+[harmonic_balance]
+max = 1
+time_points = 16
+[[frequency_response]]
+force_sin = [[0.0], [0.01]]
+force_per_omega_cos = [[0.0], [0.001]]
+omega = { from = 0.5, to = 2.0 }
+"""
+    with tempfile.TemporaryDirectory() as tmp:
+        r, out = run(exe, case, tmp)
+        if r.returncode != 0:
+            return fail(f"exit {r.returncode}: {r.stderr}")
+        c = json.load(open(os.path.join(out, "summary.json")))["frequency_response"][0]
+    Y, k, m, cc = 0.01, 1.0, 1.0, 0.1
+    for w, x in zip(c["omega_rad_s"], c["output_amplitude"]):
+        exact = Y * math.hypot(k, cc * w) / math.hypot(k - m * w * w, cc * w)
+        # A linear system: harmonic balance is exact up to the Newton tolerance (1e-9).
+        if abs(x[0] - exact) > 1e-7 * exact:
+            return fail(f"omega {w}: {x[0]} vs {exact}")
+    if len(c["omega_rad_s"]) < 10:
+        return fail(f"only {len(c['omega_rad_s'])} points")
+    return 0
+
+
+def out_refuses_a_foreign_directory(exe):
+    # An existing directory asperity did not write is refused before any work (exit 2),
+    # and left as it was.
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "out")
+        os.mkdir(out)
+        with open(os.path.join(out, "mine.txt"), "w") as f:
+            f.write("keep")
+        r, _ = run(exe, JENKINS + EPMC, tmp)
+        if r.returncode != 2 or r.stdout:
+            return fail(f"exit {r.returncode}: {r.stdout} {r.stderr}")
+        if os.listdir(out) != ["mine.txt"]:
+            return fail(f"directory changed: {os.listdir(out)}")
+        # A directory asperity wrote is replaced whole.
+        os.remove(os.path.join(out, "mine.txt"))
+        os.rmdir(out)
+        for _ in range(2):
+            r, _ = run(exe, JENKINS + EPMC, tmp)
+            if r.returncode != 0:
+                return fail(f"rewrite: exit {r.returncode}: {r.stderr}")
+    return 0
+
+
+BAD = {
+    "singular_mass": (JENKINS.replace("mass = [[1.0]]", "mass = [[0.0]]") + EPMC, "mass"),
+    "singular_mass_2dof": (
+        JENKINS.replace("mass = [[1.0]]", "mass = [[1.0, 1.0], [1.0, 1.0]]").replace(
+            "stiffness = [[1.0]]", "stiffness = [[1.0, 0.0], [0.0, 1.0]]").replace(
+            "damping = [[0.01]]", "").replace("T = [[1.0]]", "T = [[1.0, 0.0]]") + EPMC,
+        "mass"),
+    "nonsymmetric_mass": (
+        JENKINS.replace("mass = [[1.0]]", "mass = [[1.0, 0.5], [0.0, 1.0]]").replace(
+            "stiffness = [[1.0]]", "stiffness = [[1.0, 0.0], [0.0, 1.0]]").replace(
+            "damping = [[0.01]]", "").replace("T = [[1.0]]", "T = [[1.0, 0.0]]") + EPMC,
+        ["mass", "symmetric"]),
+    "mismatched_sizes": (
+        JENKINS.replace("mass = [[1.0]]", "mass = [[1.0, 0.0], [0.0, 1.0]]") + EPMC, "stiffness"),
+    "ragged_matrix": (JENKINS.replace("stiffness = [[1.0]]", "stiffness = [[1.0], [1.0, 2.0]]") + EPMC,
+                      ["structure.stiffness", "row 1"]),
+    "T_wrong_columns": (JENKINS.replace("T = [[1.0]]", "T = [[1.0, -1.0]]") + EPMC,
+                        ["element[0].T", "2 column", "1 DOFs"]),
+    "T_wrong_rows": (JENKINS.replace("T = [[1.0]]", "T = [[1.0], [1.0]]") + EPMC,
+                     ["element[0].T", "2 row"]),
+    "no_harmonic_1": (JENKINS.replace("max = 3", "harmonics = [0, 2, 3]") + EPMC,
+                      ["harmonic 1", "add 1"]),
+    "cannot_start": (JENKINS + """[nonlinear_mode]
+log10_amplitude = { from = 3.0, to = 5.0 }
+continuation = { max_iterations = 2, target_iterations = 1 }
+""", ["cannot start", "nonlinear_mode"]),
+    "unknown_key": (JENKINS.replace("k_t = 0.25", "k_t = 0.25\nkt = 0.3") + EPMC,
+                    ['"kt"', "line 10", "element[0]"]),
+    "unknown_table": (JENKINS + EPMC + "[solver]\nx = 1\n", ['"solver"', "line"]),
+    "unknown_element_type": (JENKINS.replace('"jenkins"', '"jenkin"') + EPMC, ["jenkin", "use"]),
+    "missing_parameter": (JENKINS.replace("F_s = 0.2\n", "") + EPMC, "F_s"),
+    "wrong_units": (JENKINS.replace("k_t = 0.25", 'k_t = "0.25 N"') + EPMC, "k_t"),
+    "omega_ambiguous_units": (JENKINS + FRF.replace("from = 0.7", 'from = "0.7 s^-1"'), ["Hz", "rad/s"]),
+    "force_wrong_columns": (JENKINS + FRF.replace("[[0.0], [0.1]]", "[[0.0, 0.0], [0.1, 0.0]]"),
+                            ["force_cos", "column"]),
+    "force_sine_of_harmonic_0": (JENKINS + FRF.replace("omega", "force_sin = [[1.0]]\nomega"),
+                                 ["harmonic 0", "sine"]),
+    "nothing_to_run": (JENKINS, "nothing to run"),
+    "no_structure": ("[harmonic_balance]\nmax = 1\n", "[structure]"),
+    "rough_flat_without_parameters": (JENKINS.replace('"jenkins"', '"rough_flat"').replace(
+        "k_t = 0.25\nF_s = 0.2\n", "") + EPMC, ["rough_flat", "joint"]),
+    "mtx_missing": (JENKINS.replace("mass = [[1.0]]", 'mass_file = "nope.mtx"') + EPMC, "nope.mtx"),
+    "mode_out_of_range": (JENKINS + EPMC.replace("[nonlinear_mode]", "[nonlinear_mode]\nmode = 2"),
+                          "nonlinear_mode.mode"),
+}
+
+
+def main():
+    exe, case = sys.argv[1], sys.argv[2]
+    if case.startswith("bad_input."):
+        text, words = BAD[case.split(".", 1)[1]]
+        return bad(exe, text, words)
+    return {
+        "summary_keys": summary_keys,
+        "examples": examples,
+        "stall": stall,
+        "matrix_market": matrix_market,
+        "omega_in_hz": omega_in_hz,
+        "without_out_prints_the_summary": without_out_prints_the_summary,
+        "element_types": element_types,
+        "base_excitation": base_excitation,
+        "out_refuses_a_foreign_directory": out_refuses_a_foreign_directory,
+        "rough_flat_forms": rough_flat_forms,
+    }[case](exe)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
