@@ -20,6 +20,7 @@
 #include "asperity/joint/predict.hpp"
 #include "asperity/joint/validation.hpp"
 #include "asperity/surface/patched_flat.hpp"
+#include "asperity/vibration/case.hpp"
 
 namespace {
 
@@ -318,6 +319,35 @@ TEST(InterfaceCase, BoltedCaseFileEqualsTheBuiltInField) {
   const auto b = joint::case_patches(ref, c.preloads[0]);
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].force, b[i].force);
+}
+
+// `asperity vibration` with a [joint] and an [interface]: its rough_flat element is the
+// summed backbone of predict (the same Q_max and stiffness).
+TEST(InterfaceCase, VibrationUsesTheSummedBackbone) {
+  const std::string text = case_text(kBolted) + R"(
+[structure]
+mass = [[1.0]]
+stiffness = [[1e8]]
+[[element]]
+type = "rough_flat"
+backbone = "joint"
+T = [[1.0]]
+[quasi_static_mode]
+mode = 1
+amplitude = { from = 1e-9, to = 1e-6 }
+points = 3
+)";
+  const auto vc = vibration::parse_case_text(text, "<vib>", ".");
+  ASSERT_TRUE(vc.joint.has_value());
+  double Q_max = 0.0, k_t = 0.0;
+  for (const auto& [k, v] : *vc.joint) {
+    if (k == "Q_max_N") Q_max = std::get<double>(v.data);
+    if (k == "stiffness_N_per_m") k_t = std::get<double>(v.data);
+  }
+  const auto jc = joint::parse_case(case_text(kBolted));
+  const auto lp = joint::predict_case_load(jc, jc.preloads[0]);
+  EXPECT_EQ(Q_max, lp.Q_max);
+  EXPECT_EQ(k_t, lp.stiffness);
 }
 
 // validate's "bolt field" rows use the geometry of the shipped example (the same forces).
