@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # Sets everything up on a fresh Debian machine and runs every test: a clang-format check,
 # the C++ suite
-# (GoogleTest, CLI checks, examples, the downstream find_package check) with warnings as
+# (GoogleTest, CLI checks, examples, the downstream find_package checks of the static and the
+# shared library, tests/package) with warnings as
 # errors, the GoogleTest suite and the C++ example again under AddressSanitizer and
 # UndefinedBehaviorSanitizer (the `debug` preset), a short libFuzzer smoke run of the
-# profile readers, then the Python package installed with pip into .venv and its pytest
-# suite. Every Python step runs .venv/bin/python (scripts/setup.sh makes it).
+# profile readers, then the Python package installed with pip into .venv (with the `asperity`
+# command) and its pytest suite, which also runs every code block of README.md and docs/*.md
+# through that command and package (tests/python/test_docs.py). Every Python step runs
+# .venv/bin/python (scripts/setup.sh makes it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -27,7 +30,7 @@ stage "C++ under ASan + UBSan (debug preset): GoogleTest suite and the C++ examp
 # The CLI-script tests are left out here: the same code paths run in the GoogleTest
 # suite, and the Python drivers under ASan would only add time.
 cmake --preset debug -DPython3_EXECUTABLE="$py"
-cmake --build --preset debug -j 2 --target asperity_tests sphere_example
+cmake --build --preset debug -j 2 --target asperity_tests sphere_example rough_flat_hysteresis
 ctest --preset debug -j 2 -L 'unit|example'
 
 stage "Fuzz smoke run of the profile readers (libFuzzer, clang, ASan + UBSan)"

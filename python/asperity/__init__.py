@@ -38,6 +38,7 @@ nonlinear modes (EPMC), frequency responses and the quasi-static modal estimate.
 from __future__ import annotations
 
 import sys as _sys
+import types as _types
 
 from . import _core
 from ._core import *  # noqa: F401,F403
@@ -46,10 +47,27 @@ from . import joints  # noqa: F401  (matplotlib helpers for predict / analyze_fr
 from . import dynamics  # noqa: F401  (dynamics case files, Fig. 7.3-7.7 helpers)
 from . import vibration  # noqa: F401  (harmonic balance, nonlinear modes, FRFs)
 
-# `import asperity.mindlin` works like a submodule of the package.
-_sys.modules[__name__ + ".mindlin"] = mindlin
+# inspect.signature() on the compiled functions and constructors (see _signatures.py).
+from . import _signatures  # noqa: E402
 
-__version__ = "0.1.0"
+for _name in dir(_core):
+    _obj = getattr(_core, _name)
+    if _name.startswith("_"):
+        continue
+    if _signatures.is_compiled_function(_obj):
+        globals()[_name] = _signatures.with_signature(_obj)
+    elif isinstance(_obj, type):
+        _signatures.add_class_signature(_obj)
+# asperity.mindlin: the same functions as asperity._core.mindlin, with signatures.
+mindlin = _types.ModuleType("asperity.mindlin", _core.mindlin.__doc__)
+for _name in dir(_core.mindlin):
+    _obj = getattr(_core.mindlin, _name)
+    if not _name.startswith("_") and _signatures.is_compiled_function(_obj):
+        setattr(mindlin, _name, _signatures.with_signature(_obj, "asperity.mindlin"))
+_sys.modules[__name__ + ".mindlin"] = mindlin
+del _name, _obj
+
+__version__ = _core.version_info()["version"]
 
 __all__ = [name for name in dir(_core) if not name.startswith("_")]
 

@@ -25,7 +25,7 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from . import _core
+from . import _core, _optional
 
 ASSUMPTIONS = "EPB: A0 = 1 cm^2, A = 18 um, P = 9 N (assumed; Table 7.2 gives no A0)"
 
@@ -52,7 +52,7 @@ def run_case_text(text: str, base_dir: str | os.PathLike = ".") -> dict:
 
 def _axes(ax):
     if ax is None:
-        import matplotlib.pyplot as plt
+        plt = _optional.pyplot()
 
         _, ax = plt.subplots()
     return ax
@@ -127,7 +127,7 @@ def plot_harmonic(results: Mapping[str, dict], axes: Sequence | None = None,
     friction force F_s against u (bottom) over the last ``cycles`` periods (the summary's
     loop cycles by default)."""
     if axes is None:
-        import matplotlib.pyplot as plt
+        plt = _optional.pyplot()
 
         fig, axes = plt.subplots(2, len(results), figsize=(5.5 * len(results), 8.5),
                                  squeeze=False)
@@ -153,7 +153,7 @@ def thesis_figures(examples_dir: str | os.PathLike, out_dir: str | os.PathLike |
     """Runs the shipped examples (examples/dynamics) and draws Fig. 7.3-7.7 with
     matplotlib; returns ``{"7.3": fig, ...}`` and, with ``out_dir``, writes
     fig_7_3.png ... fig_7_7.png there."""
-    import matplotlib.pyplot as plt
+    plt = _optional.pyplot()
 
     d = os.fspath(examples_dir)
 

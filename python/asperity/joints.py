@@ -7,10 +7,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import _optional
+
 
 def _axes(ax):
     if ax is None:
-        import matplotlib.pyplot as plt
+        plt = _optional.pyplot()
 
         _, ax = plt.subplots()
     return ax

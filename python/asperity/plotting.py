@@ -12,7 +12,7 @@ from typing import Iterable, Mapping, Sequence, Union
 
 import numpy as np
 
-from . import _core
+from . import _core, _optional
 
 #: Line styles per model name, shared by all helpers so figures agree.
 MODEL_STYLES = {
@@ -29,7 +29,7 @@ Models = Union[Mapping[str, "_core.PartialSlipModel"], Iterable["_core.PartialSl
 def _axes(ax):
     if ax is not None:
         return ax
-    import matplotlib.pyplot as plt
+    plt = _optional.pyplot()
 
     _, ax = plt.subplots()
     return ax

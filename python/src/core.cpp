@@ -4,6 +4,7 @@
 
 #include <asperity/core/error.hpp>
 #include <asperity/core/units.hpp>
+#include <asperity/core/version.hpp>
 #include <string>
 
 #include "bindings.hpp"
@@ -25,6 +26,18 @@ PyObject* new_exception(const char* name, const char* doc, PyObject* bases) {
 }  // namespace
 
 void bind_core(nb::module_& m) {
+  m.def(
+      "version_info",
+      [] {
+        const auto v = core::version_info();
+        nb::dict d;
+        d["version"] = std::string(v.version);
+        d["git_revision"] = std::string(v.git_revision);
+        d["build_type"] = std::string(v.build_type);
+        return d;
+      },
+      "The version of the compiled library: {'version', 'git_revision', 'build_type'} (as "
+      "`asperity --version` prints them).");
   // asperity.Error is the base of both; InvalidInput is also a ValueError and
   // NumericalError a RuntimeError, so generic `except ValueError` code works.
   g_error =

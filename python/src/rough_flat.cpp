@@ -153,7 +153,11 @@ void bind_rough_flat(nb::module_& m) {
           },
           "d_star"_a, "Tangential stiffness at a reversal over K H A0/sigma.")
       .def("backbone", &RoughFlat::backbone, "d_star"_a, "rel_tol"_a = 1e-9,
-           "The tabulated backbone at separation d* (for Hysteresis).");
+           "The tabulated backbone at separation d* (for Hysteresis).")
+      .def("backbone_at_preload", &RoughFlat::backbone_at_preload, "P"_a, "rel_tol"_a = 1e-9,
+           "The backbone in SI at preload P [N] (a flat from from_dimensional): Q_l [N] of "
+           "delta [m], the tabulated backbone at the separation carrying P scaled by sigma_s "
+           "and K H A0 (for Hysteresis).");
 }
 
 }  // namespace asperity::python

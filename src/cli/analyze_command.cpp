@@ -486,11 +486,11 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
           for (const auto& w : law->warnings) std::cerr << "asperity: warning: " << w << "\n";
         }
         std::vector<std::string> written;
-        if (kind == OutKind::file) write_file_atomically(*o->out, j.dump(2) + "\n");
+        if (kind == OutKind::file) write_file_atomically(*o->out, json_output(j));
         if (to_dir) {
           joint::StagedDirectory dir(*o->out, "asperity analyze");
           written = {"analysis.json", "cycles.csv", "cycle_traces.csv", "averaged_loop.csv"};
-          write_file_atomically(dir.file("analysis.json"), j.dump(2) + "\n");
+          write_file_atomically(dir.file("analysis.json"), json_output(j));
           std::vector<std::vector<double>> cc(9), lc(4), tc(6);
           for (std::size_t k = 0; k < runs.size(); ++k) {
             const auto& d = runs[k].data;
@@ -584,7 +584,7 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
           dir.commit();
         }
         if (stdout_is_data) {
-          out = j.dump(2) + "\n";
+          out = json_output(j);
         } else {
           for (const auto& r : runs) out += run_text(r) + "\n";
           if (law) {
@@ -726,7 +726,7 @@ void add_synthesize_command(CLI::App& app, std::function<int()>& action) {
                  {"load_cell_stiffness", s.load_cell_stiffness},
                  {"seed", s.seed},
                  {"columns", header}};
-          out += j.dump(2) + "\n";
+          out += json_output(j);
         } else if (is_standard_output(o->out)) {
           std::cerr << fmt::format("{} samples; P = {:.4g} N, mu = {:.4f}, stiffness {:.4g} N/um\n",
                                    d.t.size(), P, lp.mu, lp.stiffness * 1e-6);

@@ -18,6 +18,7 @@
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
+#include "asperity/core/version.hpp"
 
 extern char** environ;  // POSIX: the environment, for posix_spawnp
 
@@ -237,6 +238,22 @@ std::string gnuplot_string(const std::string& s) {
     }
   }
   return out + "'";
+}
+
+std::string version_text() {
+  const auto v = core::version_info();
+  return fmt::format("{} (git {}, {})", v.version, v.git_revision, v.build_type);
+}
+
+std::string json_output(const Json& j) {
+  Json out = Json::object();
+  out["asperity_version"] = version_text();
+  if (j.is_object()) {
+    for (const auto& [key, value] : j.items()) out[key] = value;
+  } else {
+    out["result"] = j;
+  }
+  return out.dump(2) + "\n";
 }
 
 namespace {

@@ -52,6 +52,15 @@ std::optional<double> quantity(const std::optional<std::string>& text, core::Dim
 double required_quantity(const std::optional<std::string>& text, core::Dimension d,
                          const std::string& flag);
 
+/// "0.1.0 (git 8dc2057, Release)": the version, source revision and build type of this
+/// asperity (`--version` prints "asperity " and this).
+std::string version_text();
+
+/// The text of every JSON output, on stdout or in a file: `j` (an object) with
+/// "asperity_version" (version_text()) as its first key, indented by 2, newline-terminated.
+/// Every command writes its JSON through this function.
+std::string json_output(const Json& j);
+
 /// Writes `content` to a temporary file next to `path` and renames it over `path`,
 /// so the file is written whole or not at all. Throws InvalidInput on failure.
 void write_file_atomically(const std::string& path, const std::string& content);

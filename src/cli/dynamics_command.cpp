@@ -105,7 +105,7 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
       }
       write_file_atomically(dir.file("spectrum.csv"), csv);
     }
-    write_file_atomically(dir.file("summary.json"), to_json(r.summary).dump(2) + "\n");
+    write_file_atomically(dir.file("summary.json"), json_output(to_json(r.summary)));
 
     if (!o.no_plots) {
       const std::string label =
@@ -177,7 +177,7 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
 
   for (const auto& w : r.warnings) fmt::print(stderr, "warning: {}\n", w);
   if (stdout_is_data || kind == OutKind::file) {
-    const std::string summary_json = to_json(r.summary).dump(2) + "\n";
+    const std::string summary_json = json_output(to_json(r.summary));
     if (kind == OutKind::file) write_file_atomically(*o.out_dir, summary_json);
     if (stdout_is_data) {
       out += summary_json;

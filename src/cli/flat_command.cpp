@@ -298,7 +298,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
         j["energy"] = *energy * scales->force * scales->sigma;
       }
     }
-    out += j.dump(2) + "\n";
+    out += json_output(j);
   } else if (!stdout_is_data) {
     out += fmt::format(
         "rough flat, {} model: beta = {:.4g}, psi = {:.4g}, nu = {:.3g}, G*/E* = {:.4g}, "

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "common.hpp"
 #include "suggest.hpp"
 
 int main(int argc, char** argv) {
@@ -11,7 +12,8 @@ int main(int argc, char** argv) {
       "asperity: friction, tangential stiffness and energy per cycle of clamped joints from "
       "materials, roughness and load (Eriten 2012), with no fitted friction coefficient."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "asperity 0.1.0");
+  // The version, the git revision of the source and the build type.
+  app.set_version_flag("--version", "asperity " + asperity::cli::version_text());
   std::function<int()> action;
   asperity::cli::add_sphere_command(app, action);
   asperity::cli::add_flat_command(app, action);

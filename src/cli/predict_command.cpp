@@ -424,7 +424,7 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
     written.push_back(prefix + name);
     return dir.file(prefix + name);
   };
-  if (data) write_file_atomically(file("summary.json"), prediction_json(c, p).dump(2) + "\n");
+  if (data) write_file_atomically(file("summary.json"), json_output(prediction_json(c, p)));
   // loops.csv: steady loops for every preload and amplitude (long format).
   std::vector<std::vector<double>> lc(4);
   // energy.csv: numbers with 12 digits, and an empty imposed[um] field where the joint
@@ -653,9 +653,9 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
           written = write_prediction_files(c, p, dir, !o->no_plots, true, "");
           dir.commit();
         }
-        out = stdout_is_data ? prediction_json(c, p).dump(2) + "\n" : prediction_summary(c, p);
+        out = stdout_is_data ? json_output(prediction_json(c, p)) : prediction_summary(c, p);
         if (kind == OutKind::file) {
-          write_file_atomically(*o->out, prediction_json(c, p).dump(2) + "\n");
+          write_file_atomically(*o->out, json_output(prediction_json(c, p)));
           report_written({*o->out}, stdout_is_data, out);
         }
         if (to_dir) {

@@ -707,7 +707,7 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
       j["material"] = {
           {"E_star", pair->E_star}, {"H", pair->H}, {"nu", pair->nu}, {"K", pair->K()}};
     }
-    out += j.dump(2) + "\n";
+    out += json_output(j);
   } else {
     if (any_files) {
       out += s.filter.is_none()

@@ -350,7 +350,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     for (const auto& sk : skipped) jm[std::string(to_string(sk.model))] = {{"skipped", sk.reason}};
     j["models"] = jm;
     j["warnings"] = warnings;
-    out += j.dump(2) + "\n";
+    out += json_output(j);
   } else if (!stdout_is_data) {
     out += fmt::format(
         "sphere on {}: R = {:.4g} mm, E* = {:.4g} GPa, G* = {:.4g} GPa, "

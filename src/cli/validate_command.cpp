@@ -156,7 +156,7 @@ void add_validate_command(CLI::App& app, std::function<int()>& action) {
         const auto md = joint::validation_markdown(rows);
         // The Markdown report is the document on stdout; "wrote" goes to stderr.
         const bool stdout_is_data = true;
-        out = o->json ? rows_json(rows, failures).dump(2) + "\n" : md;
+        out = o->json ? json_output(rows_json(rows, failures)) : md;
         if (kind == OutKind::directory) {
           joint::StagedDirectory dir(*o->out, "asperity validate");
           write_file_atomically(dir.file("validation.md"), md);

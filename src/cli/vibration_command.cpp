@@ -102,7 +102,7 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
     write_file_atomically(dir.file(name), content);
     written.push_back(name);
   };
-  write("summary.json", to_json(SummaryValue(r.summary)).dump(2) + "\n");
+  write("summary.json", json_output(to_json(SummaryValue(r.summary))));
   if (r.nonlinear_mode) {
     const auto& m = *r.nonlinear_mode;
     std::vector<std::string> h{"log10_amplitude", "amplitude",     "omega_rad_s",
@@ -307,7 +307,7 @@ void run_vibration(const VibrationOptions& o, std::string& out) {
     dir.commit();
   }
   for (const auto& w : r.warnings) fmt::print(stderr, "warning: {}\n", w);
-  out = o.json ? to_json(SummaryValue(r.summary)).dump(2) + "\n" : text_summary(c, r);
+  out = o.json ? json_output(to_json(SummaryValue(r.summary))) : text_summary(c, r);
   if (!o.json) {
     if (files) {
       std::string list;

@@ -396,4 +396,20 @@ std::shared_ptr<const RoughFlatBackbone> RoughFlat::backbone(double d_star, doub
   return std::make_shared<const RoughFlatBackbone>(*this, d_star, rel_tol);
 }
 
+std::shared_ptr<const hysteresis::ScaledBackbone> RoughFlat::backbone_at_preload(
+    double P, double rel_tol) const {
+  if (!scales_) {
+    throw InvalidInput(
+        "backbone_at_preload: the rough flat is normalized (no SI scales): build it with "
+        "RoughFlat::from_dimensional, or use backbone(d_star)");
+  }
+  if (!(P > 0.0) || !std::isfinite(P)) {
+    throw InvalidInput(
+        fmt::format("backbone_at_preload: P = {} N: the preload must be positive and finite", P));
+  }
+  const double d_star = separation_star(P / scales_->force);
+  return std::make_shared<const hysteresis::ScaledBackbone>(backbone(d_star, rel_tol),
+                                                            scales_->sigma, scales_->force);
+}
+
 }  // namespace asperity::surface

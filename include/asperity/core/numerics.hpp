@@ -2,8 +2,6 @@
 // Quadrature and root finding: thin wrappers over Boost.Math that return an error
 // estimate and throw NumericalError (saying what was tried) instead of returning
 // NaN.
-#include <fmt/format.h>
-
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/quadrature/tanh_sinh.hpp>
 #include <boost/math/tools/roots.hpp>
@@ -17,6 +15,19 @@
 
 namespace asperity::core {
 
+namespace detail {
+// The messages of the failures below, formatted out of line: a public header includes
+// no private dependency of the library.
+[[noreturn]] void throw_invalid_interval(std::string_view what, double a, double b);
+[[noreturn]] void throw_non_finite(std::string_view what, std::string_view method, double a,
+                                   double b);
+[[noreturn]] void throw_infinite_interval(std::string_view what, double a, double b);
+[[noreturn]] void throw_no_sign_change(std::string_view what, double lo, double hi, double flo,
+                                       double fhi);
+[[noreturn]] void throw_no_convergence(std::string_view what, std::uintmax_t max_iter, double lo,
+                                       double hi);
+}  // namespace detail
+
 struct Integral {
   double value = 0.0;
   double error = 0.0;  ///< estimate of the absolute error
@@ -28,15 +39,14 @@ template <class F>
 Integral integrate(F f, double a, double b, double rel_tol = 1e-12, unsigned max_depth = 18,
                    std::string_view what = "integral") {
   if (!(a <= b)) {
-    throw NumericalError(fmt::format("{}: invalid interval [{}, {}]", what, a, b));
+    detail::throw_invalid_interval(what, a, b);
   }
   if (a == b) return {};
   double error = 0.0;
   const double value = boost::math::quadrature::gauss_kronrod<double, 15>::integrate(
       f, a, b, max_depth, rel_tol, &error);
   if (!std::isfinite(value)) {
-    throw NumericalError(
-        fmt::format("{}: Gauss-Kronrod on [{}, {}] gave a non-finite value", what, a, b));
+    detail::throw_non_finite(what, "Gauss-Kronrod", a, b);
   }
   return {value, error};
 }
@@ -47,7 +57,7 @@ template <class F>
 Integral integrate_tanh_sinh(F f, double a, double b, double rel_tol = 1e-12,
                              std::string_view what = "integral") {
   if (!(a <= b)) {
-    throw NumericalError(fmt::format("{}: invalid interval [{}, {}]", what, a, b));
+    detail::throw_invalid_interval(what, a, b);
   }
   if (a == b) return {};
   // Not const: Boost <= 1.8x declares integrate() as `-> decltype(...) const`, which
@@ -55,8 +65,7 @@ Integral integrate_tanh_sinh(F f, double a, double b, double rel_tol = 1e-12,
   // lazily refined abscissa tables per thread.
   thread_local boost::math::quadrature::tanh_sinh<double> integrator(15);
   if (!std::isfinite(a) || !std::isfinite(b)) {
-    throw NumericalError(
-        fmt::format("{}: tanh-sinh needs a finite interval, got [{}, {}]", what, a, b));
+    detail::throw_infinite_interval(what, a, b);
   }
   // Boost 1.74's one-argument tanh_sinh has a missing `else` for a left end with
   // |a| >= 0.5: the accurate abscissa a - diff*zc is overwritten by avg + diff*z, which
@@ -74,8 +83,7 @@ Integral integrate_tanh_sinh(F f, double a, double b, double rel_tol = 1e-12,
   double l1 = 0.0;
   const double value = integrator.integrate(inside, a - origin, b - origin, rel_tol, &error, &l1);
   if (!std::isfinite(value)) {
-    throw NumericalError(
-        fmt::format("{}: tanh-sinh on [{}, {}] gave a non-finite value", what, a, b));
+    detail::throw_non_finite(what, "tanh-sinh", a, b);
   }
   return {value, error * std::max(1.0, l1)};
 }
@@ -90,16 +98,13 @@ double find_root(F f, double lo, double hi, std::string_view what = "root", int 
   if (flo == 0.0) return lo;
   if (fhi == 0.0) return hi;
   if (!std::isfinite(flo) || !std::isfinite(fhi) || (flo > 0) == (fhi > 0)) {
-    throw NumericalError(fmt::format("{}: no sign change on [{:.6g}, {:.6g}] (f = {:.6g}, {:.6g})",
-                                     what, lo, hi, flo, fhi));
+    detail::throw_no_sign_change(what, lo, hi, flo, fhi);
   }
   std::uintmax_t iters = max_iter;
   const auto [a, b] = boost::math::tools::toms748_solve(
       f, lo, hi, flo, fhi, boost::math::tools::eps_tolerance<double>(bits), iters);
   if (iters >= max_iter) {
-    throw NumericalError(
-        fmt::format("{}: TOMS 748 did not converge in {} iterations on [{:.6g}, {:.6g}]", what,
-                    max_iter, lo, hi));
+    detail::throw_no_convergence(what, max_iter, lo, hi);
   }
   return 0.5 * (a + b);
 }

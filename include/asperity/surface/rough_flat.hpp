@@ -12,6 +12,7 @@
 
 #include "asperity/contact/asperity_model.hpp"
 #include "asperity/contact/material.hpp"
+#include "asperity/hysteresis/backbones.hpp"
 #include "asperity/hysteresis/masing.hpp"
 #include "asperity/hysteresis/tabulated_backbone.hpp"
 
@@ -113,6 +114,12 @@ class RoughFlat {
   /// verified bound on its relative error.
   [[nodiscard]] std::shared_ptr<const RoughFlatBackbone> backbone(double d_star,
                                                                   double rel_tol = 1e-9) const;
+  /// The backbone in SI at the preload P [N] of a flat built by from_dimensional: the
+  /// tabulated backbone at d* = separation_star(P/(K H A0)) scaled to Q_l [N] of delta [m]
+  /// (delta = delta* sigma_s, Q = Q* K H A0), for hysteresis::Hysteresis. Throws InvalidInput
+  /// for a normalized flat (no scales) or a preload out of separation_star's range.
+  [[nodiscard]] std::shared_ptr<const hysteresis::ScaledBackbone> backbone_at_preload(
+      double P, double rel_tol = 1e-9) const;
 
  private:
   RoughFlatParameters params_;

@@ -1,0 +1,134 @@
+"""The package as a user meets it: signatures readable by `inspect`, type stubs, one version
+everywhere, a clear message when the `plot` extra is missing, and the `asperity` command
+installed next to the interpreter by `pip install .`."""
+import inspect
+import os
+import pathlib
+import re
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+import asperity
+import asperity.plotting
+import asperity.thesis
+from asperity import _core
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+PACKAGE = pathlib.Path(asperity.__file__).resolve().parent
+
+
+def _nb_parameter_names(fn, drop_first=False):
+    """Parameter names as nanobind prints them in __nb_signature__ (the stub's source)."""
+    text = fn.__nb_signature__[0][0]
+    inside = text[text.index("(") + 1:text.rindex(") ->") if ") ->" in text else text.rindex(")")]
+    names, depth, current = [], 0, ""
+    for c in inside + ",":
+        if c in "([{":
+            depth += 1
+        elif c in ")]}":
+            depth -= 1
+        if c == "," and depth == 0:
+            name = current.split(":")[0].split("=")[0].strip().lstrip("*")
+            if name and name not in ("/", ""):
+                names.append(name)
+            current = ""
+        else:
+            current += c
+    return names[1:] if drop_first else names
+
+
+def _public_compiled_functions():
+    for name in dir(_core):
+        if not name.startswith("_") and type(getattr(_core, name)).__name__ == "nb_func":
+            yield f"asperity.{name}", getattr(asperity, name), getattr(_core, name)
+    for name in dir(_core.mindlin):
+        if not name.startswith("_") and type(getattr(_core.mindlin, name)).__name__ == "nb_func":
+            yield (f"asperity.mindlin.{name}", getattr(asperity.mindlin, name),
+                   getattr(_core.mindlin, name))
+
+
+def test_inspect_signature_on_every_public_function():
+    checked = 0
+    for qualname, public, compiled in _public_compiled_functions():
+        sig = inspect.signature(public)
+        names = [p for p in sig.parameters if p not in ("args", "kwargs")] or []
+        assert names == _nb_parameter_names(compiled), qualname
+        assert public.__doc__ == compiled.__doc__, qualname
+        checked += 1
+    assert checked >= 50  # 51 functions and 10 of asperity.mindlin when written
+
+
+def test_signature_details_match_the_binding():
+    sig = inspect.signature(asperity.simulate)
+    assert sig.parameters["epsilon"].kind is inspect.Parameter.KEYWORD_ONLY
+    assert sig.parameters["epsilon"].default == 0.032  # Table 7.2's epsilon, the binding's default
+    assert sig.parameters["friction"].default is None
+    sig = inspect.signature(asperity.RoughFlat)
+    assert list(sig.parameters)[:5] == ["model", "beta", "psi", "nu", "G_over_E"]
+    assert sig.parameters["slip_scaling"].default == "elastic"
+    # The wrapper calls the compiled function: same results, same errors.
+    assert asperity.hardness_factor(0.3) == _core.hardness_factor(0.3)
+    with pytest.raises(asperity.InvalidInput, match="torque"):
+        asperity.bolt_preload(-1.0, diameter=2.9e-3)
+
+
+def test_python_helpers_have_signatures():
+    for fn in (asperity.joints.plot_loops, asperity.dynamics.run_case,
+               asperity.plotting.plot_loop, asperity.thesis_normalization):
+        assert inspect.signature(fn).parameters
+
+
+def test_type_stubs_and_marker_ship_with_the_package():
+    assert (PACKAGE / "py.typed").is_file()
+    stub = (PACKAGE / "_core" / "__init__.pyi").read_text()
+    assert "def simulate(excitation:" in stub and "class RoughFlat:" in stub
+    mindlin = (PACKAGE / "_core" / "mindlin.pyi").read_text()
+    assert "def loading_force_tilde(" in mindlin
+
+
+def test_one_version_everywhere():
+    cmake = (ROOT / "CMakeLists.txt").read_text()
+    assert re.search(r"project\(asperity VERSION (\S+)", cmake).group(1) == asperity.__version__
+    info = asperity.version_info()
+    assert info["version"] == asperity.__version__
+    assert info["git_revision"] and info["build_type"]
+
+
+def test_plotting_without_matplotlib_names_the_extra():
+    # A fresh interpreter in which `import matplotlib` fails as it does when it is absent.
+    code = textwrap.dedent("""
+        import sys
+        sys.modules["matplotlib"] = None
+        sys.modules["matplotlib.pyplot"] = None
+        import asperity, asperity.plotting, asperity.thesis
+        pair = asperity.thesis.micro_pair()
+        model = asperity.PartialSlipModel.from_load(pair, "ke", 35.0, asperity.thesis.micro_params())
+        try:
+            asperity.plotting.plot_loop(model.loop(1.5e-6))
+        except ModuleNotFoundError as e:
+            print("ERROR:", e, "| name:", e.name)
+    """)
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       env={**os.environ}, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert "asperity[plot]" in r.stdout and "name: matplotlib" in r.stdout, r.stdout
+
+
+def test_the_command_comes_with_the_package():
+    """Installed (site-packages): pip put the `asperity` command next to the interpreter (a
+    wheel's scripts go to the environment's bin/). From a build tree (ctest's PYTHONPATH):
+    the CLI of the same build, ASPERITY_CLI. Either way it is this build's version."""
+    if "site-packages" in PACKAGE.parts:
+        exe = pathlib.Path(sys.executable).parent / "asperity"
+        assert exe.is_file(), f"pip install . gave no {exe}"
+    else:
+        assert os.environ.get("ASPERITY_CLI"), "ASPERITY_CLI is not set for a build-tree run"
+        exe = pathlib.Path(os.environ["ASPERITY_CLI"])
+    r = subprocess.run([str(exe), "--version"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    info = asperity.version_info()
+    assert r.stdout.strip() == (f"asperity {info['version']} (git {info['git_revision']}, "
+                                f"{info['build_type']})")
