@@ -1,9 +1,11 @@
 // hysteresis/: the Masing engine over any backbone (numpy histories in and out).
 #include <nanobind/ndarray.h>
+#include <nanobind/stl/pair.h>
 #include <nanobind/stl/shared_ptr.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +19,9 @@
 #include "bindings.hpp"
 #include "vectorize.hpp"
 
+#define NPY_NO_DEPRECATED_API NPY_1_7_API_VERSION
+#include <numpy/arrayobject.h>
+
 namespace asperity::python {
 
 using namespace nb::literals;
@@ -24,18 +29,65 @@ using namespace asperity::hysteresis;
 
 namespace {
 
-// A history from anything numpy turns into a 1-D float64 array (list, tuple, array of any
-// dtype or stride).
-std::vector<double> to_history(const ArrayLike& a, const char* name) {
-  nb::module_ np = nb::module_::import_("numpy");
-  const nb::object arr =
-      np.attr("ascontiguousarray")(np.attr("asarray")(a.obj, nb::arg("dtype") = "float64"));
-  const auto view = nb::cast<nb::ndarray<const double, nb::c_contig, nb::device::cpu>>(arr);
-  if (view.ndim() != 1) {
-    throw InvalidInput(fmt::format("{} must be a 1-D sequence, got an array with {} dimensions",
-                                   name, view.ndim()));
+// numpy's C API, imported on first use (this file is its only user).
+void import_numpy() {
+  static const bool imported = [] {
+    if (_import_array() < 0) throw nb::python_error();
+    return true;
+  }();
+  (void)imported;
+}
+
+// Forces (displacements with `inverse`) along a history from the current state of
+// `h`, which is not changed. A Python float gives a float; a 1-D float64 numpy array
+// (any stride) is read in place and the result written straight into a new array made
+// by numpy's C API (a small call costs about a Python call; numpy.empty from Python
+// alone costs 4 of them); anything else goes through numpy.asarray first.
+nb::object along_history(const Hysteresis& h, const ArrayLike& in, bool inverse) {
+  double v = 0.0;
+  if (detail::python_number(in.obj, v)) {
+    if (!inverse) return nb::float_(h.peek(v));
+    Hysteresis c = h;
+    return nb::float_(c.update_force(v));
   }
-  return std::vector<double>(view.data(), view.data() + view.shape(0));
+  import_numpy();
+  nb::object source = in.obj;
+  auto usable = [](PyObject* o) {
+    if (!PyArray_Check(o)) return false;
+    auto* a = reinterpret_cast<PyArrayObject*>(o);
+    return PyArray_NDIM(a) == 1 && PyArray_TYPE(a) == NPY_DOUBLE && PyArray_ISBEHAVED_RO(a);
+  };
+  if (!usable(source.ptr())) {
+    nb::module_ np = nb::module_::import_("numpy");
+    source = np.attr("ascontiguousarray")(np.attr("asarray")(in.obj, nb::arg("dtype") = "float64"));
+    if (!usable(source.ptr())) {
+      throw InvalidInput(fmt::format(
+          "{} must be a 1-D sequence, got an array with {} dimensions",
+          inverse ? "the force history" : "the displacement history",
+          PyArray_Check(source.ptr()) ? PyArray_NDIM(reinterpret_cast<PyArrayObject*>(source.ptr()))
+                                      : 0));
+    }
+  }
+  auto* a = reinterpret_cast<PyArrayObject*>(source.ptr());
+  npy_intp n = PyArray_DIM(a, 0);
+  const npy_intp stride = PyArray_STRIDE(a, 0);
+  const char* x = static_cast<const char*>(PyArray_DATA(a));
+  nb::object result = nb::steal(PyArray_SimpleNew(1, &n, NPY_DOUBLE));
+  if (!result.is_valid()) throw nb::python_error();
+  auto* out = static_cast<double*>(PyArray_DATA(reinterpret_cast<PyArrayObject*>(result.ptr())));
+  if (n == 1 && !inverse) {
+    double x0 = 0.0;
+    std::memcpy(&x0, x, sizeof x0);
+    out[0] = h.peek(x0);
+    return result;
+  }
+  Hysteresis c = h;
+  for (npy_intp k = 0; k < n; ++k) {
+    double xk = 0.0;
+    std::memcpy(&xk, x + k * stride, sizeof xk);
+    out[k] = inverse ? c.update_force(xk) : c.update(xk);
+  }
+  return result;
 }
 
 MemoryRule parse_rule(const std::string& name) {
@@ -129,18 +181,14 @@ void bind_hysteresis(nb::module_& m) {
           "remembered reversal points (x, Q), oldest first")
       .def(
           "forces",
-          [](const Hysteresis& h, const ArrayLike& x) -> nb::object {
-            return array_of(h.forces(to_history(x, "the displacement history")));
-          },
-          "x"_a,
-          "Forces along a displacement history (1-D array), from the current state; "
-          "the object is not changed.")
+          [](const Hysteresis& h, const ArrayLike& x) { return along_history(h, x, false); }, "x"_a,
+          "Forces along a displacement history (1-D array; a float gives a float), from the "
+          "current state; the object is not changed.")
       .def(
           "displacements",
-          [](const Hysteresis& h, const ArrayLike& Q) -> nb::object {
-            return array_of(h.displacements(to_history(Q, "the force history")));
-          },
-          "Q"_a, "Displacements along a force history (1-D array), from the current state.");
+          [](const Hysteresis& h, const ArrayLike& Q) { return along_history(h, Q, true); }, "Q"_a,
+          "Displacements along a force history (1-D array; a float gives a float), from the "
+          "current state; the object is not changed.");
 }
 
 }  // namespace asperity::python

@@ -6,11 +6,14 @@
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <memory>
 #include <utility>
 #include <vector>
+
+#include "asperity/core/parallel.hpp"
 
 namespace asperity::python {
 
@@ -107,7 +110,22 @@ FloatOrArray vectorize_impl(F& f, const std::array<nb::handle, sizeof...(I)>& in
   for (std::size_t d = 0; d < ndim; ++d) shape[d] = views[0].shape(d);
   const std::size_t n = views[0].size();
   auto out = std::make_unique<double[]>(n);
-  for (std::size_t k = 0; k < n; ++k) out[k] = f(views[I].data()[k]...);
+  // Large arrays in blocks over the cores (core::parallel_for: every element in its own
+  // slot, so the result is the sequential one; the first error by index is raised).
+  // Small ones stay on this thread: a small call costs about a Python call.
+  constexpr std::size_t kBlock = 8192;
+  std::array<const double*, N> data{views[I].data()...};
+  double* o = out.get();
+  auto block = [&](std::size_t b) {
+    const std::size_t end = std::min(n, (b + 1) * kBlock);
+    for (std::size_t k = b * kBlock; k < end; ++k) o[k] = f(data[I][k]...);
+  };
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  if (blocks > 1) {
+    core::parallel_for(blocks, block);
+  } else {
+    block(0);
+  }
   return {make_array(std::move(out), shape)};
 }
 

@@ -7,9 +7,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <memory>
 #include <optional>
 
+#include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/dynamics/case.hpp"
 #include "asperity/joint/output_dir.hpp"
@@ -26,7 +28,30 @@ struct DynamicsOptions {
   std::string case_file;
   std::optional<std::string> out_dir;
   bool no_plots = false;
+  std::size_t decimate = 1;
   bool json = false;
+};
+
+// Thinned plot series, filled sample by sample while the run streams (gnuplot reads
+// text: about 20000 points a series).
+struct PlotSeries {
+  std::size_t stride = 1;
+  double loop_from = 0.0;  // phase portrait and friction loop: the steady part
+  std::size_t k = 0;
+  Series mass{.title = "mass u"}, base{.title = "base y"}, phase{.title = "mass"},
+      loop{.title = "friction"};
+  void add(const TrajectorySample& x) {
+    if (k++ % stride != 0) return;
+    mass.x.push_back(x.tau);
+    mass.y.push_back(x.u);
+    base.x.push_back(x.tau);
+    base.y.push_back(x.y);
+    if (x.tau < loop_from) return;
+    phase.x.push_back(x.u);
+    phase.y.push_back(x.v);
+    loop.x.push_back(x.u);
+    loop.y.push_back(x.friction);
+  }
 };
 
 Json to_json(const SummaryValue& v) {
@@ -69,35 +94,74 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
     joint::require_replaceable_output(*o.out_dir, *o.out_dir);
   }
   const DynamicsCase c = read_case_file(o.case_file);
-  const CaseResult r = run_case(c);
-  const Trajectory& tr = r.trajectory;
-  std::vector<std::string> plots;
+  // Only what is asked for is kept: the summary's samples (run_case summary_only), the
+  // time history streamed to timeseries.csv in chunks as the integration produces it
+  // (every --decimate'th sample, events and the final state always), thinned plot series.
+  const double dt = c.simulation.output_interval;
+  const double expected_samples = dt > 0.0 ? c.simulation.duration / dt + 1.0 : 0.0;
+  if (files && expected_samples / static_cast<double>(o.decimate) > 5e7) {
+    throw InvalidInput(fmt::format(
+        "--out: timeseries.csv would hold about {:.3g} rows (duration / output_interval / "
+        "--decimate), more than the 5e7 allowed: give --decimate {} or more, or a larger "
+        "output_interval",
+        expected_samples / static_cast<double>(o.decimate),
+        static_cast<std::size_t>(std::ceil(expected_samples / 5e7))));
+  }
+  PlotSeries plot_series;
+  plot_series.stride = std::max<std::size_t>(1, static_cast<std::size_t>(expected_samples / 20000));
+  if (const auto* h = std::get_if<HarmonicExcitation>(&c.excitation)) {
+    plot_series.loop_from =
+        std::max(0.0, c.simulation.duration - c.analysis.loop_cycles / h->frequency);
+  }
+  const bool want_plots = files && !o.no_plots;
 
   // Everything goes into a temporary sibling renamed to --out at the end: the directory
   // is written whole or not at all.
   std::optional<joint::StagedDirectory> staged;
   if (files) staged.emplace(*o.out_dir);
+  CaseResult r;
   if (files) {
-    auto& dir = *staged;
-    {
-      const auto cols = time_history_columns(c, tr);
-      std::string csv;
-      for (std::size_t i = 0; i < cols.size(); ++i) csv += (i ? "," : "") + cols[i].name;
-      csv += '\n';
-      csv.reserve(tr.size() * 20 * cols.size());
-      for (std::size_t k = 0; k < tr.size(); ++k) {
-        for (std::size_t i = 0; i < cols.size(); ++i) {
-          if (i) csv += ',';
-          if (cols[i].name == "event") {
-            csv += cols[i].values[k] != 0.0 ? '1' : '0';
+    core::write_file_streamed(staged->file("timeseries.csv"), [&](const core::ChunkSink& sink) {
+      fmt::memory_buffer buf;
+      const auto names = time_history_names(c);
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        fmt::format_to(std::back_inserter(buf), "{}{}", i ? "," : "", names[i]);
+      }
+      buf.push_back('\n');
+      const std::size_t event_col = 5 + c.friction->internal_states() + 4;
+      std::vector<double> row;
+      std::size_t k = 0;
+      RunOptions run{.summary_only = true};
+      run.sink = [&](const TrajectorySample& x) {
+        if (want_plots) plot_series.add(x);
+        const bool last = x.tau >= c.simulation.duration;
+        if (k++ % o.decimate != 0 && !x.is_event && !last) return;
+        time_history_row(c, x, row);
+        for (std::size_t i = 0; i < row.size(); ++i) {
+          if (i) buf.push_back(',');
+          if (i == event_col) {
+            buf.push_back(row[i] != 0.0 ? '1' : '0');
           } else {
-            csv += fmt::format("{:.12g}", cols[i].values[k]);
+            fmt::format_to(std::back_inserter(buf), "{:.12g}", row[i]);
           }
         }
-        csv += '\n';
-      }
-      write_file_atomically(dir.file("timeseries.csv"), csv);
-    }
+        buf.push_back('\n');
+        if (buf.size() >= (std::size_t{1} << 20)) {
+          sink(std::string_view(buf.data(), buf.size()));
+          buf.clear();
+        }
+      };
+      r = run_case(c, run);
+      sink(std::string_view(buf.data(), buf.size()));
+    });
+  } else {
+    r = run_case(c, {.summary_only = true});
+  }
+  const Trajectory& tr = r.trajectory;
+  std::vector<std::string> plots;
+
+  if (files) {
+    auto& dir = *staged;
     if (r.spectrum) {
       std::string csv = "frequency,power\n";
       for (std::size_t i = 0; i < r.spectrum->frequency.size(); ++i) {
@@ -110,33 +174,17 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
     if (!o.no_plots) {
       const std::string label =
           fmt::format("{} friction, {} excitation", tr.friction_model, c.excitation_name);
-      // Thin the series for plotting (gnuplot reads text).
-      const std::size_t stride = std::max<std::size_t>(1, tr.size() / 20000);
-      auto series = [&](const std::string& title, const std::vector<double>& x,
-                        const std::vector<double>& y, double t_from) {
-        Series s{.title = title};
-        for (std::size_t i = 0; i < tr.size(); i += stride) {
-          if (tr.tau[i] < t_from) continue;
-          s.x.push_back(x[i]);
-          s.y.push_back(y[i]);
-        }
-        return s;
-      };
       PlotSpec resp{
           .title = "Response (Fig. 7.5 style): " + label, .xlabel = "tau", .ylabel = "u = x/A"};
-      resp.series.push_back(series("mass u", tr.tau, tr.u, 0.0));
-      if (c.excitation_name != "free") resp.series.push_back(series("base y", tr.tau, tr.y, 0.0));
+      resp.series.push_back(std::move(plot_series.mass));
+      if (c.excitation_name != "free") resp.series.push_back(std::move(plot_series.base));
       plot_png(dir.file("response.png"), resp);
       plots.push_back("response.png");
       // Phase portrait and friction loop: the steady part for harmonic input (Fig. 7.6-7.7).
-      double from = 0.0;
-      if (const auto* h = std::get_if<HarmonicExcitation>(&c.excitation)) {
-        from = std::max(0.0, c.simulation.duration - c.analysis.loop_cycles / h->frequency);
-      }
       PlotSpec phase{.title = "Phase portrait (Fig. 7.6a-b / 7.7a-b style): " + label,
                      .xlabel = "u",
                      .ylabel = "u'"};
-      phase.series.push_back(series("mass", tr.u, tr.v, from));
+      phase.series.push_back(std::move(plot_series.phase));
       plot_png(dir.file("phase.png"), phase);
       plots.push_back("phase.png");
       if (tr.friction_model != "none") {
@@ -144,7 +192,7 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
             .title = "Friction force vs displacement (Fig. 7.6c-d / 7.7c-d style): " + label,
             .xlabel = "u",
             .ylabel = "F_s = f_s/(k A)"};
-        loop.series.push_back(series("friction", tr.u, tr.friction, from));
+        loop.series.push_back(std::move(plot_series.loop));
         plot_png(dir.file("friction_loop.png"), loop);
         plots.push_back("friction_loop.png");
       }
@@ -247,6 +295,10 @@ void add_dynamics_command(CLI::App& app, std::function<int()>& action) {
                   "- prints it; without --out only the summary is printed");
   cmd->add_flag("--no-plots", o->no_plots, "do not draw PNG plots (no gnuplot needed)");
   cmd->add_flag("--json", o->json, "print summary.json instead of the text summary");
+  cmd->add_option("--decimate", o->decimate,
+                  "write every Nth sample to timeseries.csv (events and the final state "
+                  "always; default 1: every sample of output_interval)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 40));
   cmd->callback([o, &action] {
     action = [o] { return run_guarded([o](std::string& out) { run_dynamics(*o, out); }); };
   });

@@ -379,9 +379,19 @@ void run_flat(const FlatOptions& o, std::string& out) {
     if (history_si) {
       for (auto& v : history_star) v *= scales->sigma;
       for (auto& v : Q) v *= scales->force;
-      write_output(*o.out_csv, csv_text({"delta[m]", "Q[N]"}, {history_star, Q}), out);
+    }
+    // Moved, not copied, into the table: memory holds the two columns once; a file is
+    // written in 1 MiB chunks (core::write_csv_table), standard output as before.
+    std::vector<std::vector<double>> columns;
+    columns.push_back(std::move(history_star));
+    columns.push_back(std::move(Q));
+    const std::vector<std::string> header = history_si
+                                                ? std::vector<std::string>{"delta[m]", "Q[N]"}
+                                                : std::vector<std::string>{"delta_star", "Q_star"};
+    if (is_standard_output(*o.out_csv)) {
+      write_output(*o.out_csv, csv_text(header, columns), out);
     } else {
-      write_output(*o.out_csv, csv_text({"delta_star", "Q_star"}, {history_star, Q}), out);
+      core::write_csv_table(*o.out_csv, header, columns);
     }
   }
   std::vector<std::string> written;

@@ -180,6 +180,23 @@ SpectralMoments parse_params(const std::string& text, std::size_t index) {
   return SpectralMoments::from_parameters(*sigma, *eta, *R);
 }
 
+// The profile of a profile file (ny = 1), its heights moved out of the map when every
+// point is valid (no copy), else the longest valid run (HeightMap::as_profile); the
+// map's heights are freed either way.
+surface::Profile take_profile(HeightMap& map, std::size_t invalid) {
+  surface::Profile p;
+  if (map.ny == 1 && map.nx >= 2 && invalid == 0) {
+    p.z = std::move(map.z);
+    p.dx = map.dx;
+    p.x0 = map.x0;
+    p.source = map.source;
+  } else {
+    p = map.as_profile();
+  }
+  std::vector<double>().swap(map.z);
+  return p;
+}
+
 struct Settings {
   Levelling level = Levelling::line;
   GaussianFilter filter;
@@ -272,24 +289,29 @@ AnalysedSurface analyse_files(const std::string& list, std::size_t index, const 
     return out;
   }
 
-  std::vector<surface::ProcessedProfile> processed;
   for (std::size_t k = 0; k < maps.size(); ++k) {
-    const auto profile = maps[k].as_profile();
-    if (maps[k].invalid_count() > 0) out.invalid_points += maps[k].invalid_count();
+    const std::size_t invalid = maps[k].invalid_count();
+    out.invalid_points += invalid;
+    auto profile = take_profile(maps[k], invalid);
+    const std::string source = profile.source;
+    const double dx = profile.dx, length = profile.length();
+    if (!s.plot) {
+      // Only the moments: the profile is levelled in place and freed once filtered.
+      const auto m = surface::profile_moments(std::move(profile), s.level, s.filter);
+      out.scans.push_back({source, "isotropic", m.points, 1, dx, length, m.length, m.moments});
+      continue;
+    }
     auto p = surface::process_profile(profile, s.level, s.filter);
-    Scan scan{profile.source, "isotropic",      p.filtered.z.size(), 1,
-              profile.dx,     profile.length(), p.filtered.length(), p.moments};
+    Scan scan{source, "isotropic", p.filtered.z.size(), 1,
+              dx,     length,      p.filtered.length(), p.moments};
     if (!out.trace) {
-      out.trace = PlotTrace{profile.source,
-                            profile,
-                            p.levelled,
-                            p.filtered,
-                            {},
-                            maps.size() > 1 ? "filtered heights, all scans" : "filtered heights"};
+      out.trace = PlotTrace{
+          source,     profile,
+          p.levelled, p.filtered,
+          {},         maps.size() > 1 ? "filtered heights, all scans" : "filtered heights"};
     }
     out.trace->heights.insert(out.trace->heights.end(), p.filtered.z.begin(), p.filtered.z.end());
     out.scans.push_back(scan);
-    processed.push_back(std::move(p));
   }
   if (out.scans.size() == 1) {
     out.moments = out.scans.front().moments;

@@ -2,12 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <memory>
 #include <random>
-#include <sstream>
 
 #include "asperity/core/error.hpp"
 
@@ -15,20 +18,59 @@ namespace asperity::core {
 
 namespace {
 
-std::string trim(std::string_view s) {
+std::string_view trim(std::string_view s) {
   std::size_t a = 0, b = s.size();
   while (a < b && (s[a] == ' ' || s[a] == '\t' || s[a] == '\r' || s[a] == '"')) ++a;
   while (b > a && (s[b - 1] == ' ' || s[b - 1] == '\t' || s[b - 1] == '\r' || s[b - 1] == '"')) --b;
-  return std::string(s.substr(a, b - a));
+  return s.substr(a, b - a);
 }
 
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> cells;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, sep)) cells.push_back(trim(cell));
-  if (!line.empty() && line.back() == sep) cells.emplace_back();
-  return cells;
+// Cells of a line at `sep` (trimmed); "a,b," has three cells, the last empty.
+template <class F>
+void for_each_cell(std::string_view line, char sep, F&& on_cell) {
+  std::size_t start = 0;
+  while (true) {
+    const auto pos = line.find(sep, start);
+    on_cell(trim(line.substr(start, pos == std::string_view::npos ? pos : pos - start)));
+    if (pos == std::string_view::npos) return;
+    start = pos + 1;
+  }
+}
+
+// Calls on_line(text) for every line of the file (LF or CRLF ends; a final line without
+// one too), reading 1 MiB at a time: memory holds one chunk and one line, not the file.
+template <class F>
+void for_each_line(const std::string& path, F&& on_line) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!f) throw InvalidInput(fmt::format("{}: cannot open the file", path));
+  constexpr std::size_t kChunk = std::size_t{1} << 20;
+  std::vector<char> chunk(kChunk);
+  std::string carry;  // the unfinished line of the previous chunk
+  while (true) {
+    const std::size_t got = std::fread(chunk.data(), 1, kChunk, f.get());
+    if (got == 0) {
+      if (std::ferror(f.get()))
+        throw InvalidInput(fmt::format("{}: reading the file failed", path));
+      break;
+    }
+    std::string_view rest(chunk.data(), got);
+    while (true) {
+      const auto nl = rest.find('\n');
+      if (nl == std::string_view::npos) {
+        carry.append(rest);
+        break;
+      }
+      if (carry.empty()) {
+        on_line(rest.substr(0, nl));
+      } else {
+        carry.append(rest.substr(0, nl));
+        on_line(std::string_view(carry));
+        carry.clear();
+      }
+      rest.remove_prefix(nl + 1);
+    }
+  }
+  if (!carry.empty()) on_line(std::string_view(carry));
 }
 
 }  // namespace
@@ -58,31 +100,28 @@ std::vector<double> CsvTable::si_values(const CsvColumn& column, Dimension d) co
 }
 
 CsvTable read_csv_table(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InvalidInput(fmt::format("{}: cannot open the file", path));
   CsvTable table{path, {}};
-  std::string line;
   std::size_t line_no = 0;
   char sep = ',';
   bool have_header = false;
-  while (std::getline(in, line)) {
+  for_each_line(path, [&](std::string_view line) {
     ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line_no == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // UTF-8 BOM
-    const std::string t = trim(line);
-    if (t.empty() || t[0] == '#') continue;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (line_no == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);  // UTF-8 BOM
+    const std::string_view t = trim(line);
+    if (t.empty() || t[0] == '#') return;
     if (!have_header) {
-      sep = t.find(',') != std::string::npos    ? ','
-            : t.find(';') != std::string::npos  ? ';'
-            : t.find('\t') != std::string::npos ? '\t'
-                                                : ',';
-      for (const auto& cell : split(t, sep)) {
+      sep = t.find(',') != std::string_view::npos    ? ','
+            : t.find(';') != std::string_view::npos  ? ';'
+            : t.find('\t') != std::string_view::npos ? '\t'
+                                                     : ',';
+      for_each_cell(t, sep, [&](std::string_view cell) {
         CsvColumn c;
         const auto open = cell.find_first_of("[(");
-        if (open != std::string::npos) {
+        if (open != std::string_view::npos) {
           const char close = cell[open] == '[' ? ']' : ')';
           const auto end = cell.find(close, open);
-          if (end == std::string::npos) {
+          if (end == std::string_view::npos) {
             throw InvalidInput(
                 fmt::format("{}:{}: header cell \"{}\" opens a unit but does not close it", path,
                             line_no, cell));
@@ -95,27 +134,27 @@ CsvTable read_csv_table(const std::string& path) {
         if (c.name.empty())
           throw InvalidInput(fmt::format("{}:{}: empty column name in the header", path, line_no));
         table.columns.push_back(std::move(c));
-      }
+      });
       have_header = true;
-      continue;
+      return;
     }
-    const auto cells = split(t, sep);
-    if (cells.size() != table.columns.size()) {
+    const std::size_t cells = static_cast<std::size_t>(std::count(t.begin(), t.end(), sep)) + 1;
+    if (cells != table.columns.size()) {
       throw InvalidInput(fmt::format("{}:{}: {} cells, but the header has {} columns", path,
-                                     line_no, cells.size(), table.columns.size()));
+                                     line_no, cells, table.columns.size()));
     }
-    for (std::size_t i = 0; i < cells.size(); ++i) {
+    std::size_t i = 0;
+    for_each_cell(t, sep, [&](std::string_view s) {
       double v = 0.0;
-      const auto& s = cells[i];
       const char* first = s.data() + (!s.empty() && s[0] == '+' ? 1 : 0);
       const auto [p, ec] = std::from_chars(first, s.data() + s.size(), v);
       if (s.empty() || ec != std::errc() || p != s.data() + s.size() || !std::isfinite(v)) {
         throw InvalidInput(fmt::format("{}:{}: column \"{}\": \"{}\" is not a finite number", path,
                                        line_no, table.columns[i].name, s));
       }
-      table.columns[i].values.push_back(v);
-    }
-  }
+      table.columns[i++].values.push_back(v);
+    });
+  });
   if (!have_header) throw InvalidInput(fmt::format("{}: the file is empty (no header line)", path));
   if (table.columns.front().values.empty()) {
     throw InvalidInput(fmt::format("{}: the file has a header but no data rows", path));
@@ -123,7 +162,8 @@ CsvTable read_csv_table(const std::string& path) {
   return table;
 }
 
-void write_file_atomically(const std::string& path, const std::string& content) {
+void write_file_streamed(const std::string& path,
+                         const std::function<void(const ChunkSink&)>& produce) {
   const std::filesystem::path target(path);
   if (target.filename().empty()) {
     throw InvalidInput(fmt::format("output path \"{}\" names no file", path));
@@ -140,7 +180,16 @@ void write_file_atomically(const std::string& path, const std::string& content) 
       throw InvalidInput(fmt::format(
           "cannot write \"{}\": the directory does not exist or is not writable", path));
     }
-    f << content;
+    try {
+      produce([&f](std::string_view chunk) {
+        f.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+      });
+    } catch (...) {
+      f.close();
+      std::error_code ec;
+      std::filesystem::remove(tmp, ec);
+      throw;
+    }
     f.close();  // a full disk may show only when the buffer is written out
     if (f.fail()) {
       std::error_code ec;
@@ -156,18 +205,34 @@ void write_file_atomically(const std::string& path, const std::string& content) 
   }
 }
 
+void write_file_atomically(const std::string& path, const std::string& content) {
+  write_file_streamed(path, [&content](const ChunkSink& sink) { sink(content); });
+}
+
 void write_csv_table(const std::string& path, const std::vector<std::string>& header,
                      const std::vector<std::vector<double>>& columns) {
-  std::ostringstream out;
-  for (std::size_t i = 0; i < header.size(); ++i) out << (i ? "," : "") << header[i];
-  out << "\n";
-  const std::size_t rows = columns.empty() ? 0 : columns.front().size();
-  for (std::size_t r = 0; r < rows; ++r) {
-    for (std::size_t c = 0; c < columns.size(); ++c)
-      out << (c ? "," : "") << fmt::format("{:.12g}", columns[c][r]);
-    out << "\n";
-  }
-  write_file_atomically(path, out.str());
+  write_file_streamed(path, [&](const ChunkSink& sink) {
+    // Formatted into a buffer handed on every 1 MiB: memory holds one chunk, not the file.
+    constexpr std::size_t kChunk = std::size_t{1} << 20;
+    fmt::memory_buffer buf;
+    for (std::size_t i = 0; i < header.size(); ++i) {
+      fmt::format_to(std::back_inserter(buf), "{}{}", i ? "," : "", header[i]);
+    }
+    buf.push_back('\n');
+    const std::size_t rows = columns.empty() ? 0 : columns.front().size();
+    for (std::size_t r = 0; r < rows; ++r) {
+      for (std::size_t c = 0; c < columns.size(); ++c) {
+        if (c) buf.push_back(',');
+        fmt::format_to(std::back_inserter(buf), "{:.12g}", columns[c][r]);
+      }
+      buf.push_back('\n');
+      if (buf.size() >= kChunk) {
+        sink(std::string_view(buf.data(), buf.size()));
+        buf.clear();
+      }
+    }
+    sink(std::string_view(buf.data(), buf.size()));
+  });
 }
 
 }  // namespace asperity::core

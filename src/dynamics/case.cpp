@@ -646,9 +646,16 @@ DynamicsCase read_case_file(const std::string& path) {
   return parse_case_text(file_text, path, dir.empty() ? "." : dir.string());
 }
 
-CaseResult run_case(const DynamicsCase& c) {
+CaseResult run_case(const DynamicsCase& c, const RunOptions& options) {
   CaseResult r;
-  const Trajectory& tr = r.trajectory = simulate(c.system, c.excitation, *c.friction, c.simulation);
+  SimulationOptions sim_run = c.simulation;
+  sim_run.sink = options.sink;
+  if (const auto* h = std::get_if<HarmonicExcitation>(&c.excitation); h && options.summary_only) {
+    // steady_loop() reads the last loop_cycles periods; one more is kept to spare.
+    sim_run.record_from =
+        std::max(0.0, c.simulation.duration - (c.analysis.loop_cycles + 1.0) / h->frequency);
+  }
+  const Trajectory& tr = r.trajectory = simulate(c.system, c.excitation, *c.friction, sim_run);
   const SimulationOptions& sim = c.simulation;
   const double rtol = sim.integrator.rtol;
   SummaryObject& j = r.summary;
@@ -695,8 +702,7 @@ CaseResult run_case(const DynamicsCase& c) {
   // The friction section, with the Dankowicz state's overshoot of |z| <= delta.
   SummaryObject friction = c.friction_summary;
   if (const auto* dk = dynamic_cast<const Dankowicz*>(c.friction.get())) {
-    double zmax = 0.0;
-    for (double z : tr.internal.at(0)) zmax = std::max(zmax, std::abs(z));
+    const double zmax = tr.max_abs_internal.at(0);
     const double overshoot = zmax / dk->parameters().delta - 1.0;
     friction.emplace_back("max_abs_z_over_delta", zmax / dk->parameters().delta);
     if (overshoot > 100.0 * rtol) {
@@ -776,7 +782,7 @@ CaseResult run_case(const DynamicsCase& c) {
                  SummaryObject{{"work_base", tr.work_base.back()},
                                {"dissipated_damper", tr.dissipated_damper.back()},
                                {"work_friction", tr.work_friction.back()},
-                               {"mechanical_energy_change", tr.energy.back() - tr.energy.front()}});
+                               {"mechanical_energy_change", tr.energy.back() - tr.initial_energy}});
   if (sc.k && sc.A) j.emplace_back("energy_scale_J", *sc.k * *sc.A * *sc.A);
   j.emplace_back("steps", tr.stats.steps);
   j.emplace_back("rejected_steps", tr.stats.rejected_steps);
@@ -887,6 +893,37 @@ std::vector<Column> time_history_columns(const DynamicsCase& c, const Trajectory
   if (s.A) cols.push_back({"base[m]", scaled(tr.y, *s.A)});
   if (s.k && s.A) cols.push_back({"f_s[N]", scaled(tr.friction, *s.k * *s.A)});
   return cols;
+}
+
+std::vector<std::string> time_history_names(const DynamicsCase& c) {
+  std::vector<std::string> names{"tau", "u", "v", "y", "friction"};
+  const std::size_t nz = c.friction->internal_states();
+  for (std::size_t i = 0; i < nz; ++i) {
+    names.push_back(nz == 1 ? std::string("z") : fmt::format("z{}", i + 1));
+  }
+  for (const char* n : {"work_base", "dissipated_damper", "work_friction", "energy", "event"}) {
+    names.emplace_back(n);
+  }
+  const CaseScales& s = c.scales;
+  if (s.m && s.k) names.emplace_back("t[s]");
+  if (s.A) names.emplace_back("x[m]");
+  if (s.complete()) names.emplace_back("xdot[m/s]");
+  if (s.A) names.emplace_back("base[m]");
+  if (s.k && s.A) names.emplace_back("f_s[N]");
+  return names;
+}
+
+void time_history_row(const DynamicsCase& c, const TrajectorySample& x, std::vector<double>& row) {
+  row.assign({x.tau, x.u, x.v, x.y, x.friction});
+  row.insert(row.end(), x.internal.begin(), x.internal.end());
+  row.insert(row.end(),
+             {x.work_base, x.dissipated_damper, x.work_friction, x.energy, x.is_event ? 1.0 : 0.0});
+  const CaseScales& s = c.scales;
+  if (s.m && s.k) row.push_back(x.tau * time_scale(s));
+  if (s.A) row.push_back(x.u * *s.A);
+  if (s.complete()) row.push_back(x.v * (*s.A / time_scale(s)));
+  if (s.A) row.push_back(x.y * *s.A);
+  if (s.k && s.A) row.push_back(x.friction * (*s.k * *s.A));
 }
 
 }  // namespace asperity::dynamics

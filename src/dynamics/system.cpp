@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "asperity/core/error.hpp"
@@ -106,19 +107,20 @@ void SimulationOptions::validate() const {
   core::require_finite("u0", u0);
   core::require_finite("v0", v0);
   core::require_non_negative("output_interval", output_interval);
-  if (output_interval > 0.0 && duration / output_interval > 5e7) {
+  core::require_finite("record_from", record_from);
+  const double kept = duration - std::clamp(record_from, 0.0, duration);
+  if (output_interval > 0.0 && kept / output_interval > 5e7) {
     throw InvalidInput(fmt::format(
         "output_interval = {} gives more than 5e7 samples over a duration of {}: increase it",
-        core::format_value(output_interval), core::format_value(duration)));
+        core::format_value(output_interval), core::format_value(kept)));
   }
 }
 
 double Trajectory::energy_balance_error() const {
   if (tau.empty()) return 0.0;
-  const double dE = energy.back() - energy.front();
+  const double dE = energy.back() - initial_energy;
   const double residual = dE - (work_base.back() - dissipated_damper.back() - work_friction.back());
-  const double w_max = *std::max_element(work_base.begin(), work_base.end());
-  const double input = std::max(w_max, 0.0) + energy.front();
+  const double input = std::max(max_work_base, 0.0) + initial_energy;
   return std::abs(residual) / std::max(input, 1e-300);
 }
 
@@ -223,20 +225,43 @@ Trajectory simulate(const SystemParameters& system, const Excitation& excitation
   Trajectory tr;
   tr.friction_model = problem.model_name();
   tr.internal.resize(nz);
+  tr.max_abs_internal.assign(nz, 0.0);
+  tr.max_work_base = -std::numeric_limits<double>::infinity();
+  double last_tau = -std::numeric_limits<double>::infinity();
   auto record = [&](double t, std::span<const double> y, bool is_event) {
     const BaseMotion b = base_motion(excitation, t);
-    tr.tau.push_back(t);
-    tr.u.push_back(y[0]);
-    tr.v.push_back(y[1]);
-    tr.y.push_back(b.y);
-    tr.dy.push_back(b.dy);
-    tr.friction.push_back(problem.friction(y));
-    for (std::size_t j = 0; j < nz; ++j) tr.internal[j].push_back(y[2 + j]);
-    tr.work_base.push_back(y[2 + nz]);
-    tr.dissipated_damper.push_back(y[3 + nz]);
-    tr.work_friction.push_back(y[4 + nz]);
     const double s = y[0] - b.y;
-    tr.energy.push_back(0.5 * y[1] * y[1] + 0.5 * s * s);
+    const TrajectorySample x{.tau = t,
+                             .u = y[0],
+                             .v = y[1],
+                             .y = b.y,
+                             .dy = b.dy,
+                             .friction = problem.friction(y),
+                             .internal = y.subspan(2, nz),
+                             .work_base = y[2 + nz],
+                             .dissipated_damper = y[3 + nz],
+                             .work_friction = y[4 + nz],
+                             .energy = 0.5 * y[1] * y[1] + 0.5 * s * s,
+                             .is_event = is_event};
+    if (tr.samples++ == 0) tr.initial_energy = x.energy;
+    tr.max_work_base = std::max(tr.max_work_base, x.work_base);
+    for (std::size_t j = 0; j < nz; ++j) {
+      tr.max_abs_internal[j] = std::max(tr.max_abs_internal[j], std::abs(x.internal[j]));
+    }
+    last_tau = t;
+    if (options.sink) options.sink(x);
+    if (t < options.record_from && t < options.duration) return;
+    tr.tau.push_back(t);
+    tr.u.push_back(x.u);
+    tr.v.push_back(x.v);
+    tr.y.push_back(x.y);
+    tr.dy.push_back(x.dy);
+    tr.friction.push_back(x.friction);
+    for (std::size_t j = 0; j < nz; ++j) tr.internal[j].push_back(x.internal[j]);
+    tr.work_base.push_back(x.work_base);
+    tr.dissipated_damper.push_back(x.dissipated_damper);
+    tr.work_friction.push_back(x.work_friction);
+    tr.energy.push_back(x.energy);
     tr.is_event.push_back(is_event);
   };
   record(0.0, y0, false);
@@ -258,7 +283,7 @@ Trajectory simulate(const SystemParameters& system, const Excitation& excitation
         ++next_sample;
       }
       // Events and the final state are recorded exactly, off the uniform grid.
-      if ((step.is_event || step.t >= options.duration) && tr.tau.back() != step.t) {
+      if ((step.is_event || step.t >= options.duration) && last_tau != step.t) {
         record(step.t, step.y, step.is_event);
       }
     } else {

@@ -5,9 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
+#include <vector>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/numerics.hpp"
+#include "asperity/core/parallel.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 #include "asperity/surface/patched_flat.hpp"
 
@@ -230,7 +233,13 @@ JointPrediction predict(const JointCase& c,
   out.beta = flat.parameters().beta;
   out.psi = flat.parameters().psi;
   out.force_scale = flat.scales()->force;
-  for (std::size_t i = 0; i < c.preloads.size(); ++i) {
+  // The load cases are independent: one per thread (core::parallel_for), each into its
+  // own slot, so the result does not depend on the number of threads.
+  const std::size_t n = c.preloads.size();
+  std::vector<LoadPrediction> loads(n);
+  std::mutex progress_mutex;
+  std::size_t done = 0;
+  core::parallel_for(n, [&](std::size_t i) {
     LoadPrediction lp;
     try {
       lp =
@@ -245,9 +254,13 @@ JointPrediction predict(const JointCase& c,
       throw;
     }
     if (c.bolts && i < c.bolts->torques.size()) lp.torque = c.bolts->torques[i];
-    out.loads.push_back(std::move(lp));
-    if (progress) progress(i + 1, c.preloads.size());
-  }
+    loads[i] = std::move(lp);
+    if (progress) {
+      const std::lock_guard lock(progress_mutex);
+      progress(++done, n);
+    }
+  });
+  out.loads = std::move(loads);
   return out;
 }
 

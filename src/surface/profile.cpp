@@ -208,30 +208,34 @@ std::string_view to_string(Levelling l) {
   return "?";
 }
 
-Profile level(const Profile& profile, Levelling how) {
+void level_in_place(Profile& profile, Levelling how) {
   profile.validate();
-  Profile out = profile;
-  if (how == Levelling::none) return out;
-  const double n = static_cast<double>(profile.z.size());
+  if (how == Levelling::none) return;
+  auto& z = profile.z;
+  const double n = static_cast<double>(z.size());
   double mean = 0;
-  for (double v : profile.z) mean += v;
+  for (double v : z) mean += v;
   mean /= n;
   if (how == Levelling::mean) {
-    for (double& v : out.z) v -= mean;
-    return out;
+    for (double& v : z) v -= mean;
+    return;
   }
   // Least-squares line in the centred index u = i - (n-1)/2.
   const double c = 0.5 * (n - 1.0);
   double suu = 0, suz = 0;
-  for (std::size_t i = 0; i < profile.z.size(); ++i) {
+  for (std::size_t i = 0; i < z.size(); ++i) {
     const double u = static_cast<double>(i) - c;
     suu += u * u;
-    suz += u * (profile.z[i] - mean);
+    suz += u * (z[i] - mean);
   }
   const double slope = suu > 0 ? suz / suu : 0.0;
-  for (std::size_t i = 0; i < out.z.size(); ++i) {
-    out.z[i] -= mean + slope * (static_cast<double>(i) - c);
-  }
+  for (std::size_t i = 0; i < z.size(); ++i) z[i] -= mean + slope * (static_cast<double>(i) - c);
+}
+
+Profile level(const Profile& profile, Levelling how) {
+  profile.validate();
+  Profile out = profile;
+  level_in_place(out, how);
   return out;
 }
 

@@ -4,10 +4,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -18,25 +19,6 @@
 namespace asperity::surface {
 namespace {
 
-struct Line {
-  std::size_t number = 0;  // 1-based
-  std::string_view text;
-};
-
-std::vector<Line> split_lines(std::string_view s) {
-  std::vector<Line> lines;
-  std::size_t start = 0, number = 1;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (s[i] == '\n' || s[i] == '\r') {
-      lines.push_back({number++, s.substr(start, i - start)});
-      if (s[i] == '\r' && i + 1 < s.size() && s[i + 1] == '\n') ++i;
-      start = i + 1;
-    }
-  }
-  if (start < s.size()) lines.push_back({number, s.substr(start)});
-  return lines;
-}
-
 std::string_view trim(std::string_view s) {
   const auto is_space = [](char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v'; };
   while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
@@ -46,8 +28,8 @@ std::string_view trim(std::string_view s) {
 
 // Splits a line at its delimiter: ',' if present, else ';', else tab, else blanks.
 // Trailing empty fields are dropped.
-std::vector<std::string_view> split_fields(std::string_view line) {
-  std::vector<std::string_view> fields;
+void split_fields(std::string_view line, std::vector<std::string_view>& fields) {
+  fields.clear();
   char delim = 0;
   if (line.find(',') != std::string_view::npos) {
     delim = ',';
@@ -74,6 +56,11 @@ std::vector<std::string_view> split_fields(std::string_view line) {
     }
   }
   while (!fields.empty() && fields.back().empty()) fields.pop_back();
+}
+
+std::vector<std::string_view> split_fields(std::string_view line) {
+  std::vector<std::string_view> fields;
+  split_fields(line, fields);
   return fields;
 }
 
@@ -87,18 +74,6 @@ bool parse_number(std::string_view f, double& v) {
   if (first == last) return false;
   const auto [ptr, ec] = std::from_chars(first, last, v);
   return ec == std::errc() && ptr == last;
-}
-
-bool numeric_line(std::string_view text, std::vector<double>* values = nullptr) {
-  const auto fields = split_fields(text);
-  if (fields.empty()) return false;
-  if (values) values->clear();
-  for (auto f : fields) {
-    double v = 0;
-    if (!parse_number(f, v)) return false;
-    if (values) values->push_back(v);
-  }
-  return true;
 }
 
 std::string lower(std::string_view s) {
@@ -202,16 +177,6 @@ char column_role(const std::string& name) {
   return 0;
 }
 
-// Number of fields of a numeric line, 0 for any other line.
-std::size_t numeric_columns(std::string_view text) {
-  const auto fields = split_fields(text);
-  for (auto f : fields) {
-    double v = 0;
-    if (!parse_number(f, v)) return 0;
-  }
-  return fields.size();
-}
-
 // `v * 10^e10` as the decimal literal would read: the shortest digits of v with the
 // exponent shifted, so that 0.001 (mm) becomes the double nearest 1e-6 (m) rather
 // than 0.001 * 1e-3 = 1.0000000000000002e-06.
@@ -237,44 +202,295 @@ std::optional<int> power_of_ten(double factor) {
   return static_cast<int>(e);
 }
 
+// A column of numbers stored in blocks of 64 Ki values: growing it never copies, and
+// to_vector() hands the blocks over one by one, so that memory holds each value about
+// once (a std::vector grown by doubling holds up to three times its size).
+class BlockColumn {
+ public:
+  void push_back(double v) {
+    if (used_ == kBlock || blocks_.empty()) {
+      blocks_.push_back(std::make_unique<double[]>(kBlock));
+      used_ = 0;
+    }
+    blocks_.back()[used_++] = v;
+    ++size_;
+  }
+  [[nodiscard]] std::size_t size() const { return size_; }
+  void clear() {
+    blocks_.clear();
+    used_ = 0;
+    size_ = 0;
+  }
+  [[nodiscard]] std::vector<double> to_vector(double factor = 1.0) {
+    std::vector<double> out;
+    out.reserve(size_);
+    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+      const std::size_t n = std::min(kBlock, size_ - b * kBlock);
+      for (std::size_t i = 0; i < n; ++i) out.push_back(blocks_[b][i] * factor);
+      blocks_[b].reset();
+    }
+    clear();
+    return out;
+  }
+
+ private:
+  static constexpr std::size_t kBlock = std::size_t{1} << 16;
+  std::vector<std::unique_ptr<double[]>> blocks_;
+  std::size_t used_ = 0;
+  std::size_t size_ = 0;
+};
+
+// A line kept for messages and the header: its number and text.
+struct KeptLine {
+  std::size_t number = 0;
+  std::string text;
+};
+
+// A run of consecutive numeric lines.
+struct Run {
+  std::size_t start = 0, end = 0;  // line numbers [start, end)
+  std::size_t ncol = 0;            // fields of the first line
+  std::optional<KeptLine> header;  // the line just above, if any
+  std::optional<KeptLine> after;   // the line just below, if any
+  std::optional<KeptLine> next;    // the first line below with any field, if any
+};
+
+// Which columns are x and z, from the header and the number of columns; throws what
+// the reader says of a bad header.
+struct Layout {
+  std::vector<Column> columns;
+  bool have_header = false;
+  std::size_t header_line = 0;
+  std::size_t xcol = 0, zcol = 0;
+};
+
+Layout column_layout(const Run& run, std::string_view source) {
+  const std::size_t ncol = run.ncol;
+  Layout l;
+  l.columns.resize(ncol);
+  if (run.header) {
+    const auto fields = split_fields(run.header->text);
+    l.header_line = run.header->number;
+    if (!fields.empty()) {
+      if (fields.size() != ncol) {
+        throw InvalidInput(
+            fmt::format("{}: line {}: the header names {} columns but the data has {}", source,
+                        l.header_line, fields.size(), ncol));
+      }
+      l.have_header = true;
+      for (std::size_t c = 0; c < ncol; ++c) l.columns[c] = parse_column_header(fields[c]);
+    }
+  }
+  l.xcol = ncol;
+  l.zcol = ncol;
+  if (ncol == 1) {
+    l.zcol = 0;
+  } else if (ncol == 2) {
+    // x then z, unless the header's names say otherwise ("z[um],x[um]").
+    l.xcol = 0;
+    l.zcol = 1;
+    if (l.have_header) {
+      const char r0 = column_role(l.columns[0].name), r1 = column_role(l.columns[1].name);
+      if (r0 != 0 && r0 == r1) {
+        throw InvalidInput(fmt::format(
+            "{}: line {}: both columns (\"{}\", \"{}\") look like {}: name one x and one z", source,
+            l.header_line, l.columns[0].name, l.columns[1].name, r0));
+      }
+      if (r0 == 'z' || r1 == 'x') {
+        l.xcol = 1;
+        l.zcol = 0;
+      }
+    }
+  } else {
+    for (std::size_t c = 0; c < ncol; ++c) {
+      const char role = column_role(l.columns[c].name);
+      if (role == 'x' && l.xcol == ncol) l.xcol = c;
+      if (role == 'z' && l.zcol == ncol) l.zcol = c;
+    }
+    if (!l.have_header || l.xcol == ncol || l.zcol == ncol) {
+      throw InvalidInput(fmt::format(
+          "{}: {} columns of data: expected 1 (z) or 2 (x, z), or a header naming the x and z "
+          "columns",
+          source, ncol));
+    }
+  }
+  return l;
+}
+
+// One pass over the lines of a text profile, in pieces of any size: it finds the runs
+// of numeric lines and keeps the numbers of the current and of the longest run only
+// (the data block), with what the messages need of the lines around the runs. Errors
+// of the numbers themselves are kept (the first per run) and raised by finish() in the
+// order the checks have always had.
+class TextProfileScanner {
+ public:
+  explicit TextProfileScanner(std::string_view source) : source_(source) {}
+
+  void feed(std::string_view piece) {
+    if (piece.find('\0') != std::string_view::npos) {
+      throw InvalidInput(
+          fmt::format("{}: this is not a text profile (it contains NUL bytes)", source_));
+    }
+    if (first_piece_) {
+      first_piece_ = false;
+      if (piece.size() >= 3 && piece.substr(0, 3) == "\xEF\xBB\xBF") piece.remove_prefix(3);
+    }
+    if (skip_lf_ && !piece.empty()) {
+      skip_lf_ = false;
+      if (piece.front() == '\n') piece.remove_prefix(1);
+    }
+    // Lines end at LF, CR or CRLF.
+    while (!piece.empty()) {
+      const auto e = piece.find_first_of("\r\n");
+      if (e == std::string_view::npos) {
+        carry_.append(piece);
+        return;
+      }
+      if (carry_.empty()) {
+        line(piece.substr(0, e));
+      } else {
+        carry_.append(piece.substr(0, e));
+        line(carry_);
+        carry_.clear();
+      }
+      std::size_t consumed = e + 1;
+      if (piece[e] == '\r') {
+        if (e + 1 == piece.size()) {
+          skip_lf_ = true;
+        } else if (piece[e + 1] == '\n') {
+          consumed = e + 2;
+        }
+      }
+      piece.remove_prefix(consumed);
+    }
+  }
+
+  Profile finish(const TextReadOptions& options);
+
+ private:
+  void line(std::string_view text) {
+    const std::size_t number = ++lines_;
+    split_fields(text, fields_);
+    bool numeric = !fields_.empty();
+    values_.clear();
+    for (auto f : fields_) {
+      double v = 0;
+      if (!numeric || !parse_number(f, v)) {
+        numeric = false;
+        break;
+      }
+      values_.push_back(v);
+    }
+    if (awaiting_next_ && !fields_.empty()) {
+      runs_.back().next = KeptLine{number, std::string(text)};
+      awaiting_next_ = false;
+    }
+    if (!numeric) {
+      if (in_run_) end_run(KeptLine{number, std::string(text)});
+      previous_ = KeptLine{number, std::string(text)};
+      return;
+    }
+    if (!in_run_) start_run(number);
+    add(number);
+  }
+
+  void start_run(std::size_t number) {
+    in_run_ = true;
+    Run r;
+    r.start = number;
+    r.ncol = values_.size();
+    if (previous_ && previous_->number + 1 == number) r.header = std::move(previous_);
+    previous_.reset();
+    runs_.push_back(std::move(r));
+    z_.clear();
+    x_.clear();
+    error_.reset();
+    try {
+      const Layout l = column_layout(runs_.back(), source_);
+      xcol_ = l.xcol;
+      zcol_ = l.zcol;
+      usable_ = true;
+    } catch (const InvalidInput&) {
+      usable_ = false;  // raised again by finish() if this is the data block
+    }
+  }
+
+  void add(std::size_t number) {
+    const std::size_t ncol = runs_.back().ncol;
+    if (!usable_ || error_) return;
+    if (values_.size() != ncol) {
+      error_ = fmt::format("{}: line {}: expected {} numbers, got {}", source_, number, ncol,
+                           values_.size());
+      return;
+    }
+    for (std::size_t c = 0; c < ncol; ++c) {
+      if (!std::isfinite(values_[c])) {
+        error_ = fmt::format("{}: line {}: column {} is {}, not a finite number", source_, number,
+                             c + 1, values_[c]);
+        return;
+      }
+    }
+    z_.push_back(values_[zcol_]);
+    if (xcol_ < ncol) x_.push_back(values_[xcol_]);
+  }
+
+  void end_run(std::optional<KeptLine> after) {
+    in_run_ = false;
+    Run& r = runs_.back();
+    r.end = after ? after->number : lines_ + 1;
+    r.after = std::move(after);
+    awaiting_next_ = !r.after || split_fields(r.after->text).empty();
+    if (r.after && !awaiting_next_) r.next = r.after;
+    // The first longest run is the data block.
+    if (best_ == std::numeric_limits<std::size_t>::max() ||
+        r.end - r.start > runs_[best_].end - runs_[best_].start) {
+      best_ = runs_.size() - 1;
+      best_z_ = std::move(z_);
+      best_x_ = std::move(x_);
+      best_error_ = std::move(error_);
+      best_xcol_ = xcol_;
+      best_zcol_ = zcol_;
+    }
+    z_.clear();
+    x_.clear();
+    error_.reset();
+  }
+
+  std::string source_;
+  bool first_piece_ = true, skip_lf_ = false;
+  std::string carry_;
+  std::size_t lines_ = 0;
+  std::vector<std::string_view> fields_;
+  std::vector<double> values_;
+  std::optional<KeptLine> previous_;  // the last non-numeric line
+  std::vector<Run> runs_;
+  bool in_run_ = false, awaiting_next_ = false, usable_ = false;
+  std::size_t xcol_ = 0, zcol_ = 0;
+  BlockColumn z_, x_;
+  std::optional<std::string> error_;
+  std::size_t best_ = std::numeric_limits<std::size_t>::max();
+  BlockColumn best_z_, best_x_;
+  std::optional<std::string> best_error_;
+  std::size_t best_xcol_ = 0, best_zcol_ = 0;
+};
+
 }  // namespace
 
-Profile parse_profile_text(std::string_view content, std::string_view source,
-                           const TextReadOptions& options) {
-  if (content.size() >= 3 && content.substr(0, 3) == "\xEF\xBB\xBF") content.remove_prefix(3);
-  if (content.find('\0') != std::string_view::npos) {
-    throw InvalidInput(
-        fmt::format("{}: this is not a text profile (it contains NUL bytes)", source));
+Profile TextProfileScanner::finish(const TextReadOptions& options) {
+  if (!carry_.empty()) {
+    line(carry_);
+    carry_.clear();
   }
-  const auto lines = split_lines(content);
-  std::vector<std::size_t> ncols(lines.size());
-  for (std::size_t i = 0; i < lines.size(); ++i) ncols[i] = numeric_columns(lines[i].text);
-  // Runs of consecutive numeric lines; the data block is the longest.
-  struct Run {
-    std::size_t start, end, ncol;  // lines [start, end), columns of the first line
-  };
-  std::vector<Run> runs;
-  for (std::size_t i = 0; i < lines.size();) {
-    if (ncols[i] == 0) {
-      ++i;
-      continue;
-    }
-    std::size_t j = i;
-    while (j < lines.size() && ncols[j] > 0) ++j;
-    runs.push_back({i, j, ncols[i]});
-    i = j;
-  }
-  if (runs.empty()) {
+  if (in_run_) end_run(std::nullopt);
+  const std::string_view source = source_;
+  if (runs_.empty()) {
     throw InvalidInput(
         fmt::format("{}: no data: expected lines of numbers (x and z, or z)", source));
   }
-  std::size_t best = 0;
-  for (std::size_t r = 1; r < runs.size(); ++r) {
-    if (runs[r].end - runs[r].start > runs[best].end - runs[best].start) best = r;
-  }
-  const std::size_t best_start = runs[best].start;
-  const std::size_t best_len = runs[best].end - runs[best].start;
-  const std::size_t ncol = runs[best].ncol;
+  const Run& best_run = runs_[best_];
+  const std::size_t best_start = best_run.start;
+  const std::size_t best_len = best_run.end - best_run.start;
+  const std::size_t ncol = best_run.ncol;
   // A line between the data block and another run of numbers with as many columns is
   // a break inside the data (an instrument message, a repeated header, an empty line):
   // refuse it rather than silently drop the other run. A preamble or footer with
@@ -282,17 +498,17 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
   // count has one column) is accepted.
   auto same_layout = [&](const Run& r) { return r.ncol == ncol; };
   const Run* other = nullptr;
-  for (std::size_t r = best + 1; r < runs.size() && !other; ++r) {
-    if (same_layout(runs[r])) other = &runs[r];
+  for (std::size_t r = best_ + 1; r < runs_.size() && !other; ++r) {
+    if (same_layout(runs_[r])) other = &runs_[r];
   }
-  for (std::size_t r = best; r-- > 0 && !other;) {
-    if (same_layout(runs[r])) other = &runs[r];
+  for (std::size_t r = best_; r-- > 0 && !other;) {
+    if (same_layout(runs_[r])) other = &runs_[r];
   }
   if (other) {
     const bool after = other->start > best_start;
-    const std::size_t k = after ? runs[best].end : other->end;  // first line between them
-    const auto text = trim(lines[k].text);
-    const auto fields = split_fields(lines[k].text);
+    const KeptLine& k = after ? *best_run.after : *other->after;  // first line between them
+    const auto text = trim(k.text);
+    const auto fields = split_fields(k.text);
     double v = 0;
     const std::string what =
         text.empty() ? std::string("an empty line")
@@ -300,83 +516,34 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
             ? fmt::format("expected only numbers, got \"{}\"", text.substr(0, 60))
             : fmt::format("\"{}\"", text.substr(0, 60));
     const std::size_t other_len = other->end - other->start;
-    const std::string block =
-        fmt::format("{} lines of {} number{} at lines {}-{}", other_len, ncol, ncol == 1 ? "" : "s",
-                    lines[other->start].number, lines[other->end - 1].number);
+    const std::string block = fmt::format("{} lines of {} number{} at lines {}-{}", other_len, ncol,
+                                          ncol == 1 ? "" : "s", other->start, other->end - 1);
     throw InvalidInput(fmt::format(
         "{}: line {}: not a number inside the data ({}): the data at lines {}-{} {} {}; the file "
         "must hold one block of data (remove the line, or split the file)",
-        source, lines[k].number, what, lines[best_start].number,
-        lines[best_start + best_len - 1].number, after ? "continue with" : "follow", block));
+        source, k.number, what, best_start, best_start + best_len - 1,
+        after ? "continue with" : "follow", block));
   }
   // A line after the block that starts with a number is a malformed data line.
-  for (std::size_t k = best_start + best_len; k < lines.size(); ++k) {
-    const auto fields = split_fields(lines[k].text);
-    if (fields.empty()) continue;
+  if (best_run.next) {
+    const auto fields = split_fields(best_run.next->text);
     double v = 0;
     if (parse_number(fields.front(), v)) {
       throw InvalidInput(fmt::format("{}: line {}: expected only numbers, got \"{}\"", source,
-                                     lines[k].number, trim(lines[k].text)));
-    }
-    break;
-  }
-  std::vector<double> values;
-
-  // Columns from the header line just above the block.
-  std::vector<Column> columns(ncol);
-  bool have_header = false;
-  std::size_t header_line = 0;
-  if (best_start > 0) {
-    const auto fields = split_fields(lines[best_start - 1].text);
-    header_line = lines[best_start - 1].number;
-    if (!fields.empty()) {
-      if (fields.size() != ncol) {
-        throw InvalidInput(
-            fmt::format("{}: line {}: the header names {} columns but the data has {}", source,
-                        header_line, fields.size(), ncol));
-      }
-      have_header = true;
-      for (std::size_t c = 0; c < ncol; ++c) columns[c] = parse_column_header(fields[c]);
+                                     best_run.next->number, trim(best_run.next->text)));
     }
   }
-  std::size_t xcol = ncol, zcol = ncol;
-  if (ncol == 1) {
-    zcol = 0;
-  } else if (ncol == 2) {
-    // x then z, unless the header's names say otherwise ("z[um],x[um]").
-    xcol = 0;
-    zcol = 1;
-    if (have_header) {
-      const char r0 = column_role(columns[0].name), r1 = column_role(columns[1].name);
-      if (r0 != 0 && r0 == r1) {
-        throw InvalidInput(fmt::format(
-            "{}: line {}: both columns (\"{}\", \"{}\") look like {}: name one x and one z", source,
-            header_line, columns[0].name, columns[1].name, r0));
-      }
-      if (r0 == 'z' || r1 == 'x') {
-        xcol = 1;
-        zcol = 0;
-      }
-    }
-  } else {
-    for (std::size_t c = 0; c < ncol; ++c) {
-      const char role = column_role(columns[c].name);
-      if (role == 'x' && xcol == ncol) xcol = c;
-      if (role == 'z' && zcol == ncol) zcol = c;
-    }
-    if (!have_header || xcol == ncol || zcol == ncol) {
-      throw InvalidInput(fmt::format(
-          "{}: {} columns of data: expected 1 (z) or 2 (x, z), or a header naming the x and z "
-          "columns",
-          source, ncol));
-    }
-  }
+  const Layout layout = column_layout(best_run, source);
+  const auto& columns = layout.columns;
+  const bool have_header = layout.have_header;
+  const std::size_t header_line = layout.header_line;
+  const std::size_t xcol = layout.xcol, zcol = layout.zcol;
   auto unit_of = [&](std::size_t c, const char* role) {
     if (!have_header) {
       throw InvalidInput(fmt::format(
           "{}: no header line naming the units above the data (line {}): write one such as "
           "\"x[mm],z[um]\" or \"z[um]\"",
-          source, lines[best_start].number));
+          source, best_start));
     }
     if (!std::isfinite(columns[c].factor)) {
       throw InvalidInput(fmt::format(
@@ -388,27 +555,12 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
   };
   const double zf = unit_of(zcol, "z");
   const double xf = xcol < ncol ? unit_of(xcol, "x") : 1.0;
+  if (best_error_) throw InvalidInput(*best_error_);
 
   Profile p;
   p.source = std::string(source);
-  p.z.reserve(best_len);
-  std::vector<double> x;  // in the file's unit
-  if (xcol < ncol) x.reserve(best_len);
-  for (std::size_t k = best_start; k < best_start + best_len; ++k) {
-    numeric_line(lines[k].text, &values);
-    if (values.size() != ncol) {
-      throw InvalidInput(fmt::format("{}: line {}: expected {} numbers, got {}", source,
-                                     lines[k].number, ncol, values.size()));
-    }
-    for (std::size_t c = 0; c < ncol; ++c) {
-      if (!std::isfinite(values[c])) {
-        throw InvalidInput(fmt::format("{}: line {}: column {} is {}, not a finite number", source,
-                                       lines[k].number, c + 1, values[c]));
-      }
-    }
-    p.z.push_back(values[zcol] * zf);
-    if (xcol < ncol) x.push_back(values[xcol]);
-  }
+  p.z = best_z_.to_vector(zf);
+  std::vector<double> x = best_x_.to_vector();  // in the file's unit
   if (p.z.size() < 2) {
     throw InvalidInput(
         fmt::format("{}: only {} data point: a profile needs at least 2", source, p.z.size()));
@@ -419,7 +571,7 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
           fmt::format("{}: the file has an x column, so --dx must not be given", source));
     }
     const std::size_t n = x.size();
-    auto line_of = [&](std::size_t i) { return lines[best_start + i].number; };
+    auto line_of = [&](std::size_t i) { return best_start + i; };
     for (std::size_t i = 1; i < n; ++i) {
       if (!(x[i] > x[i - 1])) {
         throw InvalidInput(
@@ -531,6 +683,13 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
   return p;
 }
 
+Profile parse_profile_text(std::string_view content, std::string_view source,
+                           const TextReadOptions& options) {
+  TextProfileScanner scanner(source);
+  scanner.feed(content);
+  return scanner.finish(options);
+}
+
 std::string read_file_bytes(const std::string& path, std::size_t max_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InvalidInput(fmt::format("{}: cannot open the file (does it exist?)", path));
@@ -548,26 +707,60 @@ std::string read_file_bytes(const std::string& path, std::size_t max_bytes) {
   return bytes;
 }
 
+namespace {
+
+using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
+
+File open_input(const std::string& path) {
+  File f(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!f) throw InvalidInput(fmt::format("{}: cannot open the file (does it exist?)", path));
+  return f;
+}
+
+// The rest of an open text file through the scanner, 1 MiB at a time (`head`: bytes
+// already read from it).
+Profile stream_profile_text(std::FILE* f, std::string_view head, const std::string& path,
+                            const TextReadOptions& options) {
+  TextProfileScanner scanner(path);
+  if (!head.empty()) scanner.feed(head);
+  std::vector<char> chunk(std::size_t{1} << 20);
+  bool any = !head.empty();
+  while (true) {
+    const std::size_t got = std::fread(chunk.data(), 1, chunk.size(), f);
+    if (got == 0) break;
+    any = true;
+    scanner.feed(std::string_view(chunk.data(), got));
+  }
+  if (std::ferror(f)) throw InvalidInput(fmt::format("{}: reading the file failed", path));
+  if (!any) throw InvalidInput(fmt::format("{}: the file is empty", path));
+  return scanner.finish(options);
+}
+
+}  // namespace
+
 Profile read_profile_text(const std::string& path, const TextReadOptions& options) {
-  const auto bytes = read_file_bytes(path);
-  if (bytes.empty()) throw InvalidInput(fmt::format("{}: the file is empty", path));
-  return parse_profile_text(bytes, path, options);
+  const File f = open_input(path);
+  return stream_profile_text(f.get(), {}, path, options);
 }
 
 HeightMap read_height_file(const std::string& path, const TextReadOptions& options) {
-  const auto bytes = read_file_bytes(path);
-  if (bytes.empty()) throw InvalidInput(fmt::format("{}: the file is empty", path));
-  if (bytes.size() >= 4 && bytes.substr(0, 4) == std::string_view("PK\x03\x04", 4)) {
-    return parse_x3p(bytes, path);
+  Profile p;
+  {
+    const File f = open_input(path);
+    char head[4];
+    const std::size_t got = std::fread(head, 1, sizeof head, f.get());
+    if (got == 4 && std::string_view(head, 4) == std::string_view("PK\x03\x04", 4)) {
+      return parse_x3p(read_file_bytes(path), path);
+    }
+    p = stream_profile_text(f.get(), std::string_view(head, got), path, options);
   }
-  const auto p = parse_profile_text(bytes, path, options);
   HeightMap m;
   m.nx = p.z.size();
   m.ny = 1;
   m.dx = p.dx;
   m.x0 = p.x0;
-  m.z = p.z;
-  m.source = p.source;
+  m.z = std::move(p.z);
+  m.source = std::move(p.source);
   return m;
 }
 

@@ -8,7 +8,9 @@
 #include <string>
 
 #include "asperity/core/error.hpp"
+#include "asperity/core/parallel.hpp"
 #include "asperity/core/validate.hpp"
+#include "detail/convolution.hpp"
 
 namespace asperity::surface {
 namespace {
@@ -193,42 +195,28 @@ std::vector<double> gaussian_weights(double cutoff, double dx, std::size_t h) {
 
 }  // namespace
 
-Profile gaussian_mean_line(const Profile& profile, double cutoff, double truncation,
-                           EndEffects end) {
-  profile.validate();
-  core::require_positive("cut-off", cutoff);
-  const std::size_t n = profile.z.size();
-  const std::size_t h = half_width(cutoff, truncation, profile.dx);
-  if (end == EndEffects::discard && n <= 2 * h) {
-    throw InvalidInput(fmt::format(
-        "{}: the profile ({} points, {:.6g} mm) is shorter than the Gaussian filter with "
-        "cut-off {:.6g} mm needs ({} points): use a longer scan, a shorter cut-off or --end "
-        "regression",
-        source_name(profile), n, profile.length() * 1e3, cutoff * 1e3, 2 * h + 1));
-  }
-  const auto w = gaussian_weights(cutoff, profile.dx, h);
-  const auto& z = profile.z;
-  Profile out;
-  out.dx = profile.dx;
-  out.source = profile.source;
+namespace {
+
+// Mean line by direct summation: the reference path (O(n h)).
+void mean_line_direct(const std::vector<double>& z, const std::vector<double>& w, std::size_t h,
+                      EndEffects end, std::vector<double>& out) {
+  const std::size_t n = z.size();
   if (end == EndEffects::discard) {
     double wsum = 0.0;
     for (double v : w) wsum += v;
-    out.x0 = profile.x0 + static_cast<double>(h) * profile.dx;
-    out.z.resize(n - 2 * h);
+    out.resize(n - 2 * h);
     for (std::size_t i = h; i + h < n; ++i) {
       double s = 0.0;
       const double* zi = z.data() + (i - h);
       for (std::size_t k = 0; k <= 2 * h; ++k) s += w[k] * zi[k];
-      out.z[i - h] = s / wsum;
+      out[i - h] = s / wsum;
     }
-    return out;
+    return;
   }
   // Regression: Gaussian-weighted least-squares line through the points within the
   // window, evaluated at the centre (equals the weighted mean where the window is
   // symmetric).
-  out.x0 = profile.x0;
-  out.z.resize(n);
+  out.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t lo = i >= h ? i - h : 0;
     const std::size_t hi = std::min(n - 1, i + h);
@@ -243,7 +231,86 @@ Profile gaussian_mean_line(const Profile& profile, double cutoff, double truncat
       Sxz += wj * x * z[j];
     }
     const double det = S * Sxx - Sx * Sx;
-    out.z[i] = det > 1e-12 * S * Sxx ? (Sxx * Sz - Sx * Sxz) / det : Sz / S;
+    out[i] = det > 1e-12 * S * Sxx ? (Sxx * Sz - Sx * Sxz) / det : Sz / S;
+  }
+}
+
+// The same by FFT correlation (O(n log h)). With regression, the window sums of the
+// weights S, Sx, Sxx for a window k = -a..b come from suffix sums A_p[m] = sum_{k=m}^{h}
+// w_k k^p without cancellation; Sz = sum w_k z[i+k] is the zero-padded correlation of
+// the whole profile, Sxz = sum k w_k z[i+k] is needed only where the window is cut
+// (Sx = 0 elsewhere, where the line's value is the weighted mean Sz / S).
+void mean_line_fft(const std::vector<double>& z, const std::vector<double>& w, std::size_t h,
+                   EndEffects end, std::vector<double>& out) {
+  const std::size_t n = z.size();
+  if (end == EndEffects::discard) {
+    double wsum = 0.0;
+    for (double v : w) wsum += v;
+    out.resize(n - 2 * h);
+    detail::correlate_fft(z.data(), n, w, h, n - h, out.data());
+    for (double& v : out) v /= wsum;
+    return;
+  }
+  std::vector<double> A0(h + 2, 0.0), A1(h + 2, 0.0), A2(h + 2, 0.0);
+  for (std::size_t m = h + 1; m-- > 0;) {
+    const double k = static_cast<double>(m);
+    const double wk = w[h + m];
+    A0[m] = A0[m + 1] + wk;
+    A1[m] = A1[m + 1] + wk * k;
+    A2[m] = A2[m + 1] + wk * k * k;
+  }
+  out.resize(n);
+  detail::correlate_fft(z.data(), n, w, 0, n, out.data());  // Sz
+  std::vector<double> kw(w.size());
+  for (std::size_t q = 0; q < w.size(); ++q) {
+    kw[q] = (static_cast<double>(q) - static_cast<double>(h)) * w[q];
+  }
+  // Points whose window is cut: [0, min(h, n)) and [max(n - h, min(h, n)), n).
+  const std::size_t left_end = std::min(h, n);
+  const std::size_t right_begin = n > h ? std::max(n - h, left_end) : left_end;
+  std::vector<double> Sxz(left_end + (n - right_begin));
+  detail::correlate_fft(z.data(), n, kw, 0, left_end, Sxz.data());
+  detail::correlate_fft(z.data(), n, kw, right_begin, n, Sxz.data() + left_end);
+  auto cut = [&](std::size_t i, double Sxz_i) {
+    const std::size_t a = std::min(i, h), b = std::min(n - 1 - i, h);
+    const double S = (A0[0] - A0[b + 1]) + (A0[1] - A0[a + 1]);
+    const double Sx = A1[a + 1] - A1[b + 1];
+    const double Sxx = (A2[0] - A2[b + 1]) + (A2[1] - A2[a + 1]);
+    const double Sz = out[i];
+    const double det = S * Sxx - Sx * Sx;
+    return det > 1e-12 * S * Sxx ? (Sxx * Sz - Sx * Sxz_i) / det : Sz / S;
+  };
+  double S_full = 0.0;
+  for (double v : w) S_full += v;
+  for (std::size_t i = left_end; i < right_begin; ++i) out[i] /= S_full;
+  for (std::size_t i = 0; i < left_end; ++i) out[i] = cut(i, Sxz[i]);
+  for (std::size_t i = right_begin; i < n; ++i) out[i] = cut(i, Sxz[left_end + i - right_begin]);
+}
+
+}  // namespace
+
+Profile gaussian_mean_line(const Profile& profile, double cutoff, double truncation, EndEffects end,
+                           Convolution convolution) {
+  profile.validate();
+  core::require_positive("cut-off", cutoff);
+  const std::size_t n = profile.z.size();
+  const std::size_t h = half_width(cutoff, truncation, profile.dx);
+  if (end == EndEffects::discard && n <= 2 * h) {
+    throw InvalidInput(fmt::format(
+        "{}: the profile ({} points, {:.6g} mm) is shorter than the Gaussian filter with "
+        "cut-off {:.6g} mm needs ({} points): use a longer scan, a shorter cut-off or --end "
+        "regression",
+        source_name(profile), n, profile.length() * 1e3, cutoff * 1e3, 2 * h + 1));
+  }
+  const auto w = gaussian_weights(cutoff, profile.dx, h);
+  Profile out;
+  out.dx = profile.dx;
+  out.source = profile.source;
+  out.x0 = profile.x0 + (end == EndEffects::discard ? static_cast<double>(h) * profile.dx : 0.0);
+  if (convolution == Convolution::direct) {
+    mean_line_direct(profile.z, w, h, end, out.z);
+  } else {
+    mean_line_fft(profile.z, w, h, end, out.z);
   }
   return out;
 }
@@ -334,16 +401,18 @@ Profile GaussianFilter::apply(const Profile& profile) const {
         static_cast<double>(need - 1) * profile.dx * 1e3, lc * 1e3, ls * 1e6, to_string(end),
         shorter_lc_advice(profile.z.size(), profile.dx)));
   }
-  Profile r = profile;
+  // The roughness profile is written over the mean line (memory: the input, the mean
+  // line and, with ls, the smoothed profile).
+  Profile r;
   if (lc > 0.0) {
-    const Profile w = gaussian_mean_line(profile, lc, truncation, end);
+    r = gaussian_mean_line(profile, lc, truncation, end, convolution);
     const std::size_t off =
-        static_cast<std::size_t>(std::llround((w.x0 - profile.x0) / profile.dx));
-    r.x0 = w.x0;
-    r.z.assign(w.z.size(), 0.0);
-    for (std::size_t i = 0; i < w.z.size(); ++i) r.z[i] = profile.z[i + off] - w.z[i];
+        static_cast<std::size_t>(std::llround((r.x0 - profile.x0) / profile.dx));
+    for (std::size_t i = 0; i < r.z.size(); ++i) r.z[i] = profile.z[i + off] - r.z[i];
+  } else {
+    r = profile;
   }
-  if (ls > 0.0) r = gaussian_mean_line(r, ls, truncation, end);
+  if (ls > 0.0) r = gaussian_mean_line(r, ls, truncation, end, convolution);
   return r;
 }
 
@@ -387,18 +456,21 @@ namespace {
 // are taken as round-off: three orders of magnitude from either side.
 constexpr double kRoundOffLevel = 1e-12;
 
-void refuse_round_off(const Profile& raw, const ProcessedProfile& p, Levelling levelling,
-                      const GaussianFilter& filter) {
+double rms_about_zero(const std::vector<double>& z) {
   double ss = 0.0;
-  for (double v : raw.z) ss += v * v;
-  const double scale = std::sqrt(ss / static_cast<double>(raw.z.size()));
-  const double dx = p.filtered.dx;
+  for (double v : z) ss += v * v;
+  return std::sqrt(ss / static_cast<double>(z.size()));
+}
+
+void refuse_round_off(const std::string& name, double scale, double dx,
+                      const SpectralMoments& moments, Levelling levelling,
+                      const GaussianFilter& filter) {
   const struct {
     const char* what;
     double rms;
-  } left[] = {{"rms height", std::sqrt(p.moments.m0)},
-              {"rms difference of neighbouring heights (m2)", std::sqrt(p.moments.m2) * dx},
-              {"rms second difference of the heights (m4)", std::sqrt(p.moments.m4) * dx * dx}};
+  } left[] = {{"rms height", std::sqrt(moments.m0)},
+              {"rms difference of neighbouring heights (m2)", std::sqrt(moments.m2) * dx},
+              {"rms second difference of the heights (m4)", std::sqrt(moments.m4) * dx * dx}};
   for (const auto& l : left) {
     if (!(l.rms <= kRoundOffLevel * scale)) continue;  // NaN is left to validate()
     std::string steps;
@@ -408,8 +480,7 @@ void refuse_round_off(const Profile& raw, const ProcessedProfile& p, Levelling l
         "{}: the profile is flat{}: its {} is {:.3g} m, at round-off level (below {:g} of the "
         "raw heights' rms {:.6g} m), so there is no roughness to analyse (a straight line or a "
         "constant?)",
-        source_name(raw), steps.empty() ? "" : " after " + steps, l.what, l.rms, kRoundOffLevel,
-        scale));
+        name, steps.empty() ? "" : " after " + steps, l.what, l.rms, kRoundOffLevel, scale));
   }
 }
 
@@ -421,9 +492,33 @@ ProcessedProfile process_profile(const Profile& raw, Levelling levelling,
   p.levelled = level(raw, levelling);
   p.filtered = filter.is_none() ? p.levelled : filter.apply(p.levelled);
   p.moments = spectral_moments(p.filtered);
-  refuse_round_off(raw, p, levelling, filter);
+  refuse_round_off(source_name(raw), rms_about_zero(raw.z), p.filtered.dx, p.moments, levelling,
+                   filter);
   p.moments.validate(source_name(raw));
   return p;
+}
+
+ProfileMoments profile_moments(Profile raw, Levelling levelling, const GaussianFilter& filter) {
+  const std::string name = source_name(raw);
+  raw.validate();
+  const double scale = rms_about_zero(raw.z);
+  const double dx = raw.dx;
+  level_in_place(raw, levelling);
+  ProfileMoments out;
+  if (filter.is_none()) {
+    out.moments = spectral_moments(raw);
+    out.points = raw.z.size();
+    out.length = raw.length();
+  } else {
+    Profile filtered = filter.apply(raw);
+    raw = Profile{};  // freed before the moments' pass
+    out.moments = spectral_moments(filtered);
+    out.points = filtered.z.size();
+    out.length = filtered.length();
+  }
+  refuse_round_off(name, scale, dx, out.moments, levelling, filter);
+  out.moments.validate(name);
+  return out;
 }
 
 DirectionalMoments areal_moments(const HeightMap& map, Levelling levelling,
@@ -446,12 +541,20 @@ DirectionalMoments areal_moments(const HeightMap& map, Levelling levelling,
     std::vector<SpectralMoments> m;
     std::vector<double> w;
     std::size_t longest = 0;
-    for (const auto& p : profiles) {
-      longest = std::max(longest, p.z.size());
-      if (p.z.size() < min_pts) continue;
-      const auto r = process_profile(p, levelling, filter);
+    // The rows (columns) are independent: spread over the cores, each into its own slot,
+    // averaged in order afterwards (the same sums whatever the number of threads).
+    std::vector<std::size_t> used;
+    for (std::size_t k = 0; k < profiles.size(); ++k) {
+      longest = std::max(longest, profiles[k].z.size());
+      if (profiles[k].z.size() >= min_pts) used.push_back(k);
+    }
+    std::vector<ProfileMoments> results(used.size());
+    core::parallel_for(used.size(), [&](std::size_t k) {
+      results[k] = profile_moments(profiles[used[k]], levelling, filter);
+    });
+    for (const auto& r : results) {
       m.push_back(r.moments);
-      w.push_back(static_cast<double>(r.filtered.z.size()));
+      w.push_back(static_cast<double>(r.points));
     }
     if (m.empty()) {
       const std::string cut =

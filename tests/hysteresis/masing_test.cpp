@@ -94,6 +94,29 @@ TEST(Masing, ForceBetweenEventsMatchesUpdate) {
   }
 }
 
+TEST(Masing, PeekEqualsUpdateOnACopy) {
+  // peek(x) is what update(x) returns, without changing the state: along a branch (the
+  // inline fast path), at a reversal and through loop closing (the slow path on a copy).
+  Hysteresis h(mindlin_backbone());
+  const double s = mindlin().slip_displacement();
+  const std::vector<double> path{0.3 * s,  0.7 * s, -0.4 * s, 0.1 * s, 0.2 * s,
+                                 -0.1 * s, 0.5 * s, 0.8 * s,  -0.9 * s};
+  for (double x : path) {
+    for (double probe : {x, x + 0.05 * s, x - 0.05 * s, 1.5 * s, -1.5 * s}) {
+      Hysteresis copy = h;
+      const double q = h.peek(probe);
+      EXPECT_EQ(q, copy.update(probe));
+    }
+    const double x_before = h.x(), q_before = h.Q();
+    const std::size_t stack_before = h.reversals().size();
+    (void)h.peek(-x);
+    EXPECT_EQ(h.x(), x_before);
+    EXPECT_EQ(h.Q(), q_before);
+    EXPECT_EQ(h.reversals().size(), stack_before);
+    h.update(x);
+  }
+}
+
 TEST(Masing, InverseRecoversDisplacementHistory) {
   const double s = mindlin().slip_displacement();
   Hysteresis h(mindlin_backbone());

@@ -143,3 +143,37 @@ def test_preload_beyond_the_model_is_an_error():
     flat = fig44("bke")
     with pytest.raises(asperity.InvalidInput, match="preload"):
         flat.separation_star(10.0 * flat.max_load_star)
+
+
+def test_reversals_with_a_non_empty_stack_and_fast_history_paths():
+    # Jenkins element (k = 2, F = 1): reversal points are where the motion turned, with
+    # the force there on the virgin curve Q = min(k x, F) or on the Masing branch.
+    b = asperity.JenkinsBackbone(2.0, 1.0)
+    h = asperity.Hysteresis(b)
+    for x in (0.0, 1.0, -0.25):
+        h.update(x)
+    h.update(0.1)
+    # Turned at x = 1 (Q = F = 1) and at x = -0.25 (Masing: 1 - 2 min(2 * 1.25 / 2, 1) = -1).
+    assert h.reversals == [(1.0, 1.0), (-0.25, -1.0)]
+    assert all(isinstance(r, tuple) and len(r) == 2 for r in h.reversals)
+    # The fast paths (a float, a float64 array read in place, a strided view) equal the
+    # general one (a list through numpy.asarray), and the object is left as it was.
+    path = [0.3, -0.6, 0.2, 0.9]
+    general = h.forces(path)
+    np.testing.assert_array_equal(h.forces(np.array(path)), general)
+    wide = np.zeros(8)
+    wide[::2] = path
+    np.testing.assert_array_equal(h.forces(wide[::2]), general)
+    assert h.forces(0.3) == general[0]
+    # A reversal (motion turns at x = 0.1): the slow path on a copy, for a float and a
+    # 1-element array alike.
+    assert h.forces(-0.1) == h.forces([-0.1, 0.0])[0] == h.forces(np.array([-0.1]))[0]
+    assert isinstance(h.forces(0.3), float)
+    # Within partial slip the displacement path is the inverse (linear branches of the
+    # Jenkins element: exact up to one rounding per operation).
+    small = np.array([0.2, 0.0])
+    np.testing.assert_allclose(h.forces(small), [-0.1, -0.5], rtol=1e-15)
+    np.testing.assert_allclose(h.displacements(np.array([-0.1, -0.5])), small, atol=1e-15)
+    assert h.displacements(-0.1) == pytest.approx(0.2, rel=1e-15)
+    assert h.x == 0.1 and h.reversals == [(1.0, 1.0), (-0.25, -1.0)]
+    assert h.forces(np.array([])).shape == (0,)

@@ -136,3 +136,22 @@ def test_views_keep_their_owners_alive(micro_pair):
     assert Q[-1] == pytest.approx(contact.loading_force(1e-6))
     assert contact.Q_max == Q_max
     assert pair.R == 2.5e-3
+
+
+def test_large_arrays_in_parallel_blocks_equal_scalar_calls_and_raise_the_first_error():
+    # Arrays above one block (8192 elements) are evaluated in blocks over the cores
+    # (core::parallel_for): each element must equal its scalar call exactly, the shape
+    # is kept, and a bad element raises the error of the first bad index.
+    w = np.random.default_rng(4).uniform(0.05, 20.0, size=(3, 9000))
+    out = asperity.normal_load_star("bke", w, 0.3)
+    assert out.shape == w.shape
+    ref = np.array([asperity.normal_load_star("bke", float(v), 0.3) for v in w.ravel()])
+    np.testing.assert_array_equal(out.ravel(), ref)
+    bad = w.ravel().copy()
+    bad[20000] = -1.0
+    bad[25000] = float("nan")
+    with pytest.raises(asperity.InvalidInput) as first:
+        asperity.normal_load_star("bke", bad, 0.3)
+    with pytest.raises(asperity.InvalidInput) as alone:
+        asperity.normal_load_star("bke", -1.0, 0.3)
+    assert str(first.value) == str(alone.value)

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
 #include <string>
@@ -587,6 +588,61 @@ TEST(X3p, FileWithoutValidPointsSaysSo) {
           << e.what();
     }
   }
+}
+
+// The file reader streams 1 MiB pieces through the same scanner parse_profile_text()
+// runs over the whole text: a file whose CRLF pair, a number and a line straddle the
+// piece boundary (byte 2^20) reads as the same profile, to the bit, as its text parsed
+// at once; so do the same data with CR-only line ends and with a refused line.
+TEST(ProfileText, FileReadInPiecesEqualsTheWholeText) {
+  const auto dir =
+      std::filesystem::temp_directory_path() /
+      fmt::format("asperity_pieces_{}", ::testing::UnitTest::GetInstance()->random_seed());
+  std::filesystem::create_directories(dir);
+  for (const char* eol : {"\r\n", "\r"}) {
+    for (std::size_t pad = 0; pad < 24; ++pad) {
+      std::string text = "# " + std::string(pad, '-') + eol + "x[mm],z[um]" + eol;
+      for (std::size_t i = 0; text.size() < (std::size_t{1} << 20) + 200; ++i) {
+        text += fmt::format("{:.4f},{:.6f}{}", 1e-3 * static_cast<double>(i),
+                            std::sin(0.01 * static_cast<double>(i)), eol);
+      }
+      const auto path = (dir / "p.csv").string();
+      {
+        std::FILE* f = std::fopen(path.c_str(), "wb");
+        ASSERT_NE(f, nullptr);
+        std::fwrite(text.data(), 1, text.size(), f);
+        std::fclose(f);
+      }
+      const Profile a = read_profile_text(path);
+      const Profile b = parse_profile_text(text, path);
+      ASSERT_EQ(a.z, b.z) << "pad " << pad;
+      ASSERT_EQ(a.dx, b.dx);
+      ASSERT_EQ(a.x0, b.x0);
+      if (pad == 0) {
+        // A broken line near the end: the same message (with its line number) either way.
+        const std::string broken = text + "1.0,abc" + eol;
+        const auto bad = (dir / "bad.csv").string();
+        std::FILE* f = std::fopen(bad.c_str(), "wb");
+        ASSERT_NE(f, nullptr);
+        std::fwrite(broken.data(), 1, broken.size(), f);
+        std::fclose(f);
+        std::string from_file, from_text;
+        try {
+          (void)read_profile_text(bad);
+        } catch (const InvalidInput& e) {
+          from_file = e.what();
+        }
+        try {
+          (void)parse_profile_text(broken, bad);
+        } catch (const InvalidInput& e) {
+          from_text = e.what();
+        }
+        EXPECT_NE(from_file.find("expected only numbers"), std::string::npos) << from_file;
+        EXPECT_EQ(from_file, from_text);
+      }
+    }
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

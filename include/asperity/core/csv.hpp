@@ -2,8 +2,10 @@
 // Delimited numeric tables with units in the header ("t[s],delta[um],Q[N]"), for
 // displacement histories and measured fretting data. Every malformed input gets an
 // InvalidInput naming the file, the line and what was expected.
+#include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "asperity/core/units.hpp"
@@ -36,7 +38,19 @@ CsvTable read_csv_table(const std::string& path);
 /// the file is written whole or not at all. Throws InvalidInput on failure.
 void write_file_atomically(const std::string& path, const std::string& content);
 
-/// Writes rows of numbers with a header, atomically (temporary file + rename).
+/// Receives the consecutive pieces of a file's content.
+using ChunkSink = std::function<void(std::string_view)>;
+
+/// Writes what `produce` hands to its sink, piece by piece, to a temporary file next to
+/// `path`, renamed over `path` at the end: the file is written whole or not at all
+/// (also when `produce` throws: the temporary file is removed and the exception passed
+/// on), and memory holds no more of it than `produce` does. Throws InvalidInput on
+/// failure.
+void write_file_streamed(const std::string& path,
+                         const std::function<void(const ChunkSink&)>& produce);
+
+/// Writes rows of numbers with a header, atomically (temporary file + rename), in
+/// chunks of 1 MiB.
 void write_csv_table(const std::string& path, const std::vector<std::string>& header,
                      const std::vector<std::vector<double>>& columns);
 

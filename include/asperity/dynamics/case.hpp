@@ -40,6 +40,7 @@
 // [dynamics.friction] may then hold only model = "physics", backbone = "joint" and
 // memory.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -129,7 +130,16 @@ struct CaseResult {
 /// the energy balance). Warns when the energy balance error exceeds 100 rtol, when a
 /// Dankowicz internal state overshoots |z| <= delta by more than 100 rtol, and when more
 /// than 20 % of the steps are rejected over a long run (a stiff problem).
-[[nodiscard]] CaseResult run_case(const DynamicsCase& c);
+///
+/// With `options.summary_only`, only the samples the summary needs are kept in the
+/// result's trajectory (a harmonic response: its last loop_cycles + 1 periods; the other
+/// excitations' analyses need the whole record); the summary is the same either way.
+/// `options.sink` receives every sample as it is produced (SimulationOptions::sink).
+struct RunOptions {
+  bool summary_only = false;
+  std::function<void(const TrajectorySample&)> sink;
+};
+[[nodiscard]] CaseResult run_case(const DynamicsCase& c, const RunOptions& options = {});
 
 /// The time-history columns of a run, in the order of timeseries.csv: the
 /// non-dimensional tau, u, v, y, friction, the internal states (z), the energy terms and
@@ -140,5 +150,10 @@ struct Column {
   std::vector<double> values;
 };
 [[nodiscard]] std::vector<Column> time_history_columns(const DynamicsCase& c, const Trajectory& tr);
+
+/// The same columns one sample at a time, for streaming a run to disk: the names
+/// (time_history_columns' order) and one sample's values (event as 1 or 0).
+[[nodiscard]] std::vector<std::string> time_history_names(const DynamicsCase& c);
+void time_history_row(const DynamicsCase& c, const TrajectorySample& x, std::vector<double>& row);
 
 }  // namespace asperity::dynamics

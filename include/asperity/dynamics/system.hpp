@@ -21,7 +21,9 @@
 //                                                       plus elastic energy still stored in
 //                                                       a hysteretic or Dankowicz contact),
 //   E(tau) - E(0) = W_base - D_damper - W_friction.
+#include <functional>
 #include <memory>
+#include <span>
 #include <variant>
 #include <vector>
 
@@ -89,6 +91,15 @@ struct DimensionalScales {
   [[nodiscard]] DankowiczParameters dankowicz(double F_max, double delta) const;
 };
 
+/// One sample of a time history as SimulationOptions::sink receives it (the columns of
+/// Trajectory at one time).
+struct TrajectorySample {
+  double tau = 0.0, u = 0.0, v = 0.0, y = 0.0, dy = 0.0, friction = 0.0;
+  std::span<const double> internal;  ///< the friction model's internal states
+  double work_base = 0.0, dissipated_damper = 0.0, work_friction = 0.0, energy = 0.0;
+  bool is_event = false;
+};
+
 struct SimulationOptions {
   double duration = 100.0;  ///< end of the integration in tau; > 0
   double u0 = 0.0;          ///< initial displacement
@@ -104,6 +115,15 @@ struct SimulationOptions {
   /// Locate velocity reversals even for models that do not need them (for the
   /// extrema of a free decay, say). Models with memory always locate them.
   bool locate_reversals = false;
+  /// Samples before this tau are not kept in the Trajectory; they still reach `sink`
+  /// and the running totals (Trajectory::initial_energy, max_work_base,
+  /// max_abs_internal): a long run keeps only the window its analysis needs (the last
+  /// cycles of a harmonic response). The final sample is always kept.
+  double record_from = 0.0;
+  /// Called with every sample as it is produced, kept or not (to stream a run to disk).
+  std::function<void(const TrajectorySample&)> sink;
+  /// Throws InvalidInput unless duration > 0, u0 and v0 are finite, output_interval >= 0
+  /// and the samples kept (from record_from on) number at most 5e7.
   void validate() const;
 };
 
@@ -117,14 +137,20 @@ struct Trajectory {
   std::vector<double> event_tau;  ///< located velocity reversals
   std::vector<double> event_u;
   std::vector<bool> is_event;  ///< per sample: sample is a located reversal
+  /// Over every sample produced, kept or not (SimulationOptions::record_from):
+  std::size_t samples = 0;               ///< number of samples
+  double initial_energy = 0.0;           ///< mechanical energy of the first sample
+  double max_work_base = 0.0;            ///< largest base work
+  std::vector<double> max_abs_internal;  ///< largest |state| per internal state
   IntegratorStats stats;
   std::size_t force_evaluations = 0;
   std::string friction_model;
 
   /// |E_end - E_0 - (W_base - D_damper - W_friction)| divided by the energy put in:
   /// E_0 plus the largest work the base has done up to any recorded time (or 1e-300 if
-  /// both vanish). The largest, not the final, base work: a base can take back what it
-  /// gave (the transient of a ramp, a lightly damped harmonic response), leaving a net
+  /// both vanish; from the running totals, so a run kept from record_from > 0 gets the
+  /// same value as a fully kept one). The largest, not the final, base work: a base can take back
+  /// what it gave (the transient of a ramp, a lightly damped harmonic response), leaving a net
   /// input far below the energy in play and a ratio that says nothing about accuracy.
   [[nodiscard]] double energy_balance_error() const;
   [[nodiscard]] std::size_t size() const { return tau.size(); }

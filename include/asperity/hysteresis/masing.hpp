@@ -77,6 +77,15 @@ class Hysteresis {
   /// InvalidInput if a branch would need |Q| beyond the static limit (gross slip
   /// under force control has no finite displacement).
   double update_force(double Q);
+  /// What update(x) would return, without changing the state (and without copying it
+  /// when x continues the current branch: the inline fast path of update()).
+  [[nodiscard]] double peek(double x) const {
+    if ((x - x_) * direction_ > 0.0 && (x - top_.closes_at) * top_.direction < 0.0) {
+      return top_.Q + top_.direction * 2.0 * backbone_force(std::abs(x - top_.x) * 0.5);
+    }
+    Hysteresis copy = *this;
+    return copy.update_slow(x);
+  }
 
   /// Force at x reached from the last committed state by monotone motion (no reversal
   /// in between); loop closing along the way is taken into account. Does not change

@@ -72,5 +72,7 @@ std::string_view to_string(Levelling l);
 
 /// Returns the profile with its mean or least-squares line removed.
 [[nodiscard]] Profile level(const Profile& profile, Levelling how);
+/// The same in place (no copy of the heights).
+void level_in_place(Profile& profile, Levelling how);
 
 }  // namespace asperity::surface
