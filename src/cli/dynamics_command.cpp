@@ -296,8 +296,8 @@ void add_dynamics_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_flag("--no-plots", o->no_plots, "do not draw PNG plots (no gnuplot needed)");
   cmd->add_flag("--json", o->json, "print summary.json instead of the text summary");
   cmd->add_option("--decimate", o->decimate,
-                  "write every Nth sample to timeseries.csv (events and the final state "
-                  "always; default 1: every sample of output_interval)")
+                  "write every Nth sample to timeseries.csv, events and the final state "
+                  "always (default: 1, every sample of output_interval)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 40));
   cmd->callback([o, &action] {
     action = [o] { return run_guarded([o](std::string& out) { run_dynamics(*o, out); }); };
