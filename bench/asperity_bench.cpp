@@ -195,6 +195,13 @@ int main(int argc, char** argv) {
     std::printf("  Dynamics physics-based / tanh-Coulomb (1000 harmonic cycles, BS23) = %6.2f\n",
                 dyn_phys23 / dyn_tanh23);
   }
+  // Issue 11 (bench/interface_bench.cpp): one ch. 5 load case under the bolt field (170
+  // patches, one summed table) against the uniform one.
+  const double uniform = get("BM_Ch5UniformLoad"), bolts = get("BM_Ch5BoltFieldLoad");
+  if (uniform > 0 && bolts > 0) {
+    std::printf("  Ch. 5 load case, bolt field / uniform = %6.1f   (%.0f ms against %.1f ms)\n",
+                bolts / uniform, bolts * 1e3, uniform * 1e3);
+  }
   for (const auto& [name, seconds] : t) {
     if (name.rfind("BM_Dynamics", 0) == 0) std::printf("  %s: %.3g s\n", name.c_str(), seconds);
   }

@@ -90,10 +90,13 @@ nb::dict prediction_dict(const JointCase& c, const JointPrediction& p, std::size
     ld["contact_area_ratio"] = l.contact_area_ratio;
     ld["backbone"] = nb::cast(std::shared_ptr<const hysteresis::Backbone>(l.backbone));
     ld["gross_slip_amplitude"] = l.gross_slip_amplitude;
-    std::vector<double> a, q, e, imp;
+    std::vector<double> a, q, e, imp, n, slip;
     nb::list regimes, loops;
     for (const auto& am : l.amplitudes) {
       a.push_back(am.delta_max);
+      // Local energy-force exponent; NaN in gross slip (Q_peak no longer grows).
+      n.push_back(am.exponent.value_or(std::numeric_limits<double>::quiet_NaN()));
+      slip.push_back(am.gross_slip_area_fraction);
       // NaN: the joint amplitude was given directly (no imposed PZT amplitude).
       imp.push_back(am.imposed.value_or(std::numeric_limits<double>::quiet_NaN()));
       q.push_back(am.Q_peak);
@@ -111,6 +114,28 @@ nb::dict prediction_dict(const JointCase& c, const JointPrediction& p, std::size
     ld["energy"] = array_of(e);
     ld["regime"] = regimes;
     ld["loops"] = loops;
+    ld["exponent"] = array_of(n);
+    ld["gross_slip_area_fraction"] = array_of(slip);
+    // The interface's patches (one, the whole area, without [interface]).
+    std::vector<double> px0, py0, px1, py1, pa, pf, pg;
+    for (const auto& pp : l.patches) {
+      px0.push_back(pp.patch.x0);
+      py0.push_back(pp.patch.y0);
+      px1.push_back(pp.patch.x1);
+      py1.push_back(pp.patch.y1);
+      pa.push_back(pp.patch.area);
+      pf.push_back(pp.patch.force);
+      pg.push_back(pp.gross_slip_amplitude);
+    }
+    nb::dict patches;
+    patches["x0"] = array_of(px0);
+    patches["y0"] = array_of(py0);
+    patches["x1"] = array_of(px1);
+    patches["y1"] = array_of(py1);
+    patches["area"] = array_of(pa);
+    patches["force"] = array_of(pf);
+    patches["gross_slip_amplitude"] = array_of(pg);
+    ld["patches"] = patches;
     loads.append(ld);
     P.push_back(l.preload);
     mu.push_back(l.mu);
@@ -275,7 +300,7 @@ void bind_joint(nb::module_& m) {
          double sample_rate, double noise_delta, double noise_Q, double k_pzt, double k_lc,
          std::uint64_t seed) {
         const auto c = read_case_file(case_path);
-        const auto lp = predict_load(c.rough_flat(), preload, {});
+        const auto lp = predict_case_load(c, preload);  // with the case's [interface]
         SyntheticOptions o;
         o.excitation = {.amplitude = imposed, .frequency = frequency, .cycles = cycles};
         o.sample_rate = sample_rate;

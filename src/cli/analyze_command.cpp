@@ -416,11 +416,10 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
               require_distinct_outputs({{in.what, in.path}, {"--out", *o->out}});
           }
         }
-        std::optional<surface::RoughFlat> flat;
+        std::optional<joint::JointCase> model_case;  // its [interface], if any, applies
         if (o->model) {
-          const auto c = joint::read_case_file(*o->model);
-          if (to_dir) joint::require_output_apart_from_inputs(*o->out, profile_inputs(c));
-          flat = c.rough_flat();
+          model_case = joint::read_case_file(*o->model);
+          if (to_dir) joint::require_output_apart_from_inputs(*o->out, profile_inputs(*model_case));
         }
         std::vector<Run> runs;
         for (const auto& f : o->files) {
@@ -431,7 +430,7 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
                                         {.stiffness_window = o->window,
                                          .stiffness_degree = o->degree,
                                          .stiffness_from_imposed = !o->stiffness_from_delta});
-          if (flat) r.model = joint::predict_load(*flat, P, {r.a.mean.delta_max});
+          if (model_case) r.model = joint::predict_case_load(*model_case, P, {r.a.mean.delta_max});
           runs.push_back(std::move(r));
         }
         std::optional<PowerLaw> law;
@@ -699,7 +698,7 @@ void add_synthesize_command(CLI::App& app, std::function<int()>& action) {
         s.pzt_stiffness = required_quantity(o->k_pzt, dim::stiffness, "--k-pzt");
         s.load_cell_stiffness = required_quantity(o->k_lc, dim::stiffness, "--k-lc");
         s.seed = o->seed;
-        const auto lp = joint::predict_load(c.rough_flat(), P, {});
+        const auto lp = joint::predict_case_load(c, P);  // with the case's [interface]
         const auto d = joint::synthetic_experiment(lp.backbone, s);
         std::vector<std::vector<double>> cols(o->no_imposed ? 3 : 4);
         cols[0] = d.t;

@@ -10,6 +10,9 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
 #include "asperity/hysteresis/masing.hpp"
+#include "asperity/joint/case.hpp"
+#include "asperity/joint/output_dir.hpp"
+#include "asperity/joint/predict.hpp"
 #include "asperity/surface/rough_flat.hpp"
 #include "commands.hpp"
 #include "common.hpp"
@@ -33,6 +36,7 @@ struct FlatOptions {
   bool json = false;
   std::optional<std::string> history_csv, out_csv, loop_csv, plot_png;
   std::size_t points = 201;
+  std::optional<std::string> case_file;  // --case: a joint case's (patched) backbone
 };
 
 bool any_material_flag(const MaterialOptions& m) {
@@ -43,7 +47,53 @@ double number(const std::optional<std::string>& text, const std::string& flag) {
   return required_quantity(text, dim::dimensionless, flag);
 }
 
+// --case CASE.toml --history H.csv --out F.csv [--P 526N]: the force history of a joint
+// case (its [interface] field in patches, or the uniform flat) by Masing's rules on its
+// SI backbone, the one predict and dynamics use (docs/joints.md).
+void run_flat_case(const FlatOptions& o, std::string& out) {
+  const bool others = o.beta || o.psi || o.nu || o.P_star || o.G_over_E || o.delta_star_max ||
+                      any_material_flag(o.materials) || o.sigma || o.eta || o.R || o.area ||
+                      o.delta_max || o.mu_cfc || o.zeta || o.loop_csv || o.plot_png || o.json;
+  if (others) {
+    throw InvalidInput(
+        "--case takes the joint from the case file: give only --history, --out and optionally "
+        "--P (the preload, when the case has several)");
+  }
+  if (!o.history_csv || !o.out_csv)
+    throw InvalidInput("--case needs --history FILE.csv and --out FILE.csv");
+  require_distinct_outputs({{"--out", *o.out_csv}, {"--history", *o.history_csv}});
+  joint::require_output_apart_from_inputs(*o.out_csv, {{"the case file", *o.case_file}});
+  const auto c = joint::read_case_file(*o.case_file);
+  double P = 0.0;
+  if (o.P) {
+    P = required_quantity(o.P, dim::force, "--P");
+    core::require_positive("--P", P);
+  } else if (c.preloads.size() == 1) {
+    P = c.preloads.front();
+  } else {
+    throw InvalidInput(fmt::format("{}: {} load cases: choose one with --P (e.g. --P 526N)",
+                                   *o.case_file, c.preloads.size()));
+  }
+  const auto csv = core::read_csv_table(*o.history_csv);
+  const auto* col = csv.find("delta");
+  if (!col) {
+    throw InvalidInput(fmt::format(
+        "{}: --case needs a \"delta[unit]\" column (dimensional: the case is)", *o.history_csv));
+  }
+  const auto x = csv.si_values(*col, dim::length);
+  const auto lp = joint::predict_case_load(c, P);
+  const hysteresis::Hysteresis h(lp.backbone);
+  const auto Q = h.forces(x);
+  core::write_csv_table(*o.out_csv, {"delta[m]", "Q[N]"}, {x, Q});
+  out = fmt::format(
+      "{} at P = {:.6g} N: Q_max = {:.6g} N, stiffness {:.6g} N/um, {} patch{}; wrote {} ({} "
+      "forces)\n",
+      c.name.empty() ? *o.case_file : c.name, P, lp.Q_max, lp.stiffness * 1e-6, lp.patches.size(),
+      lp.patches.size() == 1 ? "" : "es", *o.out_csv, Q.size());
+}
+
 void run_flat(const FlatOptions& o, std::string& out) {
+  if (o.case_file) return run_flat_case(o, out);
   const auto model = contact::parse_model_name(lowercase(o.model));
   const std::string model_name(contact::to_string(model));
   contact::FrictionParameters friction;
@@ -390,6 +440,9 @@ void add_flat_command(CLI::App& app, std::function<int()>& action) {
                   "write the fretting loop to this CSV file (- for standard output)");
   cmd->add_option("--plot", o->plot_png, "draw the fretting loop into this PNG file");
   cmd->add_option("--points", o->points, "points per loop branch, in [2, 100000] (default: 201)");
+  cmd->add_option("--case", o->case_file,
+                  "a joint case file (as for predict, with its [interface]): with --history "
+                  "and --out, the force history on its backbone at --P (or its one preload)");
   cmd->callback([o, &action] {
     action = [o] { return run_guarded([o](std::string& out) { run_flat(*o, out); }); };
   });

@@ -35,7 +35,30 @@ Json amplitude_json(const joint::AmplitudePrediction& a) {
          {"Q_peak_over_Q_max", a.Q_ratio},
          {"regime", a.regime}};
   if (a.imposed) j["imposed"] = *a.imposed;
+  // Local energy-force exponent d ln W / d ln Q_peak; null in gross slip.
+  j["exponent"] = a.exponent ? Json(*a.exponent) : Json(nullptr);
+  j["gross_slip_area_fraction"] = a.gross_slip_area_fraction;
+  if (a.patch_gross_slip.size() > 1) j["patch_gross_slip"] = a.patch_gross_slip;
   return j;
+}
+
+// The patches of an [interface] (joint/interface.hpp): cell, area, force, own quantities.
+Json patches_json(const joint::LoadPrediction& l) {
+  Json out = Json::array();
+  for (const auto& p : l.patches) {
+    out.push_back(Json{{"x0", p.patch.x0},
+                       {"y0", p.patch.y0},
+                       {"x1", p.patch.x1},
+                       {"y1", p.patch.y1},
+                       {"area", p.patch.area},
+                       {"force", p.patch.force},
+                       {"pressure", p.patch.pressure()},
+                       {"d_star", p.d_star},
+                       {"Q_max", p.Q_max},
+                       {"stiffness", p.stiffness},
+                       {"gross_slip_amplitude", p.gross_slip_amplitude}});
+  }
+  return out;
 }
 
 Json load_json(const joint::LoadPrediction& l) {
@@ -53,6 +76,38 @@ Json load_json(const joint::LoadPrediction& l) {
   Json amps = Json::array();
   for (const auto& a : l.amplitudes) amps.push_back(amplitude_json(a));
   j["amplitudes"] = amps;
+  if (l.patches.size() > 1) {
+    j["patches"] = patches_json(l);
+    j["distinct_patch_sums"] = l.distinct_patch_sums;
+  }
+  return j;
+}
+
+Json interface_json(const joint::InterfaceSpec& s) {
+  const char* kinds[] = {"uniform", "map", "bolted"};
+  Json j{{"pressure", kinds[static_cast<int>(s.pressure)]},
+         {"patches", {s.patches[0], s.patches[1]}},
+         {"min_asperities_per_patch", joint::kMinAsperitiesPerPatch}};
+  if (s.outline) j["size"] = {(*s.outline)[0], (*s.outline)[1]};
+  if (s.pressure == joint::PressureKind::map) {
+    j["map"] = Json{{"file", s.map.file},
+                    {"points", s.map.p.size()},
+                    {"interpolation", s.map.is_grid() ? "bilinear (grid)" : "nearest point"},
+                    {"scale_to_preload", s.map.scale_to_preload}};
+  }
+  if (s.pressure == joint::PressureKind::bolted) {
+    Json pos = Json::array();
+    for (const auto& b : s.bolts.positions) pos.push_back({b[0], b[1]});
+    j["bolts"] = Json{{"positions", pos},
+                      {"head_diameter", s.bolts.head_diameter},
+                      {"hole_diameter", s.bolts.hole_diameter},
+                      {"thickness", {s.bolts.thickness[0], s.bolts.thickness[1]}},
+                      {"cone_half_angle_deg", s.bolts.cone_half_angle_deg},
+                      {"footprint_radius", s.bolts.footprint_radius()},
+                      {"model",
+                       "pressure cone (Rotscher frustum, Shigley): the bolt's force uniform over "
+                       "the annulus between the hole and r_c = d_w/2 + min(t1, t2) tan(alpha)"}};
+  }
   return j;
 }
 
@@ -119,6 +174,7 @@ Json prediction_json(const joint::JointCase& c, const joint::JointPrediction& p)
   j["roughness"]["combined_by"] = "Eq. 5.1: the halves' spectral moments m0, m2, m4 added";
   if (from_profiles(c)) j["roughness"]["processing"] = processing_json(c.profile_settings);
   j["force_scale_KHA0"] = p.force_scale;
+  if (!c.interface.is_default()) j["interface"] = interface_json(c.interface);
   if (!c.imposed.empty()) {
     j["apparatus"] = Json{{"pzt_stiffness", c.apparatus.pzt_stiffness},
                           {"load_cell_stiffness", c.apparatus.load_cell_stiffness},
@@ -179,17 +235,34 @@ std::string prediction_summary(const joint::JointCase& c, const joint::JointPred
     if (l.amplitudes.empty()) continue;
     const bool imposed = std::any_of(l.amplitudes.begin(), l.amplitudes.end(),
                                      [](const auto& a) { return a.imposed.has_value(); });
-    s += fmt::format("\nP = {:.4g} N (gross slip from delta_max = {:.3g} um):\n", l.preload,
-                     l.gross_slip_amplitude * 1e6);
-    s += fmt::format("{:>14}{}{:>14} {:>10} {:>14} {:>9}  {}\n", "",
+    s += fmt::format("\nP = {:.4g} N (gross slip from delta_max = {:.3g} um{}):\n", l.preload,
+                     l.gross_slip_amplitude * 1e6,
+                     l.patches.size() > 1
+                         ? fmt::format("; {} loaded patches, the first slips fully at {:.3g} um",
+                                       l.patches.size(),
+                                       std::min_element(
+                                           l.patches.begin(), l.patches.end(),
+                                           [](const auto& a, const auto& b) {
+                                             return a.gross_slip_amplitude < b.gross_slip_amplitude;
+                                           })->gross_slip_amplitude *
+                                           1e6)
+                         : "");
+    // With patches: the share of the loaded area in gross slip and the local exponent.
+    const bool patched = l.patches.size() > 1;
+    s += fmt::format("{:>14}{}{:>14} {:>10} {:>14} {:>9}  {}{}\n", "",
                      imposed ? fmt::format("{:>13} ", "imposed[um]") : "", "delta_max[um]",
-                     "Q_peak[N]", "energy[uJ]", "Q/Q_max", "regime");
+                     "Q_peak[N]", "energy[uJ]", "Q/Q_max",
+                     patched ? fmt::format("{:>9} {:>6}  ", "slip[%]", "n") : "", "regime");
     for (const auto& a : l.amplitudes) {
-      s += fmt::format("{:>14}{}{:>14.4g} {:>10.4g} {:>14.5g} {:>9.5f}  {}\n", "",
+      s += fmt::format("{:>14}{}{:>14.4g} {:>10.4g} {:>14.5g} {:>9.5f}  {}{}\n", "",
                        imposed ? (a.imposed ? fmt::format("{:>13.4g} ", *a.imposed * 1e6)
                                             : fmt::format("{:>13} ", "-"))
                                : "",
-                       a.delta_max * 1e6, a.Q_peak, a.energy * 1e6, a.Q_ratio, a.regime);
+                       a.delta_max * 1e6, a.Q_peak, a.energy * 1e6, a.Q_ratio,
+                       patched ? fmt::format("{:>9.1f} {:>6}  ", 100.0 * a.gross_slip_area_fraction,
+                                             a.exponent ? fmt::format("{:.4g}", *a.exponent) : "-")
+                               : "",
+                       a.regime);
     }
   }
   return s;
@@ -249,6 +322,97 @@ std::string palette_commands(const joint::JointPrediction& p) {
       lo, hi > lo ? hi : lo * 1.001);
 }
 
+// patches.csv: every load case's patches (long format).
+void write_patch_table(const std::string& path, const joint::JointPrediction& p) {
+  std::vector<std::vector<double>> t(11);
+  for (const auto& l : p.loads) {
+    for (const auto& q : l.patches) {
+      const double row[] = {l.preload,
+                            q.patch.x0 * 1e3,
+                            q.patch.y0 * 1e3,
+                            q.patch.x1 * 1e3,
+                            q.patch.y1 * 1e3,
+                            q.patch.area * 1e6,
+                            q.patch.force,
+                            q.patch.pressure() * 1e-6,
+                            q.Q_max,
+                            q.stiffness * 1e-6,
+                            q.gross_slip_amplitude * 1e6};
+      for (std::size_t k = 0; k < t.size(); ++k) t[k].push_back(row[k]);
+    }
+  }
+  core::write_csv_table(
+      path,
+      {"preload[N]", "x0[mm]", "y0[mm]", "x1[mm]", "y1[mm]", "area[mm^2]", "force[N]",
+       "pressure[MPa]", "Q_max[N]", "stiffness[N/um]", "gross_slip_amplitude[um]"},
+      t);
+}
+
+// The patches of the first load case as coloured rectangles (gnuplot objects) with the
+// bolts' holes and cone footprints: by pressure, and by the amplitude from which each
+// patch is in gross slip (a patch coloured below an amplitude slips fully at it).
+void plot_patch_maps(const joint::JointCase& c, const joint::JointPrediction& p,
+                     const std::string& pressure_png, const std::string& slip_png) {
+  const auto& l = p.loads.front();
+  const auto map = [&](const std::string& png, const std::string& title, const std::string& label,
+                       const auto& value) {
+    double lo = 1e300, hi = -1e300;
+    for (const auto& q : l.patches) {
+      lo = std::min(lo, value(q));
+      hi = std::max(hi, value(q));
+    }
+    std::string extra = fmt::format(
+        "set palette defined (0 '#1f4e9a', 1 '#2ca02c', 2 '#e6a100', 3 '#c0392b')\n"
+        "set cbrange [{:.10g}:{:.10g}]\nset cblabel {}\nset colorbox\nset size ratio -1\n"
+        "set key below\n",
+        lo, hi > lo ? hi : lo * 1.001 + 1e-30, gnuplot_string(label));
+    int id = 1;
+    for (const auto& q : l.patches) {
+      extra += fmt::format(
+          "set object {} rect from {:.10g},{:.10g} to {:.10g},{:.10g} fc palette cb {:.10g} fs "
+          "solid border lc rgb '#ffffff' behind\n",
+          id++, q.patch.x0 * 1e3, q.patch.y0 * 1e3, q.patch.x1 * 1e3, q.patch.y1 * 1e3, value(q));
+    }
+    PlotSpec spec{title, "x [mm] (fretting direction)", "y [mm]", false, false, {}, extra};
+    const auto circle = [](double x0, double y0, double r) {
+      Series s{"", {}, {}, "lines lc rgb '#000000'"};
+      for (int i = 0; i <= 72; ++i) {
+        s.x.push_back((x0 + r * std::cos(i * M_PI / 36.0)) * 1e3);
+        s.y.push_back((y0 + r * std::sin(i * M_PI / 36.0)) * 1e3);
+      }
+      return s;
+    };
+    if (c.interface.pressure == joint::PressureKind::bolted) {
+      const auto& b = c.interface.bolts;
+      for (std::size_t k = 0; k < b.positions.size(); ++k) {
+        auto hole = circle(b.positions[k][0], b.positions[k][1], 0.5 * b.hole_diameter);
+        if (k == 0) hole.title = "bolt holes";
+        spec.series.push_back(hole);
+        auto cone = circle(b.positions[k][0], b.positions[k][1], b.footprint_radius());
+        cone.style = "lines dt 2 lc rgb '#000000'";
+        if (k == 0) cone.title = "pressure cones (r_c)";
+        spec.series.push_back(cone);
+      }
+    }
+    // A palette-coloured point so that gnuplot draws the colour box.
+    Series dot{"",
+               {l.patches.front().patch.x0 * 1e3},
+               {l.patches.front().patch.y0 * 1e3},
+               fmt::format("points pt 5 ps 0 lc palette cb {:.10g}", lo)};
+    spec.series.push_back(dot);
+    plot_png(png, spec);
+  };
+  map(pressure_png,
+      fmt::format("Interface pressure at P = {:.0f} N ({} patches): {}", l.preload,
+                  l.patches.size(), c.name),
+      "pressure [MPa]", [](const joint::PatchPrediction& q) { return q.patch.pressure() * 1e-6; });
+  map(slip_png,
+      fmt::format("Slip map at P = {:.0f} N: delta_max from which each patch slips fully",
+                  l.preload),
+      "gross-slip amplitude [um]",
+      [](const joint::PatchPrediction& q) { return q.gross_slip_amplitude * 1e6; });
+}
+
 }  // namespace
 
 std::vector<std::string> write_prediction_files(const joint::JointCase& c,
@@ -289,6 +453,9 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
                           lc);
     write_file_atomically(file("energy.csv"), energy_csv);
   }
+  const bool patched = !p.loads.empty() && p.loads.front().patches.size() > 1;
+  if (data && patched) write_patch_table(file("patches.csv"), p);
+  if (plots && patched) plot_patch_maps(c, p, file("pressure_map.png"), file("slip_map.png"));
   if (!plots) return written;
   const bool sweep = p.loads.size() > 1;
   const std::size_t nl = p.loads.size();
@@ -431,6 +598,8 @@ std::vector<joint::NamedInput> profile_inputs(const joint::JointCase& c) {
     for (const auto& f : c.halves[h].roughness.profiles)
       in.push_back({fmt::format("a profile of half {} of the case", h + 1), f});
   }
+  if (!c.interface.map.file.empty())
+    in.push_back({"the pressure map of the case", c.interface.map.file});
   return in;
 }
 

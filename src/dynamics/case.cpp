@@ -220,8 +220,9 @@ std::unique_ptr<FrictionModel> joint_friction(DynamicsCase& c, const std::string
   }
   const joint::JointCase jc =
       joint::parse_case(joint_text(file_text, *root.get("dynamics")), path, base_dir);
-  // [load] is there: joint::parse_case requires it.
-  const auto load_line = root.get("load")->source().begin.line;
+  // [load] is there unless an [interface] map gives the load (joint::parse_case checks).
+  const auto load_line = root.get("load") ? root.get("load")->source().begin.line
+                                          : root.get("interface")->source().begin.line;
   if (jc.preloads.size() != 1) {
     throw InvalidInput(
         fmt::format("{}:{}: load: `asperity dynamics` runs one preload; the [load] table gives {} "
@@ -229,10 +230,10 @@ std::unique_ptr<FrictionModel> joint_friction(DynamicsCase& c, const std::string
                     path, load_line, jc.preloads.size()));
   }
   const double P = jc.preloads.front();
-  const auto flat = jc.rough_flat();
   const joint::LoadPrediction lp = [&] {
     try {
-      return joint::predict_load(flat, P, {});
+      // Uniform, or the patches of an [interface] summed (joint/interface.hpp).
+      return joint::predict_case_load(jc, P);
     } catch (const InvalidInput& e) {
       throw InvalidInput(fmt::format("{}:{}: load: {}", path, load_line, e.what()));
     }
@@ -459,9 +460,9 @@ DynamicsCase parse_case_text(const std::string& file_text, const std::string& pa
     throw InvalidInput(
         fmt::format("{}: {} (line {})", path, e.description(), e.source().begin.line));
   }
-  check_keys(root, path, {"dynamics", "joint", "load", "profiles"});
+  check_keys(root, path, {"dynamics", "joint", "load", "profiles", "interface"});
   if (!root.get("joint")) {
-    for (const char* k : {"load", "profiles"}) {
+    for (const char* k : {"load", "profiles", "interface"}) {
       if (root.get(k)) {
         throw InvalidInput(
             fmt::format("{}: [{}] belongs to a [joint] table, which is missing (line {})", path, k,

@@ -302,7 +302,7 @@ std::string joint_text(const std::string& file_text, const toml::table& root) {
   std::set<std::uint32_t> lines;
   for (const auto& [k, v] : root) {
     const std::string key(k.str());
-    if (key == "joint" || key == "load" || key == "profiles") continue;
+    if (key == "joint" || key == "load" || key == "profiles" || key == "interface") continue;
     lines.insert(k.source().begin.line);
     collect_lines(v, lines);
   }
@@ -330,7 +330,9 @@ struct JointBackbone {
 JointBackbone joint_backbone(const std::string& path, const std::string& base_dir,
                              const std::string& file_text, const toml::table& root) {
   const joint::JointCase jc = joint::parse_case(joint_text(file_text, root), path, base_dir);
-  const auto load_line = root.get("load") ? root.get("load")->source().begin.line : 0;
+  const auto load_line = root.get("load")        ? root.get("load")->source().begin.line
+                         : root.get("interface") ? root.get("interface")->source().begin.line
+                                                 : 0;
   if (jc.preloads.size() != 1) {
     throw InvalidInput(fmt::format(
         "{}:{}: load: a rough_flat element takes one preload; the [load] table gives {} (a "
@@ -338,10 +340,10 @@ JointBackbone joint_backbone(const std::string& path, const std::string& base_di
         path, load_line, jc.preloads.size()));
   }
   const double P = jc.preloads.front();
-  const auto flat = jc.rough_flat();
   const joint::LoadPrediction lp = [&] {
     try {
-      return joint::predict_load(flat, P, {});
+      // Uniform, or the summed backbone of an [interface]'s patches (joint/interface.hpp).
+      return joint::predict_case_load(jc, P);
     } catch (const InvalidInput& e) {
       throw InvalidInput(fmt::format("{}:{}: load: {}", path, load_line, e.what()));
     }
@@ -603,9 +605,9 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
   }
   check_keys(root, path,
              {"structure", "element", "harmonic_balance", "nonlinear_mode", "frequency_response",
-              "quasi_static_mode", "joint", "load", "profiles"});
+              "quasi_static_mode", "joint", "load", "profiles", "interface"});
   if (!root.get("joint")) {
-    for (const char* k : {"load", "profiles"}) {
+    for (const char* k : {"load", "profiles", "interface"}) {
       if (root.get(k)) {
         throw InvalidInput(
             fmt::format("{}: [{}] belongs to a [joint] table, which is missing (line {})", path, k,

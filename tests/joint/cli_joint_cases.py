@@ -378,7 +378,8 @@ elif case == "validate_report":
     md = open(os.path.join(out, "validation.md")).read()
     check("| FAIL |" not in md and "| mu at 526 N | 0.335 |" in md, "report incomplete")
     check(p.stdout == md, "stdout differs from the file")
-    for f in ["ch5_loops.png", "ch5_energy_vs_force.png", "ch5_mu_vs_preload.png", "ch5_stiffness_vs_preload.png"]:
+    for f in ["ch5_loops.png", "ch5_energy_vs_force.png", "ch5_mu_vs_preload.png", "ch5_stiffness_vs_preload.png",
+              "ch5_stiffness_variants.png", "ch6_stiffness_variants.png", "ch6_exponent_vs_preload.png"]:
         check(os.path.getsize(os.path.join(out, f)) > 0, f"missing {f}")
 elif case == "validate_docs_current":
     p = run("validate")
@@ -450,6 +451,76 @@ elif case.startswith("bad.data"):
     p = run("analyze", path, "--P", "100N", "--out", os.path.join(tmp, "o"), code=2)
     check(needle in p.stderr and "data.csv" in p.stderr, p.stderr)
     check(not os.path.exists(os.path.join(tmp, "o")), "output directory left behind")
+elif case == "predict_bolt_field":
+    # Issue 11: the ch. 5 joint under its two bolts' pressure cones, in 170 patches.
+    out = os.path.join(tmp, "bf")
+    p = run("predict", os.path.join(ex, "steel420_bolt_field.toml"), "--out", out)
+    check("slip[%]" in p.stdout and "loaded patches" in p.stdout, p.stdout)
+    s = json.load(open(os.path.join(out, "summary.json")))
+    check(s["interface"]["pressure"] == "bolted" and s["interface"]["patches"] == [17, 10], s["interface"])
+    for load in s["loads"]:
+        forces = sum(q["force"] for q in load["patches"])
+        check(abs(forces - load["preload"]) < 1e-9 * load["preload"], (forces, load["preload"]))
+        for a in load["amplitudes"]:
+            check(len(a["patch_gross_slip"]) == len(load["patches"]), "slip map size")
+            check((a["exponent"] is None) == (a["regime"] == "gross slip") or a["exponent"] is not None,
+                  a)
+    for f in ["patches.csv", "pressure_map.png", "slip_map.png"]:
+        check(os.path.getsize(os.path.join(out, f)) > 0, f"missing {f}")
+    # A case without [interface] writes none of them and no patch keys (today's output).
+    u = os.path.join(tmp, "u")
+    run("predict", os.path.join(ex, "steel420_two_bolts.toml"), "--out", u, "--no-plots")
+    check(not os.path.exists(os.path.join(u, "patches.csv")), "patches.csv for a uniform case")
+    check("patches" not in json.load(open(os.path.join(u, "summary.json")))["loads"][0], "patch keys")
+elif case == "flat_case_history":
+    # flat --case: Masing on the case's backbone (with its [interface]); on the virgin curve
+    # the force is predict's Q_peak at the same amplitude (the same table: 1e-12).
+    hist = os.path.join(src, "examples", "flat", "history.csv")
+    x1 = float(open(hist).read().split()[2]) * 1e-6  # the first step, delta[um]
+    for name in ["steel420_two_bolts.toml", "steel420_bolt_field.toml"]:
+        text = open(os.path.join(ex, name)).read()
+        text = text.replace('amplitudes = ["0.05 um"', f'amplitudes = ["{x1 * 1e6!r} um", "0.05 um"')
+        s = json.loads(run("predict", write_case(text), "--json").stdout)
+        ld = s["loads"][2]  # 526 N (Table 5.5's 2.7 lbf in)
+        out = os.path.join(tmp, "f.csv")
+        run("flat", "--case", os.path.join(ex, name), "--P", f"{ld['preload']!r}N", "--history", hist,
+            "--out", out)
+        rows = [l.split(",") for l in open(out).read().split()[1:]]
+        check(abs(float(rows[1][0]) - x1) < 1e-18, (rows[1], x1))
+        q1 = float(rows[1][1])
+        a = [a for a in ld["amplitudes"] if abs(a["delta_max"] - x1) < 1e-15][0]
+        check(abs(a["Q_peak"] - q1) < 1e-12 * q1, (name, a["Q_peak"], q1))
+        qmax = max(abs(float(r[1])) for r in rows)
+        check(qmax <= ld["Q_max"] * (1 + 1e-12), (name, qmax, ld["Q_max"]))
+    # a sweep needs --P; flat's own inputs do not mix with --case
+    p = run("flat", "--case", os.path.join(ex, "steel420_two_bolts.toml"), "--history", hist,
+            "--out", os.path.join(tmp, "g.csv"), code=2)
+    check("choose one with --P" in p.stderr, p.stderr)
+    p = run("flat", "--case", os.path.join(ex, "steel420_two_bolts.toml"), "--P", "526N", "--beta", "0.04",
+            "--history", hist, "--out", os.path.join(tmp, "g.csv"), code=2)
+    check("--case takes the joint from the case file" in p.stderr, p.stderr)
+elif case.startswith("bad.interface_"):
+    bolted = open(os.path.join(ex, "steel420_bolt_field.toml")).read()
+    if case == "bad.interface_bolt_outside":
+        bad_case(bolted.replace('["12.75 mm", "5 mm"]', '["16.5 mm", "5 mm"]'),
+                 "interface.bolts.positions[2]", "must lie inside the outline")
+    elif case == "bad.interface_patches_too_small":
+        bad_case(bolted.replace("patches = [17, 10]", "patches = [170, 100]"),
+                 "holds fewer than 100 asperities")
+    elif case == "bad.interface_map_not_covering":
+        m = os.path.join(tempfile.mkdtemp(prefix="asperity-map-"), "map.csv")  # apart from tmp
+        with open(m, "w") as f:
+            f.write("x[mm],y[mm],p[MPa]\n0,0,1\n12,0,1\n0,10,1\n12,10,1\n")
+        text = BASE + f'\n[interface]\npressure = "map"\nsize = ["17 mm", "10 mm"]\npatches = [4, 2]\nmap = "{m}"\n'
+        bad_case(text, "does not cover the interface", "[0, 17] x [0, 10] mm")
+    elif case == "bad.interface_map_negative":
+        m = write_case("x[mm],y[mm],p[MPa]\n0,0,1\n17,0,-1\n0,10,1\n17,10,1\n", "map.csv")
+        text = BASE + '\n[interface]\npressure = "map"\nsize = ["17 mm", "10 mm"]\npatches = [4, 2]\nmap = "map.csv"\n'
+        p = run("predict", write_case(text), "--out", os.path.join(tmp, "out"), code=2)
+        check("must be >= 0" in p.stderr and "map.csv" in p.stderr, p.stderr)
+        check(not os.path.exists(os.path.join(tmp, "out")), "an output directory was left behind")
+    else:
+        sys.exit(f"unknown case {case}")
 else:
     sys.exit(f"unknown case {case}")
 print("ok")

@@ -141,3 +141,20 @@ def test_synthetic_experiment_limits():
         asperity.synthetic_experiment(case, 526.0, 6.75e-6, sample_rate=1e9, cycles=1000000)
     d = asperity.synthetic_experiment(case, 526.0, 6.75e-6, sample_rate=50.0)
     assert len(d["t"]) == 551  # the bound itself: 11 s at 50 Hz, both ends
+
+
+def test_predict_bolt_field_patches_and_slip_map():
+    # Issue 11: the ch. 5 joint under its bolts' pressure cones, 17 x 10 patches. The
+    # patches' forces add up to the preload (to rounding); the exponent is NaN exactly in
+    # gross slip, where the whole loaded area slips; Masing energy on the summed backbone.
+    r = asperity.predict(os.path.join(EX, "steel420_bolt_field.toml"))
+    for ld in r["loads"]:
+        pt = ld["patches"]
+        assert len(pt["force"]) > 100
+        assert pt["force"].sum() == pytest.approx(ld["preload"], rel=1e-12)
+        gross = np.array([g == "gross slip" for g in ld["regime"]])
+        assert np.array_equal(np.isnan(ld["exponent"]), gross)
+        assert np.all(ld["gross_slip_area_fraction"][gross] == 1.0)
+        assert np.all(ld["exponent"][~gross] > 3.0)  # the model's n, never below 3
+        for a, e in zip(ld["delta_max"], ld["energy"]):
+            assert e == pytest.approx(ld["backbone"].energy_per_cycle(a), rel=1e-12)

@@ -13,6 +13,7 @@
 #include "asperity/contact/asperity_model.hpp"
 #include "asperity/contact/friction_law.hpp"
 #include "asperity/contact/material.hpp"
+#include "asperity/joint/interface.hpp"
 #include "asperity/surface/rough_flat.hpp"
 #include "asperity/surface/roughness.hpp"
 
@@ -102,6 +103,9 @@ struct JointCase {
   /// delta + c Q_l(delta) = imposed (predict.hpp). May be empty.
   std::vector<double> imposed;
   Apparatus apparatus{};
+  /// The nominal interface: pressure field and patches ([interface]; default: uniform,
+  /// one patch, which is the rough flat of chapter 4 over A0).
+  InterfaceSpec interface {};
   /// "FILE:LINE: key" of each load case and of the roughness, for errors found later
   /// (a preload beyond the model's range, a roughness the model cannot take).
   std::vector<std::string> preload_origin;

@@ -3,6 +3,7 @@
 // flat's separation, static friction, friction coefficient, tangential stiffness and
 // backbone; per amplitude the peak force, the energy per cycle (Masing, exact) and the
 // fretting regime. SI units throughout.
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -24,6 +25,26 @@ struct AmplitudePrediction {
   /// "gross slip" when delta_max reaches LoadPrediction::gross_slip_amplitude (every
   /// asperity slips: Q_peak = Q_max to the backbone table's resolution), else "partial slip".
   std::string regime;
+  /// Slip map: per patch of LoadPrediction::patches, 1 when the patch is in gross slip
+  /// (delta_max reaches its own gross-slip amplitude), else 0; and the share of the loaded
+  /// nominal area in gross slip.
+  std::vector<std::uint8_t> patch_gross_slip;
+  double gross_slip_area_fraction = 0.0;
+  /// Local energy-force exponent n = d ln W / d ln Q_peak at delta_max (central
+  /// difference over delta_max (1 +- 1e-3), the upper point capped at the gross-slip
+  /// amplitude); empty in gross slip, where Q_peak no longer grows (and where it does not
+  /// grow to rounding, within ~1e-12 of Q_max).
+  std::optional<double> exponent;
+};
+
+/// One patch of the interface at one load (joint/interface.hpp): a rough flat of area
+/// A_i carrying F_i.
+struct PatchPrediction {
+  InterfacePatch patch;
+  double d_star = 0.0;                ///< its separation
+  double Q_max = 0.0;                 ///< its static friction [N]
+  double stiffness = 0.0;             ///< its tangential stiffness at reversals [N/m]
+  double gross_slip_amplitude = 0.0;  ///< delta_max from which it is in gross slip [m]
 };
 
 struct LoadPrediction {
@@ -32,16 +53,26 @@ struct LoadPrediction {
   double P_star = 0.0;      ///< P/(K H A0)
   double separation = 0.0;  ///< mean-plane separation d [m] (d* sigma_s)
   double d_star = 0.0;
-  double Q_max = 0.0;               ///< static friction force [N] (Eq. 4.7)
-  double mu = 0.0;                  ///< Q_max/P
-  double stiffness = 0.0;           ///< tangential stiffness at every reversal [N/m]
+  double Q_max = 0.0;      ///< static friction force [N] (Eq. 4.7)
+  double mu = 0.0;         ///< Q_max/P
+  double stiffness = 0.0;  ///< tangential stiffness at every reversal [N/m]
+  /// The interface's own stiffness, and the halves' compliance in series with it [m/N]
+  /// (0 without [interface.halves]): 1/stiffness = 1/interface_stiffness + compliance.
+  double interface_stiffness = 0.0;
+  double halves_compliance = 0.0;
   double contact_area_ratio = 0.0;  ///< real over nominal area
   double mean_pressure = 0.0;       ///< P/A0 [Pa]
   /// Amplitude from which the joint is in gross slip [m]: the end of the backbone table,
   /// beyond which Q_l equals Q_max to < 1e-12 (rough_flat.hpp).
   double gross_slip_amplitude = 0.0;
-  /// Backbone in SI units (x [m], Q [N]): a ScaledBackbone over the rough flat's table.
+  /// Backbone in SI units (x [m], Q [N]): a ScaledBackbone over the rough flat's table (of
+  /// the patches' summed backbone, surface/patched_flat.hpp, with an [interface]).
   std::shared_ptr<const hysteresis::Backbone> backbone;
+  /// The loaded patches (one, the whole A0, without an [interface]); patches that carry
+  /// no force are left out (out of contact).
+  std::vector<PatchPrediction> patches;
+  /// Distinct asperity sums the backbone was built from (patches at equal pressure share one).
+  std::size_t distinct_patch_sums = 1;
   std::vector<AmplitudePrediction> amplitudes;
 };
 
@@ -63,6 +94,30 @@ struct JointPrediction {
                                           const std::vector<double>& amplitudes,
                                           const std::vector<double>& imposed = {},
                                           double apparatus_compliance = 0.0);
+
+/// The same for an interface in patches (interface_patches): each loaded patch a rough
+/// flat of area A_i at P_i, their backbones summed (surface::PatchedRoughFlatBackbone);
+/// `series_compliance` [m/N] >= 0 puts the joint halves in series (halves_compliance):
+/// the backbone, stiffness, amplitudes and gross-slip amplitudes are then those between
+/// the measurement points, and interface_stiffness keeps the interface's own.
+/// `preload` is the sum of the patches' forces. A patch beyond the model's range, or with
+/// P_i/(K H A_i) below 1e-12 while carrying force, is an InvalidInput naming it.
+[[nodiscard]] LoadPrediction predict_load(const surface::RoughFlat& flat, double preload,
+                                          const std::vector<InterfacePatch>& patches,
+                                          const std::vector<double>& amplitudes,
+                                          const std::vector<double>& imposed,
+                                          double apparatus_compliance,
+                                          double series_compliance = 0.0);
+
+/// The patches of case `c` at `preload` (its [interface]; minimum patch area
+/// kMinAsperitiesPerPatch / eta).
+[[nodiscard]] std::vector<InterfacePatch> case_patches(const JointCase& c, double preload);
+
+/// The SI backbone of case `c` at one preload (uniform or patched as the case says): what
+/// `dynamics` and other consumers of the joint's friction law use.
+[[nodiscard]] LoadPrediction predict_case_load(const JointCase& c, double preload,
+                                               const std::vector<double>& amplitudes = {},
+                                               const std::vector<double>& imposed = {});
 
 /// The joint amplitude of a steady symmetric cycle imposed through a linear apparatus
 /// (Fig. 5.7): the root of delta + c Q_l(delta) = imposed on the SI backbone (Masing: the

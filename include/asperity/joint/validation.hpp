@@ -2,6 +2,7 @@
 // Reproduction of the thesis's numbers (asperity validate): every table and statement
 // the library can recompute, with the thesis's value, ours, the relative difference and
 // a verdict. Used by the CLI, the test suite and docs/validation.md.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,12 @@ struct ValidationRow {
   /// experiment)", and never fail.
   std::string verdict;
   std::string note;
+  /// A measured range (lo, hi) instead of one value (both 0 when none): `thesis` then
+  /// holds the nearer bound (the relative difference is 0 inside the range) and the
+  /// verdict reads "agrees (model vs experiment)" only inside it.
+  double range_low = 0.0, range_high = 0.0;
+  /// "reproduction", "regression" (our own reference) or "model vs experiment".
+  [[nodiscard]] std::string kind() const;
   [[nodiscard]] double relative_difference() const;
 };
 
@@ -35,8 +42,30 @@ struct ValidationRow {
 /// rough steel; BKE, A0 = 165 mm^2, total torques 0.192/0.305/0.418 N m.
 [[nodiscard]] std::vector<JointCase> chapter6_joints();
 
-/// Computes every row (about a second).
-[[nodiscard]] std::vector<ValidationRow> validation_rows();
+/// The joint's interface under the two bolts' pressure cones, with the geometry assumed for
+/// the thesis's lap joints (not printed there): outline Lx x 10 mm with Lx = A0/10 mm,
+/// bolts on the centre line at the quarter points, M3 socket head d_w = 5.5 mm (ISO 4762),
+/// hole 3.4 mm (ISO 273 medium), both halves 5 mm thick, 1 mm patches.
+[[nodiscard]] JointCase with_assumed_bolt_field(JointCase c);
+
+/// The halves between the measurement points and the interface, assumed for the thesis's
+/// joints (not printed there): 5 mm free length and 5 mm thickness each, 10 mm wide.
+[[nodiscard]] HalvesGeometry assumed_halves();
+
+/// One model variant of one joint at one preload (issue 11): the numbers the variant
+/// rows hold against the measurements, for plots.
+struct VariantPoint {
+  std::string joint;       ///< "ch. 5", "smooth Al", "rough Al", "smooth St", "rough St"
+  std::string variant;     ///< "uniform", "bolt field", "uniform + halves", "bolt field + halves"
+  double preload = 0.0;    ///< [N]
+  double stiffness = 0.0;  ///< between the measurement points [N/m]
+  double stiffness_low = 0.0, stiffness_high = 0.0;  ///< measured range [N/m]
+  std::optional<double> exponent;  ///< at the smallest imposed amplitude (ch. 6), partial slip
+};
+
+/// Computes every row (a few seconds); `points` (if given) receives the variant points.
+[[nodiscard]] std::vector<ValidationRow> validation_rows(
+    std::vector<VariantPoint>* points = nullptr);
 
 /// Markdown report: a table per source with ours, the thesis's, the relative
 /// difference and the verdict, and a summary count.
