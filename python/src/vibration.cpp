@@ -645,6 +645,14 @@ void bind_vibration(nb::module_& parent) {
       },
       "text"_a, "base_dir"_a = ".", "run_case for case-file text.");
   m.def(
+      "check_case_text",
+      [](const std::string& text, const std::string& base_dir) {
+        nb::gil_scoped_release release;
+        (void)parse_case_text(text, "<string>", base_dir);
+      },
+      "text"_a, "base_dir"_a = ".",
+      "Parses and validates vibration case text without running it (raises InvalidInput).");
+  m.def(
       "case_system",
       [](const std::string& path) {
         const VibrationCase c = [&] {

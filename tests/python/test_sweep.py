@@ -284,12 +284,34 @@ def test_foreign_output_directory_is_refused(tmp_path):
     assert (out / "notes.txt").read_text() == "keep"
 
 
-def test_vibration_cases_are_not_wired_yet(tmp_path):
-    case = tmp_path / "v.toml"
-    case.write_text('[vibration]\nmodes = 2\n')
-    s = spec.build(str(case), {"vibration.modes": [1, 2]})
-    with pytest.raises(sweep.SweepError, match="not wired"):
-        sweep.run(s, str(tmp_path / "o"), serial=True)
+def test_vibration_cases_run_and_equal_the_direct_run(tmp_path):
+    """A vibration case (asperity vibration) varied in its Jenkins slip force: each sample's
+    outputs are the direct run's curves put on the fixed amplitude grid (linear
+    interpolation in log10 a, exact at the grid's ends), and the peak damping ratio is
+    the largest of the mode's points."""
+    from asperity import vibration
+
+    src = ROOT / "examples" / "vibration" / "jenkins_sdof.toml"
+    s = spec.build(str(src), {"element[1].F_s": [0.15, 0.25]})
+    sweep.run(s, str(tmp_path / "v"), serial=True)
+    ds = sweep.open_results(str(tmp_path / "v")).load()
+    assert ds.sizes["sample"] == 2 and int(ds["ok"].sum()) == 2
+    text = src.read_text()
+    for i, Fs in enumerate([0.15, 0.25]):
+        r = vibration.run_case_text(text.replace("F_s = 0.2", f"F_s = {Fs}"), str(src.parent))
+        nm = r["nonlinear_mode"]
+        la = np.asarray(nm["log10_amplitude"])
+        grid = ds["mode_log10_amplitude"].values[i]
+        assert grid[0] == pytest.approx(la[0]) and grid[-1] == pytest.approx(la[-1])
+        want = np.interp(grid, la, np.asarray(nm["damping_ratio"]))
+        np.testing.assert_allclose(ds["mode_damping_ratio"].values[i], want, rtol=1e-12)
+        assert float(ds["mode_peak_damping_ratio"].values[i]) == pytest.approx(
+            float(np.max(nm["damping_ratio"])), rel=1e-12)
+        peaks = [float(np.max(np.asarray(c["output_amplitude"])[:, 0]))
+                 for c in r["frequency_response"]]
+        np.testing.assert_allclose(ds["response_peak_amplitude"].values[i], peaks, rtol=1e-12)
+    # A larger slip force slips later: the damping peak moves to larger amplitude.
+    assert ds["mode_peak_damping_amplitude"].values[1] > ds["mode_peak_damping_amplitude"].values[0]
 
 
 def test_vary_flag_takes_a_grid_array_and_progress_draws_a_bar():

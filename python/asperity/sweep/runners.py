@@ -9,14 +9,14 @@ A runner is an object with
   shape for a given sweep (SI units);
 * ``dims(name) -> tuple``: the dimension names of an output (beyond ``sample``).
 
-:func:`register_runner` adds a kind. **Vibration cases are not wired yet**: the vibration
-layer is being built in parallel; when its Python face exists, register a runner for
-``"vibration"`` (cases with a ``[vibration]`` table) that returns, e.g., frequency and
-damping per mode, and nothing else in the sweep changes.
+:func:`register_runner` adds a kind. Vibration cases (``asperity vibration``, a
+``[structure]`` table) return the nonlinear mode and the quasi-static estimate on a fixed
+grid of modal amplitudes, and the peak of each forced response curve.
 """
 from __future__ import annotations
 
 import math
+import tomllib
 import warnings
 
 import numpy as np
@@ -35,10 +35,6 @@ def runner_for(kind: str):
     from .spec import SweepError
 
     if kind not in _RUNNERS:
-        if kind == "vibration":
-            raise SweepError("[vibration] case: vibration samples are not wired into "
-                             "asperity.sweep yet (register_runner('vibration', ...) when the "
-                             "vibration layer has a Python face); joint and dynamics cases run")
         raise SweepError(f"case kind {kind!r}: no runner (known: {', '.join(sorted(_RUNNERS))})")
     return _RUNNERS[kind]
 
@@ -124,5 +120,89 @@ class DynamicsRunner:
         return ()
 
 
+class VibrationRunner:
+    """``asperity.vibration.run_case_text`` of a vibration case. The curves have as many
+    points as their continuations took, so they are put on fixed grids: the nonlinear
+    mode's and the quasi-static estimate's frequency [Hz] and damping ratio at
+    ``GRID`` log-spaced modal amplitudes spanning the case's range (dimension
+    ``modal_amplitude``; the grid itself is the output ``mode_log10_amplitude``, NaN
+    beyond where a continuation stopped), linear interpolation in log10 a; per forced
+    response curve (dimension ``curve``) the largest first-harmonic amplitude of the
+    first output DOF [m] and its frequency [Hz]; the stuck structure's linear frequencies
+    (dimension ``linear_mode``); and the peak damping ratio of the nonlinear mode with
+    its modal amplitude."""
+
+    GRID = 25
+    MODE = ("mode_log10_amplitude", "mode_frequency_hz", "mode_damping_ratio",
+            "quasi_static_frequency_hz", "quasi_static_damping_ratio")
+    CURVE = ("response_peak_amplitude", "response_peak_frequency_hz")
+
+    def check(self, text: str, base_dir: str) -> dict:
+        from .._core import _vibration
+
+        _vibration.check_case_text(text, base_dir)
+        return {}
+
+    def _grid(self, la: np.ndarray, values: np.ndarray, grid: np.ndarray) -> np.ndarray:
+        order = np.argsort(la)
+        la, values = la[order], values[order]
+        out = np.interp(grid, la, values)
+        out[(grid < la[0] - 1e-12) | (grid > la[-1] + 1e-12)] = math.nan
+        return out
+
+    def run(self, text: str, base_dir: str) -> dict:
+        from .. import vibration
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            r = vibration.run_case_text(text, base_dir)
+        s = r["summary"]
+        out = {"linear_frequency_hz": np.asarray(
+            s["structure"]["linear_frequencies_hz_elements_stuck"], dtype=float)}
+        nm, qs = r["nonlinear_mode"], r["quasi_static_mode"]
+        if nm is not None:
+            la = np.asarray(nm["log10_amplitude"], dtype=float)
+            # The case's requested range (from where the continuation starts to `to`),
+            # whether or not the continuation got there.
+            lo, hi = float(la[0]), float(la[-1])
+            try:
+                hi = float(tomllib.loads(text)["nonlinear_mode"]["log10_amplitude"]["to"])
+            except (KeyError, TypeError, ValueError, tomllib.TOMLDecodeError):
+                pass
+            grid = np.linspace(min(lo, hi), max(lo, hi), self.GRID)
+            out["mode_log10_amplitude"] = grid
+            out["mode_frequency_hz"] = self._grid(la, np.asarray(nm["frequency_hz"]), grid)
+            out["mode_damping_ratio"] = self._grid(la, np.asarray(nm["damping_ratio"]), grid)
+            z = np.asarray(nm["damping_ratio"], dtype=float)
+            k = int(np.argmax(z))
+            out["mode_peak_damping_ratio"] = np.asarray(z[k])
+            out["mode_peak_damping_amplitude"] = np.asarray(10.0 ** la[k])
+            if qs is not None:
+                lq = np.log10(np.asarray(qs["amplitude"], dtype=float))
+                out["quasi_static_frequency_hz"] = self._grid(lq, np.asarray(qs["frequency_hz"]), grid)
+                out["quasi_static_damping_ratio"] = self._grid(lq, np.asarray(qs["damping_ratio"]), grid)
+        curves = r["frequency_response"]
+        if curves:
+            peak, at = [], []
+            for c in curves:
+                a = np.asarray(c["output_amplitude"], dtype=float)[:, 0]
+                k = int(np.argmax(a))
+                peak.append(a[k])
+                at.append(float(np.asarray(c["omega"])[k]) / (2.0 * math.pi))
+            out["response_peak_amplitude"] = np.asarray(peak)
+            out["response_peak_frequency_hz"] = np.asarray(at)
+        return out
+
+    def dims(self, name: str) -> tuple:
+        if name in self.MODE:
+            return ("modal_amplitude",)
+        if name in self.CURVE:
+            return ("curve",)
+        if name == "linear_frequency_hz":
+            return ("linear_mode",)
+        return ()
+
+
 register_runner("joint", JointRunner())
 register_runner("dynamics", DynamicsRunner())
+register_runner("vibration", VibrationRunner())

@@ -621,9 +621,9 @@ def read_toml(path: str) -> dict:
 
 
 def case_kind(case: dict) -> str:
-    """``dynamics`` for a case with a [dynamics] table, ``vibration`` with [vibration],
-    else ``joint`` (a case of ``asperity predict``)."""
-    if "vibration" in case:
+    """``dynamics`` for a case with a [dynamics] table, ``vibration`` for a case of
+    ``asperity vibration`` (a [structure] table), else ``joint`` (``asperity predict``)."""
+    if "structure" in case or "vibration" in case:
         return "vibration"
     if "dynamics" in case:
         return "dynamics"

@@ -1,7 +1,7 @@
 """Statistics and plots of a finished sweep, read back from its NetCDF parts one output
 at a time (memory: 8 bytes x samples x the output's size per sample).
 
-* ``summary.csv``: per output and index (load, amplitude): n, mean, sd, min, quantiles
+* ``summary.csv``: per output and index (load, amplitude, and any other dimension): n, mean, sd, min, quantiles
   5/25/50/75/95 %, max, over the samples that succeeded;
 * ``sensitivity.csv``: Spearman's rank correlation of each output (per index) with each
   varied input (a choice of words by the order of its options);
@@ -60,7 +60,11 @@ def summarize(out_dir: str, sweep, schema, parts: list, plots: bool = True,
         return
     ok = _load(parts, "ok").astype(bool)
     inputs = {v.key: _codes(_load(parts, v.key), v) for v in sweep.variations}
+    # One index column per dimension any output has (joint cases: load, amplitude;
+    # vibration cases: modal_amplitude, curve, linear_mode).
     dims_all = ["load", "amplitude"]
+    for k in schema.names:
+        dims_all += [d for d in schema.dims[k] if d not in dims_all]
     with open(os.path.join(out_dir, "summary.csv"), "w", newline="") as fs, \
             open(os.path.join(out_dir, "sensitivity.csv"), "w", newline="") as fr:
         ws, wr = csv.writer(fs), csv.writer(fr)
