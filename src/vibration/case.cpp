@@ -701,8 +701,10 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
   }
   if (joint) {
     const bool used = std::any_of(c.elements.begin(), c.elements.end(), [](const auto& e) {
-      const auto b = SummaryValue(e.element->describe()).find("backbone");
-      return b && std::get<std::string>(b->data) == "joint";
+      const SummaryValue described(e.element->describe());  // find() points into it
+      const auto* b = described.find("backbone");
+      return b && std::holds_alternative<std::string>(b->data) &&
+             std::get<std::string>(b->data) == "joint";
     });
     if (!used) {
       throw InvalidInput(fmt::format(
