@@ -126,7 +126,7 @@ ParsedMaterials MaterialOptions::parse_described() const {
 }
 
 void write_file_atomically(const std::string& path, const std::string& content) {
-  core::write_file_atomically(path, content);
+  core::write_output_file(path, content);
 }
 
 std::string csv_text(const std::vector<std::string>& header,
@@ -148,6 +148,15 @@ void write_output(const std::string& path, const std::string& content, std::stri
     stdout_text += content;
   } else {
     write_file_atomically(path, content);
+  }
+}
+
+void write_output(core::OutputSet& outputs, const std::string& path, const std::string& content,
+                  std::string& stdout_text) {
+  if (is_standard_output(path)) {
+    stdout_text += content;
+  } else {
+    outputs.add(path, content);
   }
 }
 
@@ -269,10 +278,12 @@ class TemporaryDirectory {
                               std::strerror(errno)));
     }
     path_ = templ;
+    slot_ = core::register_temporary(path_, true, path_.string());  // removed on SIGINT/SIGTERM
   }
   ~TemporaryDirectory() {
     std::error_code ec;
     std::filesystem::remove_all(path_, ec);
+    core::unregister_temporary(slot_);
   }
   TemporaryDirectory(const TemporaryDirectory&) = delete;
   TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
@@ -280,6 +291,7 @@ class TemporaryDirectory {
 
  private:
   std::filesystem::path path_;
+  int slot_ = -1;
 };
 
 struct GnuplotRun {
@@ -339,7 +351,7 @@ std::string read_binary(const std::filesystem::path& path) {
 
 }  // namespace
 
-void plot_png(const std::string& path, const PlotSpec& spec) {
+void plot_png(const std::string& path, const PlotSpec& spec, core::OutputSet* outputs) {
   const std::filesystem::path target(path);
   if (target.filename().empty())
     throw InvalidInput(fmt::format("output path \"{}\" names no file", path));
@@ -401,7 +413,11 @@ void plot_png(const std::string& path, const PlotSpec& spec) {
     }
     throw Error(fmt::format("plotting \"{}\" failed: gnuplot said: {}", path, run.messages));
   }
-  core::write_file_atomically(path, read_binary(png));
+  if (outputs) {
+    outputs->add(path, read_binary(png));
+  } else {
+    core::write_output_file(path, read_binary(png));
+  }
 }
 
 int run_guarded(const std::function<void(std::string& out)>& body) {

@@ -8,6 +8,7 @@
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/file_io.hpp"
 #include "asperity/core/validate.hpp"
 #include "asperity/hysteresis/masing.hpp"
 #include "asperity/joint/case.hpp"
@@ -333,6 +334,8 @@ void run_flat(const FlatOptions& o, std::string& out) {
 
   const double xs = scales ? scales->sigma : 1.0;
   const double fs = scales ? scales->force : 1.0;
+  // Every output is written into a temporary first and renamed at the end: all or none.
+  core::OutputSet outputs;
   if (o.loop_csv || o.plot_png) {
     hysteresis::Hysteresis h(table);
     const double dm = *amplitude_star;
@@ -354,7 +357,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
       std::vector<double> xo(x), qo(q);
       for (auto& v : xo) v *= xs;
       for (auto& v : qo) v *= fs;
-      write_output(*o.loop_csv,
+      write_output(outputs, *o.loop_csv,
                    csv_text(scales ? std::vector<std::string>{"delta[m]", "Q[N]"}
                                    : std::vector<std::string>{"delta_star", "Q_star"},
                             {xo, qo}),
@@ -370,7 +373,8 @@ void run_flat(const FlatOptions& o, std::string& out) {
                PlotSpec{.title = "Fretting loop of the rough flat (Masing on Eq. 4.10)",
                         .xlabel = scales ? "delta [µm]" : "delta* = delta/sigma",
                         .ylabel = scales ? "Q [N]" : "Q* = Q/(K H A0)",
-                        .series = {s}});
+                        .series = {s}},
+               &outputs);
     }
   }
   if (o.history_csv) {
@@ -391,9 +395,12 @@ void run_flat(const FlatOptions& o, std::string& out) {
     if (is_standard_output(*o.out_csv)) {
       write_output(*o.out_csv, csv_text(header, columns), out);
     } else {
-      core::write_csv_table(*o.out_csv, header, columns);
+      outputs.add_streamed(*o.out_csv, [&](const core::ChunkSink& sink) {
+        core::write_csv_chunks(header, columns, sink);
+      });
     }
   }
+  outputs.commit();
   std::vector<std::string> written;
   for (const auto& f : {o.loop_csv, o.plot_png, o.out_csv}) {
     if (f) written.push_back(*f);

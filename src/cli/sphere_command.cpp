@@ -9,6 +9,7 @@
 
 #include "asperity/contact/asperity_model.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/file_io.hpp"
 #include "asperity/core/validate.hpp"
 #include "commands.hpp"
 #include "common.hpp"
@@ -395,6 +396,8 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     }
   }
 
+  // Every output is written into a temporary first and renamed at the end: all or none.
+  core::OutputSet outputs;
   if (o.loop_csv || o.plot_png) {
     std::ostringstream csv;
     csv << "model,branch,delta[m],Q[N]\n";
@@ -414,8 +417,8 @@ void run_sphere(const SphereOptions& o, std::string& out) {
       }
       plot.series.push_back(std::move(s));
     }
-    if (o.loop_csv) write_output(*o.loop_csv, csv.str(), out);
-    if (o.plot_png) plot_png(*o.plot_png, plot);
+    if (o.loop_csv) write_output(outputs, *o.loop_csv, csv.str(), out);
+    if (o.plot_png) plot_png(*o.plot_png, plot, &outputs);
   }
   if (o.energy_csv) {
     // Energy per cycle against displacement amplitude, up to the given amplitude or,
@@ -436,8 +439,9 @@ void run_sphere(const SphereOptions& o, std::string& out) {
                            r.model.contact().energy_per_cycle(d));
       }
     }
-    write_output(*o.energy_csv, csv.str(), out);
+    write_output(outputs, *o.energy_csv, csv.str(), out);
   }
+  outputs.commit();
   std::vector<std::string> written;
   for (const auto& f : {o.loop_csv, o.plot_png, o.energy_csv}) {
     if (f) written.push_back(*f);

@@ -14,6 +14,7 @@
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
 #include "asperity/surface/profile_io.hpp"
 
@@ -823,12 +824,10 @@ JointCase parse_case(std::string_view text, const std::string& source,
 }
 
 JointCase read_case_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InvalidInput(fmt::format("{}: cannot open the case file", path));
-  std::ostringstream ss;
-  ss << in.rdbuf();
+  const std::string text = core::read_input_file(path, core::kMaxCaseFileBytes, "the case file");
+  core::require_utf8(text, path, "the case file");
   const auto dir = std::filesystem::path(path).parent_path();
-  return parse_case(ss.str(), path, dir.empty() ? "." : dir.string());
+  return parse_case(text, path, dir.empty() ? "." : dir.string());
 }
 
 }  // namespace asperity::joint
