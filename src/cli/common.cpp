@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -35,6 +37,18 @@ std::optional<double> quantity(const std::optional<std::string>& text, core::Dim
                                const std::string& flag) {
   if (!text) return std::nullopt;
   return core::parse_quantity(*text, d, flag);
+}
+
+std::size_t whole_number(const std::string& text, const std::string& flag, std::size_t lo,
+                         std::size_t hi) {
+  std::uint64_t v = 0;
+  const char* end = text.data() + text.size();
+  const auto [p, ec] = std::from_chars(text.data(), end, v);
+  if (text.empty() || ec != std::errc() || p != end || v < lo || v > hi) {
+    throw InvalidInput(fmt::format("{} = {} is not allowed: it must be a whole number in [{}, {}]",
+                                   flag, text, lo, hi));
+  }
+  return static_cast<std::size_t>(v);
 }
 
 double required_quantity(const std::optional<std::string>& text, core::Dimension d,
@@ -83,6 +97,8 @@ ParsedMaterials MaterialOptions::parse_described() const {
   core::require_in_half_open("--nu2", b2.nu, 0.0, 0.5);
   if (G1) core::require_positive("--G1", b1.G);
   if (G2) core::require_positive("--G2", b2.G);
+  if (G1) contact::require_shear_modulus_range("--G1", b1.G, "--E1", b1.E);
+  if (G2) contact::require_shear_modulus_range("--G2", b2.G, "--E2", b2.E);
   if (H1) core::require_positive("--H1", b1.H);
   if (H2) core::require_positive("--H2", b2.H);
   ParsedMaterials out;

@@ -49,6 +49,10 @@ std::string lowercase(std::string s);
 /// names the flag.
 std::optional<double> quantity(const std::optional<std::string>& text, core::Dimension d,
                                const std::string& flag);
+/// Parses a whole number in [lo, hi] from an option's text, as typed: a value too large
+/// for any integer type is named as written (CLI11 would wrap it to 2^64 - 1).
+std::size_t whole_number(const std::string& text, const std::string& flag, std::size_t lo,
+                         std::size_t hi);
 /// Parses a required option's text as a quantity of the given dimension.
 double required_quantity(const std::optional<std::string>& text, core::Dimension d,
                          const std::string& flag);

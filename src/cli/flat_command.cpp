@@ -36,7 +36,7 @@ struct FlatOptions {
   std::string slip_scaling = "elastic";
   bool json = false;
   std::optional<std::string> history_csv, out_csv, loop_csv, plot_png;
-  std::size_t points = 201;
+  std::string points = "201";
   std::optional<std::string> case_file;  // --case: a joint case's (patched) backbone
 };
 
@@ -147,6 +147,22 @@ void run_flat(const FlatOptions& o, std::string& out) {
         o.G_over_E ? number(o.G_over_E, "--G-over-E") : (1.0 - p.nu) / (2.0 * (2.0 - p.nu));
     core::require_positive("--G-over-E", p.G_over_E);
     core::require_positive("--psi", p.psi);
+    // The library's limits, under the flags' names (rough_flat.hpp).
+    if (!(p.psi >= surface::kMinPlasticityIndex)) {
+      throw InvalidInput(fmt::format(
+          "--psi {} is not allowed: the plasticity index must be at least {}; below it "
+          "omega_c/sigma = (sigma_a/sigma)/psi^2 exceeds 350, no asperity yields and the "
+          "asperity friction laws give mu of 10 and more (BKE at P* = 1e-3: 14 at psi = 0.05, "
+          "49.9 at 0.01; the thesis uses psi = 0.5 to 4.7)",
+          core::format_value(p.psi), surface::kMinPlasticityIndex));
+    }
+    if (!(p.beta <= surface::kMaxRoughnessParameter)) {
+      throw InvalidInput(fmt::format(
+          "--beta {} is not allowed: beta = sigma R eta must be at most 1/pi = 0.318, beyond "
+          "which the asperity caps within one sigma of their summits would cover more than the "
+          "nominal area (engineering surfaces: 0.02-0.06)",
+          core::format_value(p.beta)));
+    }
     flat.emplace(p);
     P_star = number(o.P_star, "--P-star");
     core::require_positive("--P-star", P_star);
@@ -175,10 +191,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
       amplitude_star = dm / sigma;
     }
   }
-  if (o.points < 2 || o.points > 100000) {
-    throw InvalidInput(
-        fmt::format("--points {} is not allowed: it must lie in [2, 100000]", o.points));
-  }
+  const std::size_t points = whole_number(o.points, "--points", 2, 100000);
   // Every input is checked, and the history read, before anything is computed or written.
   if ((o.loop_csv || o.plot_png) && !amplitude_star) {
     throw InvalidInput("--loop and --plot need an amplitude: give --delta-star-max or --delta-max");
@@ -253,6 +266,16 @@ void run_flat(const FlatOptions& o, std::string& out) {
   std::shared_ptr<const surface::RoughFlatBackbone> table;
   if (need_table && Q_max > 0.0) table = flat->backbone(d);
 
+  // Inputs outside the range of the thesis's laws, and an implausible result: said on
+  // stderr and in the JSON's "warnings".
+  std::vector<std::string> warnings = flat->warnings();
+  if (scales) {
+    for (auto& w : contact::hardness_warnings(scales->pair.H, scales->pair.E_star))
+      warnings.push_back(std::move(w));
+  }
+  if (auto w = surface::friction_coefficient_warning(Q_max / P_star); !w.empty())
+    warnings.push_back(std::move(w));
+
   std::optional<double> Q_amp, energy;
   std::optional<std::string> regime;
   if (amplitude_star) {
@@ -299,6 +322,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
         j["energy"] = *energy * scales->force * scales->sigma;
       }
     }
+    j["warnings"] = warnings;
     out += json_output(j);
   } else if (!stdout_is_data) {
     out += fmt::format(
@@ -340,7 +364,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
     hysteresis::Hysteresis h(table);
     const double dm = *amplitude_star;
     std::vector<double> x, q;
-    const std::size_t n = o.points;
+    const std::size_t n = points;
     auto run = [&](double from, double to) {
       for (std::size_t i = 1; i <= n; ++i) {
         const double v = from + (to - from) * static_cast<double>(i) / static_cast<double>(n);
@@ -406,6 +430,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
     if (f) written.push_back(*f);
   }
   report_written(written, stdout_is_data, out);
+  for (const auto& text : warnings) fmt::print(stderr, "warning: {}\n", text);
 }
 
 }  // namespace

@@ -187,6 +187,7 @@ Json prediction_json(const joint::JointCase& c, const joint::JointPrediction& p)
   Json loads = Json::array();
   for (const auto& l : p.loads) loads.push_back(load_json(l));
   j["loads"] = loads;
+  j["warnings"] = p.warnings;
   return j;
 }
 
@@ -662,6 +663,7 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
           if (!stdout_is_data) out += "\n";
           report_written_directory(*o->out, written, stdout_is_data, out);
         }
+        for (const auto& w : p.warnings) fmt::print(stderr, "warning: {}\n", w);
       });
     };
   });

@@ -226,6 +226,17 @@ AnalysedSurface analyse_files(const std::string& list, std::size_t index, const 
         it.tag = t.substr(1);
       }
     }
+    // FILE@word that names no file: an unknown tag, not part of the file name.
+    if (const auto at = f.rfind('@'); it.tag.empty() && at != std::string::npos && at > 0 &&
+                                      at + 1 < f.size() && f.find('/', at) == std::string::npos) {
+      std::error_code ec;
+      if (!std::filesystem::exists(f, ec)) {
+        throw InvalidInput(fmt::format(
+            "--surface #{}: \"{}\": unknown tag \"{}\" (allowed: @max, @min; no file is named "
+            "\"{}\")",
+            index + 1, f, f.substr(at), f));
+      }
+    }
     items.push_back(it);
     out.files.push_back(it.path);
   }

@@ -31,7 +31,7 @@ struct SphereOptions {
   std::string interference = "hertz";
   bool json = false;
   std::optional<std::string> loop_csv, plot_png, energy_csv;
-  std::size_t points = 101;
+  std::string points = "101";
 };
 
 double dimensionless(const std::optional<std::string>& text, const std::string& flag) {
@@ -271,10 +271,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     throw InvalidInput(fmt::format("--Q-max = {} N is not allowed: the amplitude must be >= 0",
                                    core::format_value(*force_amp)));
   }
-  if (o.points < 2 || o.points > 100000) {
-    throw InvalidInput(
-        fmt::format("--points = {} is not allowed: it must lie in [2, 100000]", o.points));
-  }
+  const std::size_t points = whole_number(o.points, "--points", 2, 100000);
   if ((o.loop_csv || o.plot_png) && !(delta_amp || force_amp)) {
     throw InvalidInput("--loop and --plot need an amplitude: give --delta-max or --Q-max");
   }
@@ -300,7 +297,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
 
   // The laws of chapter 3 are small-strain contact mechanics: a << R. Say so when a load
   // pushes a model past it (the numbers are still what the equations give).
-  std::vector<std::string> warnings;
+  std::vector<std::string> warnings = contact::hardness_warnings(pair.H, pair.E_star);
   for (const auto& r : results) {
     if (r.model.a() > 0.3 * pair.R) {
       warnings.push_back(fmt::format(
@@ -407,7 +404,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     const char* branch_names[] = {"loading", "unloading", "reloading"};
     for (const auto& r : results) {
       if (!r.delta_max) continue;
-      const auto loop = r.model.contact().loop(*r.delta_max, o.points);
+      const auto loop = r.model.contact().loop(*r.delta_max, points);
       Series s{.title = std::string(to_string(r.model.model()))};
       for (std::size_t i = 0; i < loop.delta.size(); ++i) {
         csv << fmt::format("{},{},{:.12g},{:.12g}\n", to_string(r.model.model()),
@@ -433,8 +430,8 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     std::ostringstream csv;
     csv << "model,delta_max[m],energy[J]\n";
     for (const auto& r : results) {
-      for (std::size_t i = 0; i < o.points; ++i) {
-        const double d = top * static_cast<double>(i) / static_cast<double>(o.points - 1);
+      for (std::size_t i = 0; i < points; ++i) {
+        const double d = top * static_cast<double>(i) / static_cast<double>(points - 1);
         csv << fmt::format("{},{:.12g},{:.12g}\n", to_string(r.model.model()), d,
                            r.model.contact().energy_per_cycle(d));
       }

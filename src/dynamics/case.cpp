@@ -853,6 +853,14 @@ CaseResult run_case(const DynamicsCase& c, const RunOptions& options) {
                                     loop.displacement_amplitude / std::abs(h->amplitude)},
                                    {"force_amplitude", loop.force_amplitude},
                                    {"mean_displacement", loop.mean_displacement}});
+    } else {
+      // The analysis asked for cannot be done: say so instead of leaving it out.
+      r.warnings.push_back(fmt::format(
+          "steady_loop is left out: loop_cycles = {} needs the run to last (loop_cycles + 1) = {} "
+          "excitation periods, tau = {:.6g}, but duration = {:.6g} ({:.3g} periods); lengthen "
+          "duration or lower [dynamics.analysis] loop_cycles",
+          c.analysis.loop_cycles, c.analysis.loop_cycles + 1, (c.analysis.loop_cycles + 1) * period,
+          sim.duration, sim.duration / period));
     }
   }
   SummaryArray w;

@@ -156,6 +156,7 @@ class Reader {
   static std::string text_of(const toml::node* n) {
     if (!n) return "";
     if (const auto s = n->value<std::string>()) return fmt::format("\"{}\"", *s);
+    if (n->is_boolean()) return *n->value<bool>() ? "true" : "false";
     if (const auto v = n->value<double>()) return fmt::format("{}", *v);
     return "(a table or array)";
   }
@@ -711,7 +712,7 @@ JointCase parse_case(std::string_view text, const std::string& source,
     if (const auto* cn = b->get("count")) {
       const auto v = cn->value<int64_t>();
       if (!cn->is_integer() || !v || *v < 1 || *v > 1000)
-        r.fail(cn, "load.bolts.count", "must be a whole number >= 1");
+        r.fail_value(cn, "load.bolts.count", "must be a whole number from 1 to 1000");
       bolts.count = static_cast<int>(*v);
     }
     bolts.nut_factor =

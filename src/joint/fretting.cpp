@@ -18,6 +18,7 @@
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/validate.hpp"
 
 namespace asperity::joint {
 
@@ -830,10 +831,11 @@ FrettingData synthetic_experiment(std::shared_ptr<const hysteresis::Backbone> ba
       o.excitation.cycles < 1) {
     throw InvalidInput("synthetic experiment: amplitude and frequency must be > 0, cycles >= 1");
   }
-  if (!(o.sample_rate > 0.0) || !(o.pzt_stiffness > 0.0) || !(o.load_cell_stiffness > 0.0) ||
-      !(o.noise_delta >= 0.0) || !(o.noise_Q >= 0.0)) {
-    throw InvalidInput("synthetic experiment: sample rate and stiffnesses must be > 0, noise >= 0");
-  }
+  core::require_positive("synthetic experiment: sample_rate", o.sample_rate);
+  core::require_positive("synthetic experiment: pzt_stiffness", o.pzt_stiffness);
+  core::require_positive("synthetic experiment: load_cell_stiffness", o.load_cell_stiffness);
+  core::require_non_negative("synthetic experiment: noise_delta", o.noise_delta);
+  core::require_non_negative("synthetic experiment: noise_Q", o.noise_Q);
   const double per_period = o.sample_rate / o.excitation.frequency;
   if (!(per_period >= kMinSamplesPerPeriod)) {
     throw InvalidInput(fmt::format(

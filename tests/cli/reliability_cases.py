@@ -265,6 +265,114 @@ def case_case_file_invalid_utf8(exe, src, tmp):
         expect_exit2(r, f"{path}:3:11: the case file is not valid UTF-8 text (byte 0xFF")
 
 
+# ------------------------------------------------------------------ implausible input
+
+
+def json_of(exe, argv, tmp):
+    import json
+    r = run(exe, argv + ["--json"], tmp)
+    check(r.returncode == 0, f"exit {r.returncode}: {r.stderr}")
+    return json.loads(r.stdout), r.stderr
+
+
+def case_flat_psi_limits(exe, src, tmp):
+    # psi = 0.01 gave mu = 49.9 silently; 1e-300 exited 3 with "no sign change".
+    for psi in ("0.01", "1e-300", "0.049"):
+        r = run(exe, ["flat", "--beta=0.04", f"--psi={psi}", "--nu=0.3", "--P-star=1e-3"], tmp)
+        expect_exit2(r, f"--psi {psi} is not allowed", "at least 0.05")
+    # Between the limit and the thesis's smallest psi (0.5, Fig. 4.4): a warning, and the
+    # mu of 7.9 flagged (above 3, the largest of the thesis's computations).
+    j, err = json_of(exe, ["flat", "--beta=0.04", "--psi=0.1", "--nu=0.3", "--P-star=1e-3"], tmp)
+    check(any("plasticity index psi = 0.1 is below 0.5" in w for w in j["warnings"]), j["warnings"])
+    check(any("friction coefficient mu = 7.886 is above 3" in w for w in j["warnings"]),
+          j["warnings"])
+    check("warning: plasticity index" in err, err)
+    # Fig. 4.4's own inputs: no warning (a list that cannot be always empty: see above).
+    j, err = json_of(exe, ["flat", "--beta=0.04", "--psi=0.5", "--nu=0.3", "--P-star=1e-3"], tmp)
+    check(j["warnings"] == [] and "warning" not in err, f"{j['warnings']} {err}")
+
+
+def case_flat_beta_limit(exe, src, tmp):
+    r = run(exe, ["flat", "--beta=1e6", "--psi=0.5", "--nu=0.3", "--P-star=1e-3"], tmp)
+    expect_exit2(r, "--beta 1e+06 is not allowed", "1/pi")
+    j, _ = json_of(exe, ["flat", "--beta=0.1", "--psi=0.5", "--nu=0.3", "--P-star=1e-3"], tmp)
+    check(any("beta = sigma R eta = 0.1 is above 0.06" in w for w in j["warnings"]),
+          j["warnings"])
+
+
+def case_shear_modulus_range(exe, src, tmp):
+    base = SPHERE[:1] + ["--E1=200GPa", "--nu1=0.3", "--E2=207GPa", "--nu2=0.3", "--H=6.83GPa",
+                         "--R1=2.5mm", "--P=35N", "--mu-cfc=0.284"]
+    r = run(exe, base + ["--G1=500GPa"], tmp)  # G > E/2: nu < 0
+    expect_exit2(r, "--G1 = 5e+11 Pa is not allowed with --E1 = 2e+11 Pa", "E/3 <= G <= E/2")
+    r = run(exe, base + ["--G1=60GPa"], tmp)  # G < E/3: nu > 0.5
+    expect_exit2(r, "--G1 = 6e+10 Pa", "G >= E/3 is nu <= 0.5")
+    r = run(exe, base + ["--G1=100GPa"], tmp)  # G = E/2 (nu = 0): allowed
+    check(r.returncode == 0, r.stderr)
+
+
+def case_sphere_tiny_hardness(exe, src, tmp):
+    argv = ["sphere", "--E1=207GPa", "--nu1=0.3", "--E2=207GPa", "--nu2=0.3", "--H2=1e-30Pa",
+            "--R1=2.5mm", "--P=35N", "--mu-cfc=0.284"]
+    j, err = json_of(exe, argv, tmp)
+    check(any("hardness H = 1e-30 Pa" in w and "outside 1e-3 to 0.2 E*" in w
+              for w in j["warnings"]), j["warnings"])
+    check("warning: hardness" in err, err)
+
+
+def case_dynamics_loop_cycles_warned(exe, src, tmp):
+    import json
+    with open(os.path.join(src, "examples/dynamics/harmonic_coulomb.toml")) as f:
+        text = f.read()
+    check("loop_cycles = 5" in text, "the example changed")
+    path = os.path.join(tmp, "long.toml")
+    with open(path, "w") as f:
+        f.write(text.replace("loop_cycles = 5", "loop_cycles = 1000"))
+    r = run(exe, ["dynamics", path, "--out", "o", "--no-plots"], tmp)
+    check(r.returncode == 0, r.stderr)
+    with open(os.path.join(tmp, "o", "summary.json")) as f:
+        summary = json.load(f)
+    check("steady_loop" not in summary, "steady_loop present")
+    check(any("steady_loop is left out: loop_cycles = 1000" in w for w in summary["warnings"]),
+          summary["warnings"])
+    check("warning: steady_loop is left out" in r.stderr, r.stderr)
+
+
+# ------------------------------------------------------------------ messages
+
+
+def case_messages_name_the_input(exe, src, tmp):
+    # analyze of an X3P: no binary echoed.
+    r = run(exe, ["analyze", os.path.join(src, "tests/data/mountainsmap-650x650.x3p"),
+                  "--P=526N"], tmp)
+    expect_exit2(r, "is a zip archive (an X3P height map?)")
+    check(all(c >= " " or c == "\n" for c in r.stderr), f"control characters: {r.stderr!r}")
+    case = os.path.join(src, "examples/joints/steel420_two_bolts.toml")
+    for flag, value in (("--noise-Q", "-1N"), ("--k-pzt", "0N/um")):
+        r = run(exe, ["synthesize", case, "--preload=526N", "--imposed=6.75um", "--out=s.csv",
+                      f"{flag}={value}"], tmp)
+        expect_exit2(r, f"{flag} = ")
+    with open(case) as f:
+        text = f.read()
+    check("count = 2" in text, "the example changed")
+    bad = os.path.join(tmp, "bolts_two.toml")  # the example has no relative paths
+    with open(bad, "w") as f:
+        f.write(text.replace("count = 2", 'count = "two"'))
+    r = run(exe, ["predict", bad], tmp)
+    expect_exit2(r, 'load.bolts.count = "two": must be a whole number')
+    # Heights of +-1e300 are not "flat" (their squares overflowed).
+    with open(os.path.join(tmp, "big.csv"), "w") as f:
+        f.write("x[um],z[um]\n")
+        for i in range(8000):
+            f.write(f"{i * 0.5},{1e300 if i % 2 else -1e300}\n")
+    r = run(exe, ["roughness", "--surface", "big.csv,big.csv"], tmp)
+    expect_exit2(r, "heights up to 1e+294 m", "check the unit")
+    check("flat" not in r.stderr, r.stderr)
+    scan = os.path.join(src, "examples/roughness/pzt_max.csv")
+    r = run(exe, ["roughness", "--surface", f"{scan}@diagonal,{scan}@min"], tmp)
+    expect_exit2(r, 'unknown tag "@diagonal" (allowed: @max, @min')
+
+
 CASES = {name[5:]: fn for name, fn in globals().items() if name.startswith("case_")}
 
 
