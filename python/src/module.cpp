@@ -1,5 +1,19 @@
 // The extension module asperity._core; the package python/asperity re-exports it.
+#include <asperity/core/interrupt.hpp>
+
 #include "bindings.hpp"
+
+namespace {
+
+// Long C++ loops call this (core/interrupt.hpp) every 50 ms: with the GIL taken back,
+// a pending Ctrl-C becomes KeyboardInterrupt, thrown through the C++ frames.
+void raise_pending_signals() {
+  if (!Py_IsInitialized()) return;
+  nanobind::gil_scoped_acquire acquire;
+  if (PyErr_CheckSignals() != 0) throw nanobind::python_error();
+}
+
+}  // namespace
 
 NB_MODULE(_core, m) {
   m.doc() =
@@ -14,4 +28,5 @@ NB_MODULE(_core, m) {
   asperity::python::bind_joint(m);
   asperity::python::bind_dynamics(m);
   asperity::python::bind_vibration(m);
+  asperity::core::set_interrupt_hook(raise_pending_signals);
 }

@@ -10,6 +10,7 @@
 
 #include "asperity/contact/material.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/interrupt.hpp"
 #include "asperity/core/numerics.hpp"
 #include "asperity/core/parallel.hpp"
 #include "asperity/hysteresis/backbones.hpp"
@@ -244,6 +245,7 @@ JointPrediction predict(const JointCase& c,
   std::mutex progress_mutex;
   std::size_t done = 0;
   core::parallel_for(n, [&](std::size_t i) {
+    core::check_interrupt();
     LoadPrediction lp;
     try {
       lp =
