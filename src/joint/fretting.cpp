@@ -18,6 +18,7 @@
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/random.hpp"
 #include "asperity/core/validate.hpp"
 
 namespace asperity::joint {
@@ -913,11 +914,11 @@ FrettingData synthetic_experiment(std::shared_ptr<const hysteresis::Backbone> ba
     d.Delta[i] = D;
     D_prev = D;
   }
-  std::mt19937_64 rng(o.seed);
-  std::normal_distribution<double> nd(0.0, 1.0);
+  // The same seed gives the same noise with any standard library (core/random.hpp).
+  core::StandardNormal nd(o.seed);
   for (std::size_t i = 0; i < n; ++i) {
-    d.delta[i] += o.noise_delta * nd(rng);
-    d.Q[i] += o.noise_Q * nd(rng);
+    d.delta[i] += o.noise_delta * nd();
+    d.Q[i] += o.noise_Q * nd();
   }
   return d;
 }
