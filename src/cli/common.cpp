@@ -51,6 +51,20 @@ std::size_t whole_number(const std::string& text, const std::string& flag, std::
   return static_cast<std::size_t>(v);
 }
 
+CLI::Validator whole_number_in(std::size_t lo, std::size_t hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        try {
+          (void)whole_number(text, "", lo, hi);
+        } catch (const InvalidInput&) {
+          return fmt::format("{} is not allowed: it must be a whole number in [{}, {}]", text, lo,
+                             hi);
+        }
+        return {};
+      },
+      "", "");
+}
+
 double required_quantity(const std::optional<std::string>& text, core::Dimension d,
                          const std::string& flag) {
   if (!text) throw InvalidInput(fmt::format("{} is required", flag));

@@ -53,6 +53,9 @@ std::optional<double> quantity(const std::optional<std::string>& text, core::Dim
 /// for any integer type is named as written (CLI11 would wrap it to 2^64 - 1).
 std::size_t whole_number(const std::string& text, const std::string& flag, std::size_t lo,
                          std::size_t hi);
+/// A CLI11 check of an option's text before its conversion: a whole number in [lo, hi]
+/// (a value past 2^64 is named as typed, not wrapped to 2^64 - 1 by the conversion).
+CLI::Validator whole_number_in(std::size_t lo, std::size_t hi);
 /// Parses a required option's text as a quantity of the given dimension.
 double required_quantity(const std::optional<std::string>& text, core::Dimension d,
                          const std::string& flag);

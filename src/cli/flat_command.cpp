@@ -36,7 +36,7 @@ struct FlatOptions {
   std::string slip_scaling = "elastic";
   bool json = false;
   std::optional<std::string> history_csv, out_csv, loop_csv, plot_png;
-  std::string points = "201";
+  std::size_t points = 201;
   std::optional<std::string> case_file;  // --case: a joint case's (patched) backbone
 };
 
@@ -191,7 +191,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
       amplitude_star = dm / sigma;
     }
   }
-  const std::size_t points = whole_number(o.points, "--points", 2, 100000);
+  const std::size_t points = o.points;  // checked by whole_number_in on the text
   // Every input is checked, and the history read, before anything is computed or written.
   if ((o.loop_csv || o.plot_png) && !amplitude_star) {
     throw InvalidInput("--loop and --plot need an amplitude: give --delta-star-max or --delta-max");
@@ -471,7 +471,8 @@ void add_flat_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--loop", o->loop_csv,
                   "write the fretting loop to this CSV file (- for standard output)");
   cmd->add_option("--plot", o->plot_png, "draw the fretting loop into this PNG file");
-  cmd->add_option("--points", o->points, "points per loop branch, in [2, 100000] (default: 201)");
+  cmd->add_option("--points", o->points, "points per loop branch, in [2, 100000] (default: 201)")
+      ->check(whole_number_in(2, 100000));
   cmd->add_option("--case", o->case_file,
                   "a joint case file (as for predict, with its [interface]): with --history "
                   "and --out, the force history on its backbone at --P (or its one preload)");

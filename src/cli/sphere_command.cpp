@@ -31,7 +31,7 @@ struct SphereOptions {
   std::string interference = "hertz";
   bool json = false;
   std::optional<std::string> loop_csv, plot_png, energy_csv;
-  std::string points = "101";
+  std::size_t points = 101;
 };
 
 double dimensionless(const std::optional<std::string>& text, const std::string& flag) {
@@ -271,7 +271,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     throw InvalidInput(fmt::format("--Q-max = {} N is not allowed: the amplitude must be >= 0",
                                    core::format_value(*force_amp)));
   }
-  const std::size_t points = whole_number(o.points, "--points", 2, 100000);
+  const std::size_t points = o.points;  // checked by whole_number_in on the text
   if ((o.loop_csv || o.plot_png) && !(delta_amp || force_amp)) {
     throw InvalidInput("--loop and --plot need an amplitude: give --delta-max or --Q-max");
   }
@@ -480,7 +480,8 @@ void add_sphere_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--energy-curve", o->energy_csv,
                   "write energy per cycle against displacement amplitude to this CSV file (- for "
                   "standard output)");
-  cmd->add_option("--points", o->points, "points per loop branch, in [2, 100000] (default: 101)");
+  cmd->add_option("--points", o->points, "points per loop branch, in [2, 100000] (default: 101)")
+      ->check(whole_number_in(2, 100000));
   cmd->callback([o, &action] {
     action = [o] { return run_guarded([o](std::string& out) { run_sphere(*o, out); }); };
   });

@@ -74,10 +74,11 @@ BAD_INPUT = {
                            "delta~max"),
     "number_overflow": (args({"--P": "1e400N"}), "--P", "overflows", "does not start"),
     "number_underflow": (args({"--P": "1e-400N"}), "--P", "underflows", "does not start"),
-    "points_one": (args(extra=["--delta-max=1um", "--points=1"]), "--points", "--points = 1"),
+    "points_one": (args(extra=["--delta-max=1um", "--points=1"]), "--points",
+                   "1 is not allowed: it must be a whole number in [2, 100000]"),
     # Issue 13: shown as typed, not wrapped to 18446744073709551615.
     "points_overflow": (args(extra=["--delta-max=1um", "--points=99999999999999999999"]),
-                        "--points", "--points = 99999999999999999999 is not allowed"),
+                        "--points", "99999999999999999999 is not allowed"),
 }
 
 
