@@ -231,6 +231,7 @@ def case_streams_refused(exe, src, tmp):
         (["predict", "/dev/zero"], "/dev/zero: the case file is not a regular file (it is a "
                                    "character device)"),
         (["dynamics", "/dev/urandom"], "/dev/urandom: the case file is not a regular file"),
+        (["vibration", "/dev/zero"], "/dev/zero: the case file is not a regular file"),
         (FLAT + ["--history=/dev/zero", "--out=f.csv"], "not a regular file"),
         (["analyze", "/dev/zero", "--P=526N"], "not a regular file"),
         (["roughness", "--surface", "/dev/zero,/dev/zero"], "not a regular file"),
@@ -260,7 +261,7 @@ def case_case_file_invalid_utf8(exe, src, tmp):
     path = os.path.join(tmp, "bad.toml")
     with open(path, "wb") as f:
         f.write(b"# a case\n[joint]\nname = \"ab\xffcd\"\n")
-    for cmd in ("predict", "dynamics"):
+    for cmd in ("predict", "dynamics", "vibration"):
         r = run(exe, [cmd, path], tmp)
         expect_exit2(r, f"{path}:3:11: the case file is not valid UTF-8 text (byte 0xFF")
 
