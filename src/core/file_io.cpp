@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <pthread.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -326,6 +327,20 @@ void install_cleanup_signal_handlers() {
   std::signal(SIGXFSZ, SIG_IGN);
 }
 
+SignalBlock::SignalBlock() {
+  static_assert(sizeof(sigset_t) <= sizeof(saved_));
+  sigset_t block;
+  sigemptyset(&block);
+  sigaddset(&block, SIGINT);
+  sigaddset(&block, SIGTERM);
+  sigaddset(&block, SIGHUP);
+  pthread_sigmask(SIG_BLOCK, &block, reinterpret_cast<sigset_t*>(saved_));
+}
+
+SignalBlock::~SignalBlock() {
+  pthread_sigmask(SIG_SETMASK, reinterpret_cast<const sigset_t*>(saved_), nullptr);
+}
+
 std::string shown_path(const std::string& path) {
   std::error_code ec;
   const std::string abs = fs::absolute(path, ec).lexically_normal().string();
@@ -552,6 +567,7 @@ void OutputSet::commit() {
       }
       ::close(fd);
     }
+    const SignalBlock block;  // the renames are not cut by a signal
     for (auto& e : entries_) {
       if (e.temporary.empty()) continue;
       if (std::rename(e.temporary.c_str(), e.target.c_str()) != 0) {

@@ -225,6 +225,7 @@ void StagedDirectory::commit() {
   core::write_output_file((tmp_ / kOutputMarker).string(), marker);
   // Checked again: the directory may have been created or filled while we worked.
   require_replaceable_output(final_, given_);
+  const core::SignalBlock block;  // the renames below are not cut by SIGINT/SIGTERM
   fs::path old;
   int old_slot = -1;
   if (fs::exists(fs::symlink_status(final_, ec))) {

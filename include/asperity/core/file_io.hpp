@@ -126,6 +126,20 @@ void remove_registered_temporaries() noexcept;
 /// temporaries and then end the process by the same signal (exit status 128 + N), and
 /// ignores SIGXFSZ (a write past `ulimit -f` then fails with "File too large").
 void install_cleanup_signal_handlers();
+/// Blocks SIGINT, SIGTERM and SIGHUP in this thread while it lives (pthread_sigmask), so
+/// that a sequence of renames that commits outputs is not cut in the middle; a signal
+/// that arrives meanwhile is delivered when the object is destroyed.
+class SignalBlock {
+ public:
+  SignalBlock();
+  ~SignalBlock();
+  SignalBlock(const SignalBlock&) = delete;
+  SignalBlock& operator=(const SignalBlock&) = delete;
+
+ private:
+  unsigned char saved_[128];  // the previous sigset_t
+};
+
 /// `path` with a registered temporary directory replaced by the final path it stands
 /// for, so that messages name the user's path, not ".out.tmp-...".
 [[nodiscard]] std::string shown_path(const std::string& path);
