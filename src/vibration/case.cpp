@@ -702,7 +702,8 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
   }
   if (joint) {
     const bool used = std::any_of(c.elements.begin(), c.elements.end(), [](const auto& e) {
-      const auto b = SummaryValue(e.element->describe()).find("backbone");
+      const SummaryValue d(e.element->describe());  // alive while b points into it
+      const auto b = d.find("backbone");
       return b && std::get<std::string>(b->data) == "joint";
     });
     if (!used) {
