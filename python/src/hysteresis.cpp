@@ -5,6 +5,7 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -82,10 +83,20 @@ nb::object along_history(const Hysteresis& h, const ArrayLike& in, bool inverse)
     return result;
   }
   Hysteresis c = h;
-  for (npy_intp k = 0; k < n; ++k) {
-    double xk = 0.0;
-    std::memcpy(&xk, x + k * stride, sizeof xk);
-    out[k] = inverse ? c.update_force(xk) : c.update(xk);
+  // Without the GIL (other Python threads run meanwhile) in chunks of 65536 points;
+  // between chunks, with the GIL, a pending Ctrl-C is raised as KeyboardInterrupt.
+  constexpr npy_intp kChunk = npy_intp{1} << 16;
+  for (npy_intp k0 = 0; k0 < n; k0 += kChunk) {
+    const npy_intp k1 = std::min(n, k0 + kChunk);
+    {
+      nb::gil_scoped_release release;
+      for (npy_intp k = k0; k < k1; ++k) {
+        double xk = 0.0;
+        std::memcpy(&xk, x + k * stride, sizeof xk);
+        out[k] = inverse ? c.update_force(xk) : c.update(xk);
+      }
+    }
+    if (PyErr_CheckSignals() != 0) throw nb::python_error();
   }
   return result;
 }

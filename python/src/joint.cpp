@@ -161,8 +161,14 @@ void bind_joint(nb::module_& m) {
   m.def(
       "predict",
       [](const std::string& case_path, std::size_t loop_points) {
-        const auto c = read_case_file(case_path);
-        return prediction_dict(c, joint::predict(c), loop_points);
+        std::optional<joint::JointCase> c;
+        std::optional<joint::JointPrediction> p;
+        {
+          nb::gil_scoped_release release;  // reading, roughness and the sweep: C++ only
+          c.emplace(read_case_file(case_path));
+          p.emplace(joint::predict(*c));
+        }
+        return prediction_dict(*c, *p, loop_points);
       },
       "case_path"_a, "loop_points"_a = 100,
       "Predictions for a joint case file (TOML, see docs/joints.md): a dict with name, model, "

@@ -16,6 +16,7 @@
 #include <asperity/surface/profile.hpp>
 #include <asperity/surface/profile_io.hpp>
 #include <asperity/surface/roughness.hpp>
+#include <asperity/surface/scan_set.hpp>
 #include <cmath>
 #include <string>
 
@@ -208,6 +209,44 @@ void bind_surface(nb::module_& m) {
       "z"_a, "dx"_a, "dy"_a, "level"_a = "line", "lc"_a = 0.8e-3, "ls"_a = 20e-6,
       "truncation"_a = 1.0, "end"_a = "discard",
       "Moments along x (rows of z[iy, ix]) and y (columns), each averaged over its profiles.");
+  m.def(
+      "equivalent_isotropic_surface",
+      [](const std::vector<std::string>& files, const std::string& level_how,
+         std::optional<double> lc, std::optional<double> ls, double truncation,
+         const std::string& end, const std::string& rule, std::optional<double> dx) {
+        std::vector<ScanFile> scans;
+        for (const auto& f : files) scans.push_back(parse_scan_file(f));
+        const ScanSettings settings{.level = parse_levelling(level_how),
+                                    .filter = make_filter(lc, ls, truncation, end),
+                                    .rule = parse_isotropic_rule(rule),
+                                    .text = {.dx = dx}};
+        IsotropicSurface r;
+        {
+          nb::gil_scoped_release release;  // reading and filtering: C++ only
+          r = equivalent_isotropic_surface(scans, settings);
+        }
+        nb::list per_scan;
+        for (const auto& sc : r.scans) {
+          nb::dict d;
+          d["file"] = sc.file;
+          d["direction"] = sc.direction;
+          d["points"] = sc.points;
+          d["profiles"] = sc.profiles;
+          d["dx"] = sc.dx;
+          d["moments"] = sc.moments;
+          per_scan.append(d);
+        }
+        nb::dict out;
+        out["moments"] = r.moments;
+        out["scans"] = per_scan;
+        out["invalid_points"] = r.invalid_points;
+        return out;
+      },
+      "files"_a, "level"_a = "line", "lc"_a = 0.8e-3, "ls"_a = 20e-6, "truncation"_a = 1.0,
+      "end"_a = "discard", "rule"_a = "geometric", "dx"_a = nb::none(),
+      "The equivalent isotropic surface of scan files (\"FILE\", \"FILE@max\", \"FILE@min\", or\n"
+      "one areal file), by the function `asperity roughness --surface` and the case files use:\n"
+      "{moments, scans: [{file, direction, points, profiles, dx, moments}], invalid_points}.");
   m.def(
       "rms_height_about_plane",
       [](const Array2& z, double dx, double dy) {

@@ -111,20 +111,30 @@ FloatOrArray vectorize_impl(F& f, const std::array<nb::handle, sizeof...(I)>& in
   const std::size_t n = views[0].size();
   auto out = std::make_unique<double[]>(n);
   // Large arrays in blocks over the cores (core::parallel_for: every element in its own
-  // slot, so the result is the sequential one; the first error by index is raised).
-  // Small ones stay on this thread: a small call costs about a Python call.
+  // slot, so the result is the sequential one; the first error by index is raised), without
+  // the GIL (other Python threads run meanwhile), 4 blocks per thread between checks for a
+  // pending Ctrl-C (raised as KeyboardInterrupt). Small ones stay on this thread with the
+  // GIL: a small call costs about a Python call.
   constexpr std::size_t kBlock = 8192;
-  std::array<const double*, N> data{views[I].data()...};
+  const std::array<const double*, N> data{views[I].data()...};
   double* o = out.get();
   auto block = [&](std::size_t b) {
     const std::size_t end = std::min(n, (b + 1) * kBlock);
     for (std::size_t k = b * kBlock; k < end; ++k) o[k] = f(data[I][k]...);
   };
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  if (blocks > 1) {
-    core::parallel_for(blocks, block);
-  } else {
+  if (blocks <= 1) {
     block(0);
+  } else {
+    const std::size_t per_check = 4 * std::max<std::size_t>(1, core::worker_count());
+    for (std::size_t b0 = 0; b0 < blocks; b0 += per_check) {
+      const std::size_t nb = std::min(per_check, blocks - b0);
+      {
+        nb::gil_scoped_release release;
+        core::parallel_for(nb, [&](std::size_t b) { block(b0 + b); });
+      }
+      if (PyErr_CheckSignals() != 0) throw nb::python_error();
+    }
   }
   return {make_array(std::move(out), shape)};
 }
@@ -133,7 +143,9 @@ FloatOrArray vectorize_impl(F& f, const std::array<nb::handle, sizeof...(I)>& in
 
 /// Applies `f(double, ...) -> double` elementwise over broadcast numpy arrays. All
 /// arguments Python numbers (or 0-d arrays) -> float; otherwise an array of the
-/// broadcast shape. Errors thrown by `f` propagate (the first one wins).
+/// broadcast shape. Errors thrown by `f` propagate (the first one wins). Above 8192
+/// elements the loop runs on worker threads without the GIL and checks for signals every
+/// 4 blocks of 8192 per thread, so `f` must not touch Python objects.
 template <class F, class... A>
 FloatOrArray vectorize(F&& f, const A&... args) {
   const std::array<nb::handle, sizeof...(A)> in{nb::handle(args.obj)...};

@@ -10,6 +10,7 @@
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/validate.hpp"
 #include "asperity/joint/case.hpp"
 #include "asperity/joint/fretting.hpp"
 #include "asperity/joint/output_dir.hpp"
@@ -697,6 +698,11 @@ void add_synthesize_command(CLI::App& app, std::function<int()>& action) {
         s.noise_Q = required_quantity(o->noise_Q, dim::force, "--noise-Q");
         s.pzt_stiffness = required_quantity(o->k_pzt, dim::stiffness, "--k-pzt");
         s.load_cell_stiffness = required_quantity(o->k_lc, dim::stiffness, "--k-lc");
+        // Under the flags' names (the library says "sample rate and stiffnesses").
+        core::require_non_negative("--noise-delta", s.noise_delta);
+        core::require_non_negative("--noise-Q", s.noise_Q);
+        core::require_positive("--k-pzt", s.pzt_stiffness);
+        core::require_positive("--k-lc", s.load_cell_stiffness);
         s.seed = o->seed;
         const auto lp = joint::predict_case_load(c, P);  // with the case's [interface]
         const auto d = joint::synthetic_experiment(lp.backbone, s);

@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -35,6 +37,32 @@ std::optional<double> quantity(const std::optional<std::string>& text, core::Dim
                                const std::string& flag) {
   if (!text) return std::nullopt;
   return core::parse_quantity(*text, d, flag);
+}
+
+std::size_t whole_number(const std::string& text, const std::string& flag, std::size_t lo,
+                         std::size_t hi) {
+  std::uint64_t v = 0;
+  const char* end = text.data() + text.size();
+  const auto [p, ec] = std::from_chars(text.data(), end, v);
+  if (text.empty() || ec != std::errc() || p != end || v < lo || v > hi) {
+    throw InvalidInput(fmt::format("{} = {} is not allowed: it must be a whole number in [{}, {}]",
+                                   flag, text, lo, hi));
+  }
+  return static_cast<std::size_t>(v);
+}
+
+CLI::Validator whole_number_in(std::size_t lo, std::size_t hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        try {
+          (void)whole_number(text, "", lo, hi);
+        } catch (const InvalidInput&) {
+          return fmt::format("{} is not allowed: it must be a whole number in [{}, {}]", text, lo,
+                             hi);
+        }
+        return {};
+      },
+      "", "");
 }
 
 double required_quantity(const std::optional<std::string>& text, core::Dimension d,
@@ -83,6 +111,8 @@ ParsedMaterials MaterialOptions::parse_described() const {
   core::require_in_half_open("--nu2", b2.nu, 0.0, 0.5);
   if (G1) core::require_positive("--G1", b1.G);
   if (G2) core::require_positive("--G2", b2.G);
+  if (G1) contact::require_shear_modulus_range("--G1", b1.G, "--E1", b1.E);
+  if (G2) contact::require_shear_modulus_range("--G2", b2.G, "--E2", b2.E);
   if (H1) core::require_positive("--H1", b1.H);
   if (H2) core::require_positive("--H2", b2.H);
   ParsedMaterials out;
@@ -126,7 +156,7 @@ ParsedMaterials MaterialOptions::parse_described() const {
 }
 
 void write_file_atomically(const std::string& path, const std::string& content) {
-  core::write_file_atomically(path, content);
+  core::write_output_file(path, content);
 }
 
 std::string csv_text(const std::vector<std::string>& header,
@@ -148,6 +178,15 @@ void write_output(const std::string& path, const std::string& content, std::stri
     stdout_text += content;
   } else {
     write_file_atomically(path, content);
+  }
+}
+
+void write_output(core::OutputSet& outputs, const std::string& path, const std::string& content,
+                  std::string& stdout_text) {
+  if (is_standard_output(path)) {
+    stdout_text += content;
+  } else {
+    outputs.add(path, content);
   }
 }
 
@@ -269,10 +308,12 @@ class TemporaryDirectory {
                               std::strerror(errno)));
     }
     path_ = templ;
+    slot_ = core::register_temporary(path_, true, path_.string());  // removed on SIGINT/SIGTERM
   }
   ~TemporaryDirectory() {
     std::error_code ec;
     std::filesystem::remove_all(path_, ec);
+    core::unregister_temporary(slot_);
   }
   TemporaryDirectory(const TemporaryDirectory&) = delete;
   TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
@@ -280,6 +321,7 @@ class TemporaryDirectory {
 
  private:
   std::filesystem::path path_;
+  int slot_ = -1;
 };
 
 struct GnuplotRun {
@@ -339,7 +381,7 @@ std::string read_binary(const std::filesystem::path& path) {
 
 }  // namespace
 
-void plot_png(const std::string& path, const PlotSpec& spec) {
+void plot_png(const std::string& path, const PlotSpec& spec, core::OutputSet* outputs) {
   const std::filesystem::path target(path);
   if (target.filename().empty())
     throw InvalidInput(fmt::format("output path \"{}\" names no file", path));
@@ -401,7 +443,11 @@ void plot_png(const std::string& path, const PlotSpec& spec) {
     }
     throw Error(fmt::format("plotting \"{}\" failed: gnuplot said: {}", path, run.messages));
   }
-  core::write_file_atomically(path, read_binary(png));
+  if (outputs) {
+    outputs->add(path, read_binary(png));
+  } else {
+    core::write_output_file(path, read_binary(png));
+  }
 }
 
 int run_guarded(const std::function<void(std::string& out)>& body) {

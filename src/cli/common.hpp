@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "asperity/contact/material.hpp"
+#include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
 
 namespace asperity::cli {
@@ -48,6 +49,13 @@ std::string lowercase(std::string s);
 /// names the flag.
 std::optional<double> quantity(const std::optional<std::string>& text, core::Dimension d,
                                const std::string& flag);
+/// Parses a whole number in [lo, hi] from an option's text, as typed: a value too large
+/// for any integer type is named as written (CLI11 would wrap it to 2^64 - 1).
+std::size_t whole_number(const std::string& text, const std::string& flag, std::size_t lo,
+                         std::size_t hi);
+/// A CLI11 check of an option's text before its conversion: a whole number in [lo, hi]
+/// (a value past 2^64 is named as typed, not wrapped to 2^64 - 1 by the conversion).
+CLI::Validator whole_number_in(std::size_t lo, std::size_t hi);
 /// Parses a required option's text as a quantity of the given dimension.
 double required_quantity(const std::optional<std::string>& text, core::Dimension d,
                          const std::string& flag);
@@ -61,8 +69,7 @@ std::string version_text();
 /// Every command writes its JSON through this function.
 std::string json_output(const Json& j);
 
-/// Writes `content` to a temporary file next to `path` and renames it over `path`,
-/// so the file is written whole or not at all. Throws InvalidInput on failure.
+/// Writes `content` to `path` whole or not at all (core::write_output_file).
 void write_file_atomically(const std::string& path, const std::string& content);
 
 /// "-" as an output file: standard output (for text outputs where that makes sense).
@@ -80,6 +87,9 @@ std::string csv_text(const std::vector<std::string>& header,
 /// Writes `content` to the file `path` (atomically), or, when `path` is "-", appends it
 /// to `stdout_text` (printed by run_guarded only on success: whole or not at all).
 void write_output(const std::string& path, const std::string& content, std::string& stdout_text);
+/// As write_output, into `outputs` (committed with the command's other outputs).
+void write_output(core::OutputSet& outputs, const std::string& path, const std::string& content,
+                  std::string& stdout_text);
 
 /// The line every command prints after writing files: "wrote a, b, c\n" (empty for no
 /// files). `files` excludes "-" (standard output). When stdout carries data (JSON, or a
@@ -134,7 +144,9 @@ struct PlotSpec {
 /// labels are passed as gnuplot_string. `extra` is inserted verbatim: build any text
 /// in it with gnuplot_string. Throws InvalidInput (exit 2) when gnuplot or its
 /// pngcairo terminal is missing or `path` is not writable, Error if gnuplot fails.
-void plot_png(const std::string& path, const PlotSpec& spec);
+/// With `outputs`, the PNG is added to that set (committed with the command's other
+/// outputs) instead of written at once.
+void plot_png(const std::string& path, const PlotSpec& spec, core::OutputSet* outputs = nullptr);
 
 /// Runs a subcommand body, mapping errors to a one-line message on stderr and exit
 /// codes (2 bad input, including a problem too large for the memory: std::bad_alloc and

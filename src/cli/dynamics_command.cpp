@@ -118,7 +118,7 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
   // Everything goes into a temporary sibling renamed to --out at the end: the directory
   // is written whole or not at all.
   std::optional<joint::StagedDirectory> staged;
-  if (files) staged.emplace(*o.out_dir);
+  if (files) staged.emplace(*o.out_dir, "asperity dynamics");
   CaseResult r;
   if (files) {
     core::write_file_streamed(staged->file("timeseries.csv"), [&](const core::ChunkSink& sink) {

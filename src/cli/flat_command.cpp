@@ -8,6 +8,7 @@
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/file_io.hpp"
 #include "asperity/core/validate.hpp"
 #include "asperity/hysteresis/masing.hpp"
 #include "asperity/joint/case.hpp"
@@ -146,6 +147,22 @@ void run_flat(const FlatOptions& o, std::string& out) {
         o.G_over_E ? number(o.G_over_E, "--G-over-E") : (1.0 - p.nu) / (2.0 * (2.0 - p.nu));
     core::require_positive("--G-over-E", p.G_over_E);
     core::require_positive("--psi", p.psi);
+    // The library's limits, under the flags' names (rough_flat.hpp).
+    if (!(p.psi >= surface::kMinPlasticityIndex)) {
+      throw InvalidInput(fmt::format(
+          "--psi {} is not allowed: the plasticity index must be at least {}; below it "
+          "omega_c/sigma = (sigma_a/sigma)/psi^2 exceeds 350, no asperity yields and the "
+          "asperity friction laws give mu of 10 and more (BKE at P* = 1e-3: 14 at psi = 0.05, "
+          "49.9 at 0.01; the thesis uses psi = 0.5 to 4.7)",
+          core::format_value(p.psi), surface::kMinPlasticityIndex));
+    }
+    if (!(p.beta <= surface::kMaxRoughnessParameter)) {
+      throw InvalidInput(fmt::format(
+          "--beta {} is not allowed: beta = sigma R eta must be at most 1/pi = 0.318, beyond "
+          "which the asperity caps within one sigma of their summits would cover more than the "
+          "nominal area (engineering surfaces: 0.02-0.06)",
+          core::format_value(p.beta)));
+    }
     flat.emplace(p);
     P_star = number(o.P_star, "--P-star");
     core::require_positive("--P-star", P_star);
@@ -174,10 +191,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
       amplitude_star = dm / sigma;
     }
   }
-  if (o.points < 2 || o.points > 100000) {
-    throw InvalidInput(
-        fmt::format("--points {} is not allowed: it must lie in [2, 100000]", o.points));
-  }
+  const std::size_t points = o.points;  // checked by whole_number_in on the text
   // Every input is checked, and the history read, before anything is computed or written.
   if ((o.loop_csv || o.plot_png) && !amplitude_star) {
     throw InvalidInput("--loop and --plot need an amplitude: give --delta-star-max or --delta-max");
@@ -252,6 +266,16 @@ void run_flat(const FlatOptions& o, std::string& out) {
   std::shared_ptr<const surface::RoughFlatBackbone> table;
   if (need_table && Q_max > 0.0) table = flat->backbone(d);
 
+  // Inputs outside the range of the thesis's laws, and an implausible result: said on
+  // stderr and in the JSON's "warnings".
+  std::vector<std::string> warnings = flat->warnings();
+  if (scales) {
+    for (auto& w : contact::hardness_warnings(scales->pair.H, scales->pair.E_star))
+      warnings.push_back(std::move(w));
+  }
+  if (auto w = surface::friction_coefficient_warning(Q_max / P_star); !w.empty())
+    warnings.push_back(std::move(w));
+
   std::optional<double> Q_amp, energy;
   std::optional<std::string> regime;
   if (amplitude_star) {
@@ -298,6 +322,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
         j["energy"] = *energy * scales->force * scales->sigma;
       }
     }
+    j["warnings"] = warnings;
     out += json_output(j);
   } else if (!stdout_is_data) {
     out += fmt::format(
@@ -333,11 +358,13 @@ void run_flat(const FlatOptions& o, std::string& out) {
 
   const double xs = scales ? scales->sigma : 1.0;
   const double fs = scales ? scales->force : 1.0;
+  // Every output is written into a temporary first and renamed at the end: all or none.
+  core::OutputSet outputs;
   if (o.loop_csv || o.plot_png) {
     hysteresis::Hysteresis h(table);
     const double dm = *amplitude_star;
     std::vector<double> x, q;
-    const std::size_t n = o.points;
+    const std::size_t n = points;
     auto run = [&](double from, double to) {
       for (std::size_t i = 1; i <= n; ++i) {
         const double v = from + (to - from) * static_cast<double>(i) / static_cast<double>(n);
@@ -354,7 +381,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
       std::vector<double> xo(x), qo(q);
       for (auto& v : xo) v *= xs;
       for (auto& v : qo) v *= fs;
-      write_output(*o.loop_csv,
+      write_output(outputs, *o.loop_csv,
                    csv_text(scales ? std::vector<std::string>{"delta[m]", "Q[N]"}
                                    : std::vector<std::string>{"delta_star", "Q_star"},
                             {xo, qo}),
@@ -370,7 +397,8 @@ void run_flat(const FlatOptions& o, std::string& out) {
                PlotSpec{.title = "Fretting loop of the rough flat (Masing on Eq. 4.10)",
                         .xlabel = scales ? "delta [µm]" : "delta* = delta/sigma",
                         .ylabel = scales ? "Q [N]" : "Q* = Q/(K H A0)",
-                        .series = {s}});
+                        .series = {s}},
+               &outputs);
     }
   }
   if (o.history_csv) {
@@ -391,14 +419,18 @@ void run_flat(const FlatOptions& o, std::string& out) {
     if (is_standard_output(*o.out_csv)) {
       write_output(*o.out_csv, csv_text(header, columns), out);
     } else {
-      core::write_csv_table(*o.out_csv, header, columns);
+      outputs.add_streamed(*o.out_csv, [&](const core::ChunkSink& sink) {
+        core::write_csv_chunks(header, columns, sink);
+      });
     }
   }
+  outputs.commit();
   std::vector<std::string> written;
   for (const auto& f : {o.loop_csv, o.plot_png, o.out_csv}) {
     if (f) written.push_back(*f);
   }
   report_written(written, stdout_is_data, out);
+  for (const auto& text : warnings) fmt::print(stderr, "warning: {}\n", text);
 }
 
 }  // namespace
@@ -439,7 +471,8 @@ void add_flat_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--loop", o->loop_csv,
                   "write the fretting loop to this CSV file (- for standard output)");
   cmd->add_option("--plot", o->plot_png, "draw the fretting loop into this PNG file");
-  cmd->add_option("--points", o->points, "points per loop branch, in [2, 100000] (default: 201)");
+  cmd->add_option("--points", o->points, "points per loop branch, in [2, 100000] (default: 201)")
+      ->check(whole_number_in(2, 100000));
   cmd->add_option("--case", o->case_file,
                   "a joint case file (as for predict, with its [interface]): with --history "
                   "and --out, the force history on its backbone at --P (or its one preload)");

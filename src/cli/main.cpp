@@ -3,6 +3,7 @@
 #include <functional>
 #include <iostream>
 
+#include "asperity/core/file_io.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 #include "suggest.hpp"
@@ -39,5 +40,7 @@ int main(int argc, char** argv) {
               << "\n";
     return 2;
   }
+  // A SIGINT or SIGTERM while outputs are written removes their temporaries.
+  asperity::core::install_cleanup_signal_handlers();
   return action ? action() : 2;
 }

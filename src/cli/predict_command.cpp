@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <optional>
@@ -187,6 +188,7 @@ Json prediction_json(const joint::JointCase& c, const joint::JointPrediction& p)
   Json loads = Json::array();
   for (const auto& l : p.loads) loads.push_back(load_json(l));
   j["loads"] = loads;
+  j["warnings"] = p.warnings;
   return j;
 }
 
@@ -639,8 +641,23 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
         }
         std::vector<std::string> written;
         const bool bar = c.preloads.size() > 1 && isatty(STDERR_FILENO);
+        // Not a terminal (a log, a pipe): a plain line at most every 10 s, so a long sweep
+        // shows that it runs without flooding the log; nothing for a sweep under 10 s.
+        using Clock = std::chrono::steady_clock;
+        auto last_line = Clock::now();
+        bool any_line = false;
         const auto progress = [&](std::size_t i, std::size_t n) {
-          if (!bar) return;
+          if (!bar) {
+            const auto now = Clock::now();
+            if (n > 1 && (now - last_line >= std::chrono::seconds(10) || (any_line && i == n))) {
+              std::cerr << fmt::format("asperity predict: {}/{} preloads ({:.0f} %)\n", i, n,
+                                       100.0 * static_cast<double>(i) / static_cast<double>(n))
+                        << std::flush;
+              last_line = now;
+              any_line = true;
+            }
+            return;
+          }
           const std::size_t width = 30, done = width * i / n;
           std::cerr << fmt::format("\r[{}{}] {}/{} preloads", std::string(done, '#'),
                                    std::string(width - done, ' '), i, n)
@@ -662,6 +679,7 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
           if (!stdout_is_data) out += "\n";
           report_written_directory(*o->out, written, stdout_is_data, out);
         }
+        for (const auto& w : p.warnings) fmt::print(stderr, "warning: {}\n", w);
       });
     };
   });

@@ -14,6 +14,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/surface/profile_io.hpp"
 #include "asperity/surface/roughness.hpp"
+#include "asperity/surface/scan_set.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 
@@ -45,16 +46,7 @@ struct RoughnessOptions {
   std::vector<bool> order;
 };
 
-struct Scan {
-  std::string file;
-  std::string direction;   // "isotropic", "max_slope", "min_slope", "x", "y"
-  std::size_t points = 0;  // points in the filtered profile (per profile for areal)
-  std::size_t profiles = 1;
-  double dx = 0.0;
-  double length = 0.0;             // of the raw profile
-  double evaluation_length = 0.0;  // of the filtered profile
-  SpectralMoments moments;
-};
+using Scan = surface::ScanMoments;
 
 struct PlotTrace {
   std::string label;
@@ -180,23 +172,6 @@ SpectralMoments parse_params(const std::string& text, std::size_t index) {
   return SpectralMoments::from_parameters(*sigma, *eta, *R);
 }
 
-// The profile of a profile file (ny = 1), its heights moved out of the map when every
-// point is valid (no copy), else the longest valid run (HeightMap::as_profile); the
-// map's heights are freed either way.
-surface::Profile take_profile(HeightMap& map, std::size_t invalid) {
-  surface::Profile p;
-  if (map.ny == 1 && map.nx >= 2 && invalid == 0) {
-    p.z = std::move(map.z);
-    p.dx = map.dx;
-    p.x0 = map.x0;
-    p.source = map.source;
-  } else {
-    p = map.as_profile();
-  }
-  std::vector<double>().swap(map.z);
-  return p;
-}
-
 struct Settings {
   Levelling level = Levelling::line;
   GaussianFilter filter;
@@ -208,142 +183,64 @@ struct Settings {
 AnalysedSurface analyse_files(const std::string& list, std::size_t index, const Settings& s) {
   AnalysedSurface out;
   out.from_files = true;
-  struct Item {
-    std::string path;
-    std::string tag;  // "", "max", "min"
-  };
-  std::vector<Item> items;
-  for (auto f : split(list, ',')) {
-    f = trim(f);
-    if (f.empty()) {
-      throw InvalidInput(fmt::format("--surface #{}: empty file name in \"{}\"", index + 1, list));
+  surface::IsotropicSurface r;
+  std::vector<surface::ScanFile> files;
+  try {
+    for (auto f : split(list, ',')) {
+      f = trim(f);
+      if (f.empty()) throw InvalidInput(fmt::format("empty file name in \"{}\"", list));
+      files.push_back(surface::parse_scan_file(f));
+      out.files.push_back(files.back().path);
     }
-    Item it{f, ""};
-    for (const char* tag : {"@max", "@min"}) {
-      const std::string t(tag);
-      if (f.size() > t.size() && f.compare(f.size() - t.size(), t.size(), t) == 0) {
-        it.path = f.substr(0, f.size() - t.size());
-        it.tag = t.substr(1);
-      }
-    }
-    items.push_back(it);
-    out.files.push_back(it.path);
+    // Which scan is which direction, averaging, areal files: the library's (scan_set.hpp).
+    r = surface::equivalent_isotropic_surface(files, {.level = s.level,
+                                                      .filter = s.filter,
+                                                      .rule = s.rule,
+                                                      .text = s.text,
+                                                      .keep_processed = s.plot});
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format("--surface #{}: {}", index + 1, e.what()));
   }
-  const bool tagged =
-      std::any_of(items.begin(), items.end(), [](const Item& i) { return !i.tag.empty(); });
-  if (tagged &&
-      !std::all_of(items.begin(), items.end(), [](const Item& i) { return !i.tag.empty(); })) {
-    throw InvalidInput(
-        fmt::format("--surface #{}: tag every scan with @max or @min, or none of them", index + 1));
-  }
-
-  std::vector<HeightMap> maps;
-  for (const auto& it : items) maps.push_back(surface::read_height_file(it.path, s.text));
-  const bool any_areal =
-      std::any_of(maps.begin(), maps.end(), [](const HeightMap& m) { return !m.is_profile(); });
-
-  if (any_areal) {
-    if (maps.size() != 1) {
-      throw InvalidInput(fmt::format(
-          "--surface #{}: an areal file must be the only file of its surface (its rows and "
-          "columns give both directions)",
-          index + 1));
-    }
-    const auto& map = maps.front();
-    const auto d = surface::areal_moments(map, s.level, s.filter);
-    const bool x_is_max = d.x.m2 >= d.y.m2;
-    const double len_x = map.dx * static_cast<double>(map.nx - 1);
-    const double len_y = map.dy * static_cast<double>(map.ny - 1);
-    out.scans.push_back({map.source, x_is_max ? "x (max_slope)" : "x (min_slope)", 0, d.x_profiles,
-                         map.dx, len_x, 0.0, d.x});
-    out.scans.push_back({map.source, x_is_max ? "y (min_slope)" : "y (max_slope)", 0, d.y_profiles,
-                         map.dy, len_y, 0.0, d.y});
-    out.moments = x_is_max ? surface::equivalent_isotropic(d.x, d.y, s.rule)
-                           : surface::equivalent_isotropic(d.y, d.x, s.rule);
-    out.Sq = map.rms_height_about_plane();
-    out.invalid_points = map.invalid_count();
-    if (s.plot) {
-      // The first row is drawn; the histogram holds the filtered heights of every row and
-      // column used for the moments (the rows and columns share points, so each point
-      // counts about twice).
-      const std::size_t min_x = s.filter.is_none() ? 3 : s.filter.min_points(map.dx);
-      const std::size_t min_y = s.filter.is_none() ? 3 : s.filter.min_points(map.dy);
-      for (const auto& [profiles, min_pts] :
-           {std::pair{map.rows(min_x), min_x}, std::pair{map.columns(min_y), min_y}}) {
-        for (const auto& prof : profiles) {
-          if (prof.z.size() < min_pts) continue;
-          const auto p = surface::process_profile(prof, s.level, s.filter);
-          if (!out.trace) {
-            out.trace = PlotTrace{prof.source, prof, p.levelled,
-                                  p.filtered,  {},   "filtered rows and columns"};
-          }
-          out.trace->heights.insert(out.trace->heights.end(), p.filtered.z.begin(),
-                                    p.filtered.z.end());
+  out.scans = r.scans;
+  out.moments = r.moments;
+  out.areal = r.areal;
+  out.Sq = r.Sq;
+  out.invalid_points = r.invalid_points;
+  if (!s.plot) return out;
+  if (r.areal) {
+    // The first row is drawn; the histogram holds the filtered heights of every row and
+    // column used for the moments (the rows and columns share points, so each point
+    // counts about twice).
+    const auto map = surface::read_height_file(files.front().path, s.text);
+    const std::size_t min_x = s.filter.is_none() ? 3 : s.filter.min_points(map.dx);
+    const std::size_t min_y = s.filter.is_none() ? 3 : s.filter.min_points(map.dy);
+    for (const auto& [profiles, min_pts] :
+         {std::pair{map.rows(min_x), min_x}, std::pair{map.columns(min_y), min_y}}) {
+      for (const auto& prof : profiles) {
+        if (prof.z.size() < min_pts) continue;
+        const auto p = surface::process_profile(prof, s.level, s.filter);
+        if (!out.trace) {
+          out.trace =
+              PlotTrace{prof.source, prof, p.levelled, p.filtered, {}, "filtered rows and columns"};
         }
+        out.trace->heights.insert(out.trace->heights.end(), p.filtered.z.begin(),
+                                  p.filtered.z.end());
       }
     }
-    HeightMap meta = map;
-    meta.z.clear();
-    meta.valid.clear();
-    out.areal = std::move(meta);
     return out;
   }
-
-  for (std::size_t k = 0; k < maps.size(); ++k) {
-    const std::size_t invalid = maps[k].invalid_count();
-    out.invalid_points += invalid;
-    auto profile = take_profile(maps[k], invalid);
-    const std::string source = profile.source;
-    const double dx = profile.dx, length = profile.length();
-    if (!s.plot) {
-      // Only the moments: the profile is levelled in place and freed once filtered.
-      const auto m = surface::profile_moments(std::move(profile), s.level, s.filter);
-      out.scans.push_back({source, "isotropic", m.points, 1, dx, length, m.length, m.moments});
-      continue;
-    }
-    auto p = surface::process_profile(profile, s.level, s.filter);
-    Scan scan{source, "isotropic", p.filtered.z.size(), 1,
-              dx,     length,      p.filtered.length(), p.moments};
+  for (std::size_t k = 0; k < r.processed.size(); ++k) {
+    const auto& p = r.processed[k];
     if (!out.trace) {
-      out.trace = PlotTrace{
-          source,     profile,
-          p.levelled, p.filtered,
-          {},         maps.size() > 1 ? "filtered heights, all scans" : "filtered heights"};
+      out.trace =
+          PlotTrace{r.raw[k].source,
+                    r.raw[k],
+                    p.levelled,
+                    p.filtered,
+                    {},
+                    r.processed.size() > 1 ? "filtered heights, all scans" : "filtered heights"};
     }
     out.trace->heights.insert(out.trace->heights.end(), p.filtered.z.begin(), p.filtered.z.end());
-    out.scans.push_back(scan);
-  }
-  if (out.scans.size() == 1) {
-    out.moments = out.scans.front().moments;
-    out.scans.front().direction = "isotropic (one scan)";
-  } else if (!tagged) {
-    if (out.scans.size() != 2) {
-      throw InvalidInput(fmt::format(
-          "--surface #{}: {} scans without direction: give two scans (the max- and min-slope "
-          "directions are found from their m2), or tag each file with @max or @min",
-          index + 1, out.scans.size()));
-    }
-    const bool first_is_max = out.scans[0].moments.m2 >= out.scans[1].moments.m2;
-    out.scans[0].direction = first_is_max ? "max_slope" : "min_slope";
-    out.scans[1].direction = first_is_max ? "min_slope" : "max_slope";
-    out.moments = surface::equivalent_isotropic(out.scans[first_is_max ? 0 : 1].moments,
-                                                out.scans[first_is_max ? 1 : 0].moments, s.rule);
-  } else {
-    std::vector<SpectralMoments> mx, mn;
-    std::vector<double> wx, wn;
-    for (std::size_t k = 0; k < items.size(); ++k) {
-      auto& scan = out.scans[k];
-      const bool is_max = items[k].tag == "max";
-      scan.direction = is_max ? "max_slope" : "min_slope";
-      (is_max ? mx : mn).push_back(scan.moments);
-      (is_max ? wx : wn).push_back(static_cast<double>(scan.points));
-    }
-    if (mx.empty() || mn.empty()) {
-      throw InvalidInput(
-          fmt::format("--surface #{}: need at least one @max and one @min scan", index + 1));
-    }
-    out.moments = surface::equivalent_isotropic(surface::average_moments(mx, wx),
-                                                surface::average_moments(mn, wn), s.rule);
   }
   return out;
 }

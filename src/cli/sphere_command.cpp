@@ -9,6 +9,7 @@
 
 #include "asperity/contact/asperity_model.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/file_io.hpp"
 #include "asperity/core/validate.hpp"
 #include "commands.hpp"
 #include "common.hpp"
@@ -270,10 +271,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     throw InvalidInput(fmt::format("--Q-max = {} N is not allowed: the amplitude must be >= 0",
                                    core::format_value(*force_amp)));
   }
-  if (o.points < 2 || o.points > 100000) {
-    throw InvalidInput(
-        fmt::format("--points = {} is not allowed: it must lie in [2, 100000]", o.points));
-  }
+  const std::size_t points = o.points;  // checked by whole_number_in on the text
   if ((o.loop_csv || o.plot_png) && !(delta_amp || force_amp)) {
     throw InvalidInput("--loop and --plot need an amplitude: give --delta-max or --Q-max");
   }
@@ -299,7 +297,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
 
   // The laws of chapter 3 are small-strain contact mechanics: a << R. Say so when a load
   // pushes a model past it (the numbers are still what the equations give).
-  std::vector<std::string> warnings;
+  std::vector<std::string> warnings = contact::hardness_warnings(pair.H, pair.E_star);
   for (const auto& r : results) {
     if (r.model.a() > 0.3 * pair.R) {
       warnings.push_back(fmt::format(
@@ -395,6 +393,8 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     }
   }
 
+  // Every output is written into a temporary first and renamed at the end: all or none.
+  core::OutputSet outputs;
   if (o.loop_csv || o.plot_png) {
     std::ostringstream csv;
     csv << "model,branch,delta[m],Q[N]\n";
@@ -404,7 +404,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     const char* branch_names[] = {"loading", "unloading", "reloading"};
     for (const auto& r : results) {
       if (!r.delta_max) continue;
-      const auto loop = r.model.contact().loop(*r.delta_max, o.points);
+      const auto loop = r.model.contact().loop(*r.delta_max, points);
       Series s{.title = std::string(to_string(r.model.model()))};
       for (std::size_t i = 0; i < loop.delta.size(); ++i) {
         csv << fmt::format("{},{},{:.12g},{:.12g}\n", to_string(r.model.model()),
@@ -414,8 +414,8 @@ void run_sphere(const SphereOptions& o, std::string& out) {
       }
       plot.series.push_back(std::move(s));
     }
-    if (o.loop_csv) write_output(*o.loop_csv, csv.str(), out);
-    if (o.plot_png) plot_png(*o.plot_png, plot);
+    if (o.loop_csv) write_output(outputs, *o.loop_csv, csv.str(), out);
+    if (o.plot_png) plot_png(*o.plot_png, plot, &outputs);
   }
   if (o.energy_csv) {
     // Energy per cycle against displacement amplitude, up to the given amplitude or,
@@ -430,14 +430,15 @@ void run_sphere(const SphereOptions& o, std::string& out) {
     std::ostringstream csv;
     csv << "model,delta_max[m],energy[J]\n";
     for (const auto& r : results) {
-      for (std::size_t i = 0; i < o.points; ++i) {
-        const double d = top * static_cast<double>(i) / static_cast<double>(o.points - 1);
+      for (std::size_t i = 0; i < points; ++i) {
+        const double d = top * static_cast<double>(i) / static_cast<double>(points - 1);
         csv << fmt::format("{},{:.12g},{:.12g}\n", to_string(r.model.model()), d,
                            r.model.contact().energy_per_cycle(d));
       }
     }
-    write_output(*o.energy_csv, csv.str(), out);
+    write_output(outputs, *o.energy_csv, csv.str(), out);
   }
+  outputs.commit();
   std::vector<std::string> written;
   for (const auto& f : {o.loop_csv, o.plot_png, o.energy_csv}) {
     if (f) written.push_back(*f);
@@ -479,7 +480,8 @@ void add_sphere_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--energy-curve", o->energy_csv,
                   "write energy per cycle against displacement amplitude to this CSV file (- for "
                   "standard output)");
-  cmd->add_option("--points", o->points, "points per loop branch, in [2, 100000] (default: 101)");
+  cmd->add_option("--points", o->points, "points per loop branch, in [2, 100000] (default: 101)")
+      ->check(whole_number_in(2, 100000));
   cmd->callback([o, &action] {
     action = [o] { return run_guarded([o](std::string& out) { run_sphere(*o, out); }); };
   });

@@ -20,7 +20,33 @@ void Material::validate(std::string_view name) const {
   require_positive(n + ".E", E);
   require_in_half_open(n + ".nu", nu, 0.0, 0.5);
   require_non_negative(n + ".G (0 = derive from E and nu)", G);
+  if (G > 0.0) require_shear_modulus_range(n + ".G", G, n + ".E", E);
   require_non_negative(n + ".H (0 = not given)", H);
+}
+
+void require_shear_modulus_range(std::string_view G_name, double G, std::string_view E_name,
+                                 double E) {
+  if (G >= E / 3.0 && G <= E / 2.0) return;
+  throw InvalidInput(fmt::format(
+      "{} = {} Pa is not allowed with {} = {} Pa: an isotropic material has G = E/(2(1 + nu)), "
+      "so 0 <= nu <= 0.5 needs E/3 <= G <= E/2 ({} to {} Pa; G <= E/2 is nu >= 0, G >= E/3 is "
+      "nu <= 0.5)",
+      G_name, core::format_value(G), E_name, core::format_value(E), core::format_value(E / 3.0),
+      core::format_value(E / 2.0)));
+}
+
+std::vector<std::string> hardness_warnings(double H, double E_star) {
+  std::vector<std::string> w;
+  const double ratio = H / E_star;
+  if (ratio < 1e-3 || ratio > 0.2) {
+    w.push_back(fmt::format(
+        "hardness H = {} Pa is {:.3g} E*: outside 1e-3 to 0.2 E* (lead to diamond-like "
+        "coatings), where the asperity laws were built; the critical interference omega_c = "
+        "(pi K H/(2 E*))^2 R (Eq. 3.5) and everything normalized by it are far from any "
+        "measured contact",
+        core::format_value(H), ratio));
+  }
+  return w;
 }
 
 double Material::shear_modulus() const {

@@ -6,13 +6,11 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <memory>
-#include <random>
 
 #include "asperity/core/error.hpp"
+#include "asperity/core/file_io.hpp"
 
 namespace asperity::core {
 
@@ -73,6 +71,15 @@ void for_each_line(const std::string& path, F&& on_line) {
   if (!carry.empty()) on_line(std::string_view(carry));
 }
 
+// At most 40 characters of a cell for a message, control characters as '?'.
+std::string excerpt(std::string_view s) {
+  std::string out(s.substr(0, 40));
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  return s.size() > 40 ? out + "..." : out;
+}
+
 }  // namespace
 
 const CsvColumn* CsvTable::find(std::string_view name) const {
@@ -100,12 +107,25 @@ std::vector<double> CsvTable::si_values(const CsvColumn& column, Dimension d) co
 }
 
 CsvTable read_csv_table(const std::string& path) {
+  // A regular file within the cap, checked before reading (file_io.hpp); then streamed.
+  require_regular_input(path, kMaxTableFileBytes, "the data file");
   CsvTable table{path, {}};
   std::size_t line_no = 0;
   char sep = ',';
   bool have_header = false;
   for_each_line(path, [&](std::string_view line) {
     ++line_no;
+    // A binary file is refused before any of it is echoed in a message.
+    if (line_no == 1 && line.substr(0, 4) == std::string_view("PK\x03\x04", 4)) {
+      throw InvalidInput(fmt::format(
+          "{}: is a zip archive (an X3P height map?), not a delimited text table of numbers",
+          path));
+    }
+    if (line.find('\0') != std::string_view::npos) {
+      throw InvalidInput(fmt::format(
+          "{}:{}: is not a text table: it holds binary data (a zero byte)", path, line_no));
+    }
+    require_utf8(line, path, "the data file", line_no);
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (line_no == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);  // UTF-8 BOM
     const std::string_view t = trim(line);
@@ -124,7 +144,7 @@ CsvTable read_csv_table(const std::string& path) {
           if (end == std::string_view::npos) {
             throw InvalidInput(
                 fmt::format("{}:{}: header cell \"{}\" opens a unit but does not close it", path,
-                            line_no, cell));
+                            line_no, excerpt(cell)));
           }
           c.name = trim(cell.substr(0, open));
           c.unit = trim(cell.substr(open + 1, end - open - 1));
@@ -150,7 +170,7 @@ CsvTable read_csv_table(const std::string& path) {
       const auto [p, ec] = std::from_chars(first, s.data() + s.size(), v);
       if (s.empty() || ec != std::errc() || p != s.data() + s.size() || !std::isfinite(v)) {
         throw InvalidInput(fmt::format("{}:{}: column \"{}\": \"{}\" is not a finite number", path,
-                                       line_no, table.columns[i].name, s));
+                                       line_no, excerpt(table.columns[i].name), excerpt(s)));
       }
       table.columns[i++].values.push_back(v);
     });
@@ -164,75 +184,59 @@ CsvTable read_csv_table(const std::string& path) {
 
 void write_file_streamed(const std::string& path,
                          const std::function<void(const ChunkSink&)>& produce) {
-  const std::filesystem::path target(path);
-  if (target.filename().empty()) {
-    throw InvalidInput(fmt::format("output path \"{}\" names no file", path));
-  }
-  if (std::filesystem::is_directory(target)) {
-    throw InvalidInput(fmt::format("output path \"{}\" is a directory: give a file name", path));
-  }
-  std::random_device rd;
-  const auto tmp = target.parent_path() / fmt::format(".{}.tmp-{:08x}", target.filename().string(),
-                                                      static_cast<unsigned>(rd()));
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) {
-      throw InvalidInput(fmt::format(
-          "cannot write \"{}\": the directory does not exist or is not writable", path));
+  OutputSet set;
+  set.add_streamed(path, produce);
+  set.commit();
+}
+
+std::string csv_text(const std::vector<std::string>& header,
+                     const std::vector<std::vector<double>>& columns) {
+  std::string out;
+  for (std::size_t i = 0; i < header.size(); ++i) out += (i ? "," : "") + header[i];
+  out += "\n";
+  const std::size_t rows = columns.empty() ? 0 : columns.front().size();
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (c) out += ',';
+      fmt::format_to(std::back_inserter(out), "{:.12g}", columns[c][r]);
     }
-    try {
-      produce([&f](std::string_view chunk) {
-        f.write(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-      });
-    } catch (...) {
-      f.close();
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw;
-    }
-    f.close();  // a full disk may show only when the buffer is written out
-    if (f.fail()) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw InvalidInput(fmt::format("writing \"{}\" failed", path));
-    }
+    out += '\n';
   }
-  std::error_code ec;
-  std::filesystem::rename(tmp, target, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw InvalidInput(fmt::format("cannot write \"{}\": {}", path, ec.message()));
-  }
+  return out;
 }
 
 void write_file_atomically(const std::string& path, const std::string& content) {
-  write_file_streamed(path, [&content](const ChunkSink& sink) { sink(content); });
+  write_output_file(path, content);
+}
+
+void write_csv_chunks(const std::vector<std::string>& header,
+                      const std::vector<std::vector<double>>& columns, const ChunkSink& sink) {
+  // Formatted into a buffer handed on every 1 MiB: memory holds one chunk, not the file.
+  constexpr std::size_t kChunk = std::size_t{1} << 20;
+  fmt::memory_buffer buf;
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    fmt::format_to(std::back_inserter(buf), "{}{}", i ? "," : "", header[i]);
+  }
+  buf.push_back('\n');
+  const std::size_t rows = columns.empty() ? 0 : columns.front().size();
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (c) buf.push_back(',');
+      fmt::format_to(std::back_inserter(buf), "{:.12g}", columns[c][r]);
+    }
+    buf.push_back('\n');
+    if (buf.size() >= kChunk) {
+      sink(std::string_view(buf.data(), buf.size()));
+      buf.clear();
+    }
+  }
+  sink(std::string_view(buf.data(), buf.size()));
 }
 
 void write_csv_table(const std::string& path, const std::vector<std::string>& header,
                      const std::vector<std::vector<double>>& columns) {
-  write_file_streamed(path, [&](const ChunkSink& sink) {
-    // Formatted into a buffer handed on every 1 MiB: memory holds one chunk, not the file.
-    constexpr std::size_t kChunk = std::size_t{1} << 20;
-    fmt::memory_buffer buf;
-    for (std::size_t i = 0; i < header.size(); ++i) {
-      fmt::format_to(std::back_inserter(buf), "{}{}", i ? "," : "", header[i]);
-    }
-    buf.push_back('\n');
-    const std::size_t rows = columns.empty() ? 0 : columns.front().size();
-    for (std::size_t r = 0; r < rows; ++r) {
-      for (std::size_t c = 0; c < columns.size(); ++c) {
-        if (c) buf.push_back(',');
-        fmt::format_to(std::back_inserter(buf), "{:.12g}", columns[c][r]);
-      }
-      buf.push_back('\n');
-      if (buf.size() >= kChunk) {
-        sink(std::string_view(buf.data(), buf.size()));
-        buf.clear();
-      }
-    }
-    sink(std::string_view(buf.data(), buf.size()));
-  });
+  write_file_streamed(path,
+                      [&](const ChunkSink& sink) { write_csv_chunks(header, columns, sink); });
 }
 
 }  // namespace asperity::core

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "asperity/core/error.hpp"
+#include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
 #include "asperity/dynamics/epb.hpp"
 #include "asperity/hysteresis/backbones.hpp"
@@ -634,14 +635,9 @@ DynamicsCase parse_case_text(const std::string& file_text, const std::string& pa
 }
 
 DynamicsCase read_case_file(const std::string& path) {
-  std::string file_text;
-  {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InvalidInput(fmt::format("{}: cannot open the case file", path));
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    file_text = ss.str();
-  }
+  const std::string file_text =
+      core::read_input_file(path, core::kMaxCaseFileBytes, "the case file");
+  core::require_utf8(file_text, path, "the case file");
   const auto dir = std::filesystem::path(path).parent_path();
   return parse_case_text(file_text, path, dir.empty() ? "." : dir.string());
 }
@@ -857,6 +853,14 @@ CaseResult run_case(const DynamicsCase& c, const RunOptions& options) {
                                     loop.displacement_amplitude / std::abs(h->amplitude)},
                                    {"force_amplitude", loop.force_amplitude},
                                    {"mean_displacement", loop.mean_displacement}});
+    } else {
+      // The analysis asked for cannot be done: say so instead of leaving it out.
+      r.warnings.push_back(fmt::format(
+          "steady_loop is left out: loop_cycles = {} needs the run to last (loop_cycles + 1) = {} "
+          "excitation periods, tau = {:.6g}, but duration = {:.6g} ({:.3g} periods); lengthen "
+          "duration or lower [dynamics.analysis] loop_cycles",
+          c.analysis.loop_cycles, c.analysis.loop_cycles + 1, (c.analysis.loop_cycles + 1) * period,
+          sim.duration, sim.duration / period));
     }
   }
   SummaryArray w;

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "asperity/core/error.hpp"
+#include "asperity/core/interrupt.hpp"
 #include "asperity/core/numerics.hpp"
 #include "asperity/core/validate.hpp"
 
@@ -329,6 +330,7 @@ IntegratorStats integrate(OdeProblem& problem, std::span<const double> y0, doubl
   };
 
   while (t < t1) {
+    core::check_interrupt();  // a front end's Ctrl-C (core/interrupt.hpp)
     if (stats.steps >= options.max_steps) {
       fail(t, absh, fmt::format("more than {} steps", options.max_steps));
     }

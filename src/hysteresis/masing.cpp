@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "asperity/core/error.hpp"
+#include "asperity/core/interrupt.hpp"
 #include "asperity/core/numerics.hpp"
 #include "asperity/core/validate.hpp"
 #include "asperity/hysteresis/backbones.hpp"
@@ -269,7 +270,10 @@ std::vector<double> Hysteresis::forces(std::span<const double> x_history) const 
   Hysteresis h = *this;
   std::vector<double> out;
   out.reserve(x_history.size());
-  for (double x : x_history) out.push_back(h.update(x));
+  for (std::size_t i = 0; i < x_history.size(); ++i) {
+    if ((i & 0xFFF) == 0) core::check_interrupt();
+    out.push_back(h.update(x_history[i]));
+  }
   return out;
 }
 
@@ -277,7 +281,10 @@ std::vector<double> Hysteresis::displacements(std::span<const double> Q_history)
   Hysteresis h = *this;
   std::vector<double> out;
   out.reserve(Q_history.size());
-  for (double Q : Q_history) out.push_back(h.update_force(Q));
+  for (std::size_t i = 0; i < Q_history.size(); ++i) {
+    if ((i & 0xFFF) == 0) core::check_interrupt();
+    out.push_back(h.update_force(Q_history[i]));
+  }
   return out;
 }
 

@@ -14,8 +14,10 @@
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
 #include "asperity/surface/profile_io.hpp"
+#include "asperity/surface/scan_set.hpp"
 
 namespace asperity::joint {
 
@@ -41,37 +43,28 @@ double Bolts::preload(double torque) const {
 
 HalfRoughness half_roughness_from_files(const std::vector<std::string>& files,
                                         const ProfileSettings& settings) {
-  if (files.empty()) throw InvalidInput("profiles: give one or two scan files");
-  if (files.size() > 2) {
-    throw InvalidInput(fmt::format(
-        "profiles: {} files given; give one (isotropic) or two (max- and min-slope directions)",
-        files.size()));
-  }
+  if (files.empty()) throw InvalidInput("profiles: give the scan files");
   settings.filter.validate();
+  std::vector<surface::ScanFile> scans;
+  for (const auto& f : files) scans.push_back(surface::parse_scan_file(f));
+  // The same function as `asperity roughness --surface` (scan_set.hpp).
+  const auto r = surface::equivalent_isotropic_surface(scans, {.level = settings.level,
+                                                               .filter = settings.filter,
+                                                               .rule = settings.rule,
+                                                               .text = {.dx = settings.dx}});
   HalfRoughness out;
-  out.profiles = files;
-  std::array<surface::SpectralMoments, 2> m{};
-  std::size_t count = 0;
-  for (const auto& f : files) {
-    const auto map = surface::read_height_file(f, {.dx = settings.dx});
-    if (!map.is_profile()) {
-      throw InvalidInput(
-          fmt::format("{}: areal files are not supported in case files; give line "
-                      "scans (or use `asperity roughness` and give parameters)",
-                      f));
+  for (const auto& sc : scans) out.profiles.push_back(sc.path);
+  out.moments = r.moments;
+  for (const auto& sc : r.scans) {
+    // "isotropic (one scan)" -> "isotropic", "x (max_slope)" -> "max_slope"
+    const auto open = sc.direction.find('(');
+    std::string d = sc.direction;
+    if (sc.direction.starts_with("isotropic")) {
+      d = "isotropic";
+    } else if (open != std::string::npos) {
+      d = sc.direction.substr(open + 1, sc.direction.size() - open - 2);
     }
-    m[count++] =
-        surface::process_profile(map.as_profile(), settings.level, settings.filter).moments;
-  }
-  if (count == 1) {
-    out.moments = m[0];
-    out.directions = {"isotropic"};
-  } else {
-    const surface::SpectralMoments m0 = m[0], m1 = m[1];
-    const bool first_max = m0.m2 >= m1.m2;
-    out.moments =
-        surface::equivalent_isotropic(first_max ? m0 : m1, first_max ? m1 : m0, settings.rule);
-    out.directions = {first_max ? "max_slope" : "min_slope", first_max ? "min_slope" : "max_slope"};
+    out.directions.push_back(d);
   }
   return out;
 }
@@ -155,6 +148,7 @@ class Reader {
   static std::string text_of(const toml::node* n) {
     if (!n) return "";
     if (const auto s = n->value<std::string>()) return fmt::format("\"{}\"", *s);
+    if (n->is_boolean()) return *n->value<bool>() ? "true" : "false";
     if (const auto v = n->value<double>()) return fmt::format("{}", *v);
     return "(a table or array)";
   }
@@ -368,15 +362,21 @@ HalfRoughness parse_roughness(const Reader& r, const toml::table& half, const st
   }
   const std::string w = where + ".profiles";
   const auto* a = prof->as_array();
-  if (!a || a->empty() || a->size() > 2) {
+  if (!a || a->empty()) {
     r.fail(prof, w,
-           "must be an array of one or two scan files, e.g. [\"pzt_max.csv\", \"pzt_min.csv\"]");
+           "must be an array of scan files, e.g. [\"pzt_max.csv\", \"pzt_min.csv\"] (tags "
+           "FILE@max / FILE@min and one areal file as for `asperity roughness --surface`)");
   }
   std::vector<std::string> files;
   for (std::size_t i = 0; i < a->size(); ++i) {
     const auto s = a->get(i)->value<std::string>();
     if (!s) r.fail(a->get(i), fmt::format("{}[{}]", w, i + 1), "must be a file name");
-    files.push_back(r.resolve(*s));
+    // The tag is split off before the path is resolved against the case file's folder.
+    std::string tag;
+    for (std::string_view t : {"@max", "@min"}) {
+      if (s->size() > t.size() && s->ends_with(t)) tag = std::string(t);
+    }
+    files.push_back(r.resolve(s->substr(0, s->size() - tag.size())) + tag);
   }
   try {
     return half_roughness_from_files(files, settings);
@@ -710,7 +710,7 @@ JointCase parse_case(std::string_view text, const std::string& source,
     if (const auto* cn = b->get("count")) {
       const auto v = cn->value<int64_t>();
       if (!cn->is_integer() || !v || *v < 1 || *v > 1000)
-        r.fail(cn, "load.bolts.count", "must be a whole number >= 1");
+        r.fail_value(cn, "load.bolts.count", "must be a whole number from 1 to 1000");
       bolts.count = static_cast<int>(*v);
     }
     bolts.nut_factor =
@@ -823,12 +823,10 @@ JointCase parse_case(std::string_view text, const std::string& source,
 }
 
 JointCase read_case_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InvalidInput(fmt::format("{}: cannot open the case file", path));
-  std::ostringstream ss;
-  ss << in.rdbuf();
+  const std::string text = core::read_input_file(path, core::kMaxCaseFileBytes, "the case file");
+  core::require_utf8(text, path, "the case file");
   const auto dir = std::filesystem::path(path).parent_path();
-  return parse_case(ss.str(), path, dir.empty() ? "." : dir.string());
+  return parse_case(text, path, dir.empty() ? "." : dir.string());
 }
 
 }  // namespace asperity::joint

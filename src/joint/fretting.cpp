@@ -18,6 +18,8 @@
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/random.hpp"
+#include "asperity/core/validate.hpp"
 
 namespace asperity::joint {
 
@@ -830,10 +832,11 @@ FrettingData synthetic_experiment(std::shared_ptr<const hysteresis::Backbone> ba
       o.excitation.cycles < 1) {
     throw InvalidInput("synthetic experiment: amplitude and frequency must be > 0, cycles >= 1");
   }
-  if (!(o.sample_rate > 0.0) || !(o.pzt_stiffness > 0.0) || !(o.load_cell_stiffness > 0.0) ||
-      !(o.noise_delta >= 0.0) || !(o.noise_Q >= 0.0)) {
-    throw InvalidInput("synthetic experiment: sample rate and stiffnesses must be > 0, noise >= 0");
-  }
+  core::require_positive("synthetic experiment: sample_rate", o.sample_rate);
+  core::require_positive("synthetic experiment: pzt_stiffness", o.pzt_stiffness);
+  core::require_positive("synthetic experiment: load_cell_stiffness", o.load_cell_stiffness);
+  core::require_non_negative("synthetic experiment: noise_delta", o.noise_delta);
+  core::require_non_negative("synthetic experiment: noise_Q", o.noise_Q);
   const double per_period = o.sample_rate / o.excitation.frequency;
   if (!(per_period >= kMinSamplesPerPeriod)) {
     throw InvalidInput(fmt::format(
@@ -911,11 +914,11 @@ FrettingData synthetic_experiment(std::shared_ptr<const hysteresis::Backbone> ba
     d.Delta[i] = D;
     D_prev = D;
   }
-  std::mt19937_64 rng(o.seed);
-  std::normal_distribution<double> nd(0.0, 1.0);
+  // The same seed gives the same noise with any standard library (core/random.hpp).
+  core::StandardNormal nd(o.seed);
   for (std::size_t i = 0; i < n; ++i) {
-    d.delta[i] += o.noise_delta * nd(rng);
-    d.Q[i] += o.noise_Q * nd(rng);
+    d.delta[i] += o.noise_delta * nd();
+    d.Q[i] += o.noise_Q * nd();
   }
   return d;
 }

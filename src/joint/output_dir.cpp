@@ -2,15 +2,69 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
-#include <random>
+#include <algorithm>
+#include <set>
+#include <sstream>
 #include <system_error>
 
 #include "asperity/core/error.hpp"
+#include "asperity/core/file_io.hpp"
 
 namespace asperity::joint {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// The files the marker of `dir` lists (relative paths); empty when there is no marker,
+// it lists nothing (an empty hand-made one) or it cannot be read.
+std::set<std::string> listed_files(const fs::path& dir) {
+  std::set<std::string> files;
+  std::string text;
+  try {
+    text = core::read_input_file((dir / kOutputMarker).string(), std::size_t{1} << 20,
+                                 "the output marker");
+  } catch (const Error&) {
+    return files;
+  }
+  std::istringstream in(text);
+  std::string line;
+  bool in_list = false;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (in_list && !line.empty()) files.insert(line);
+    if (line == kOutputMarkerListHeader) in_list = true;
+  }
+  return files;
+}
+
+// The entries of `dir` (relative paths, directories with a trailing '/') that the marker
+// does not list: the user's files.
+std::vector<std::string> unlisted_entries(const fs::path& dir,
+                                          const std::set<std::string>& listed) {
+  std::vector<std::string> other;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string rel = it->path().lexically_relative(dir).generic_string();
+    if (rel == kOutputMarker) continue;
+    std::error_code e2;
+    if (it->is_directory(e2) && !it->is_symlink(e2)) {
+      const std::string prefix = rel + "/";
+      const auto pos = listed.lower_bound(prefix);
+      if (pos == listed.end() || pos->compare(0, prefix.size(), prefix) != 0) {
+        other.push_back(prefix);
+        it.disable_recursion_pending();
+      }
+      continue;
+    }
+    if (!listed.contains(rel)) other.push_back(rel);
+  }
+  if (ec) other.push_back(fmt::format("(cannot list the directory: {})", ec.message()));
+  std::sort(other.begin(), other.end());
+  return other;
+}
+
+}  // namespace
 
 void require_replaceable_output(const fs::path& dir, const std::string& given) {
   std::error_code ec;
@@ -25,13 +79,25 @@ void require_replaceable_output(const fs::path& dir, const std::string& given) {
   if (!fs::is_directory(st)) {
     throw InvalidInput(fmt::format("--out \"{}\" is an existing file, not a directory", given));
   }
-  if (fs::exists(dir / kOutputMarker, ec)) return;  // an earlier asperity output
   if (fs::is_empty(dir, ec) && !ec) return;
+  const bool marked = fs::exists(dir / kOutputMarker, ec);
+  const auto other = unlisted_entries(dir, listed_files(dir));
+  if (other.empty()) return;  // only what an earlier asperity wrote (and the marker)
+  std::string names;
+  for (std::size_t i = 0; i < other.size() && i < 5; ++i) names += (i ? ", " : "") + other[i];
+  if (other.size() > 5) names += fmt::format(" and {} more", other.size() - 5);
+  if (!marked) {
+    throw InvalidInput(fmt::format(
+        "--out \"{}\" is an existing directory that asperity did not write (it has files but no "
+        "{} marker: {}); asperity replaces its output directory as a whole, so it refuses to "
+        "touch it: choose another --out or remove the directory yourself",
+        given, kOutputMarker, names));
+  }
   throw InvalidInput(fmt::format(
-      "--out \"{}\" is an existing directory that asperity did not write (it has files but no {} "
-      "marker); asperity replaces its output directory as a whole, so it refuses to touch it: "
-      "choose another --out or remove the directory yourself",
-      given, kOutputMarker));
+      "--out \"{}\" holds files that asperity did not write (its {} marker does not list "
+      "them): {}; asperity replaces its output directory as a whole, so it refuses: move them "
+      "out or choose another --out",
+      given, kOutputMarker, names));
 }
 
 namespace {
@@ -107,9 +173,8 @@ StagedDirectory::StagedDirectory(const std::string& final_dir, const std::string
                                      final_dir, ec.message()));
     }
   }
-  std::random_device rd;
-  tmp_ = final_.parent_path() /
-         fmt::format(".{}.tmp-{:08x}", final_.filename().string(), static_cast<unsigned>(rd()));
+  core::remove_stale_temporaries(final_);
+  tmp_ = core::temporary_sibling(final_, "tmp");
   if (!fs::create_directory(tmp_, ec) || ec) {
     remove_created_parents();
     throw InvalidInput(fmt::format(
@@ -117,22 +182,15 @@ StagedDirectory::StagedDirectory(const std::string& final_dir, const std::string
         "writable?",
         final_dir, ec ? ec.message() : "it exists"));
   }
-  std::ofstream marker(tmp_ / kOutputMarker);
-  marker << fmt::format(
-      "Written by {}. This directory is replaced as a whole when asperity writes to it again\n"
-      "(--out); without this file asperity refuses to touch the directory.\n",
-      what);
-  if (!marker) {
-    fs::remove_all(tmp_, ec);
-    remove_created_parents();
-    throw InvalidInput(fmt::format("--out \"{}\": cannot write into {}", final_dir, tmp_.string()));
-  }
+  slot_ = core::register_temporary(tmp_, true, given_);
+  what_ = what;
 }
 
 StagedDirectory::~StagedDirectory() {
   if (!committed_) {
     std::error_code ec;
     fs::remove_all(tmp_, ec);
+    core::unregister_temporary(slot_);
     remove_created_parents();
   }
 }
@@ -148,26 +206,46 @@ std::string StagedDirectory::file(const std::string& name) const {
 }
 
 void StagedDirectory::commit() {
+  // The marker lists every file written, so that the next run replaces only those.
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(tmp_, ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code e2;
+    if (it->is_directory(e2)) continue;
+    const auto rel = it->path().lexically_relative(tmp_).generic_string();
+    if (rel != kOutputMarker) files.push_back(rel);
+  }
+  std::sort(files.begin(), files.end());
+  std::string marker = fmt::format(
+      "Written by {}. asperity replaces this directory when it writes to it again (--out) only\n"
+      "while it holds nothing but the files listed below; it refuses to touch a directory\n"
+      "without this file or with other files.\n{}\n",
+      what_, kOutputMarkerListHeader);
+  for (const auto& f : files) marker += f + "\n";
+  core::write_output_file((tmp_ / kOutputMarker).string(), marker);
   // Checked again: the directory may have been created or filled while we worked.
   require_replaceable_output(final_, given_);
-  std::error_code ec;
+  const core::SignalBlock block;  // the renames below are not cut by SIGINT/SIGTERM
   fs::path old;
+  int old_slot = -1;
   if (fs::exists(fs::symlink_status(final_, ec))) {
-    std::random_device rd;
-    old = final_.parent_path() /
-          fmt::format(".{}.old-{:08x}", final_.filename().string(), static_cast<unsigned>(rd()));
+    old = core::temporary_sibling(final_, "old");
     fs::rename(final_, old, ec);
     if (ec) throw InvalidInput(fmt::format("cannot replace \"{}\": {}", given_, ec.message()));
+    old_slot = core::register_temporary(old, true, given_);
   }
   fs::rename(tmp_, final_, ec);
   if (ec) {
     std::error_code ec2;
     if (!old.empty()) fs::rename(old, final_, ec2);
+    core::unregister_temporary(old_slot);
     throw InvalidInput(fmt::format("cannot write \"{}\": {}", given_, ec.message()));
   }
   committed_ = true;
-  // `old` is an earlier asperity output (it has the marker) or an empty directory.
+  core::unregister_temporary(slot_);
+  // `old` held only an earlier asperity output's files (checked above) or nothing.
   if (!old.empty()) fs::remove_all(old, ec);
+  core::unregister_temporary(old_slot);
 }
 
 }  // namespace asperity::joint

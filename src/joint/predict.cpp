@@ -8,7 +8,9 @@
 #include <mutex>
 #include <vector>
 
+#include "asperity/contact/material.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/interrupt.hpp"
 #include "asperity/core/numerics.hpp"
 #include "asperity/core/parallel.hpp"
 #include "asperity/hysteresis/backbones.hpp"
@@ -233,6 +235,9 @@ JointPrediction predict(const JointCase& c,
   out.beta = flat.parameters().beta;
   out.psi = flat.parameters().psi;
   out.force_scale = flat.scales()->force;
+  out.warnings = flat.warnings();
+  for (auto& w : contact::hardness_warnings(flat.scales()->pair.H, flat.scales()->pair.E_star))
+    out.warnings.push_back(std::move(w));
   // The load cases are independent: one per thread (core::parallel_for), each into its
   // own slot, so the result does not depend on the number of threads.
   const std::size_t n = c.preloads.size();
@@ -240,6 +245,7 @@ JointPrediction predict(const JointCase& c,
   std::mutex progress_mutex;
   std::size_t done = 0;
   core::parallel_for(n, [&](std::size_t i) {
+    core::check_interrupt();
     LoadPrediction lp;
     try {
       lp =
@@ -261,6 +267,11 @@ JointPrediction predict(const JointCase& c,
     }
   });
   out.loads = std::move(loads);
+  // In the order of the preloads, whatever the threads' order.
+  for (const auto& lp : out.loads) {
+    if (auto w = surface::friction_coefficient_warning(lp.mu); !w.empty())
+      out.warnings.push_back(fmt::format("at {:.5g} N: {}", lp.preload, w));
+  }
   return out;
 }
 

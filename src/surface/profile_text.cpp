@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "asperity/core/error.hpp"
+#include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
 #include "asperity/surface/profile_io.hpp"
 
@@ -691,20 +692,7 @@ Profile parse_profile_text(std::string_view content, std::string_view source,
 }
 
 std::string read_file_bytes(const std::string& path, std::size_t max_bytes) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InvalidInput(fmt::format("{}: cannot open the file (does it exist?)", path));
-  in.seekg(0, std::ios::end);
-  const auto size = in.tellg();
-  if (size < 0) throw InvalidInput(fmt::format("{}: cannot read the file", path));
-  if (static_cast<std::size_t>(size) > max_bytes) {
-    throw InvalidInput(fmt::format("{}: the file is {} bytes, more than the {} allowed", path,
-                                   static_cast<std::size_t>(size), max_bytes));
-  }
-  in.seekg(0, std::ios::beg);
-  std::string bytes(static_cast<std::size_t>(size), '\0');
-  in.read(bytes.data(), size);
-  if (!in) throw InvalidInput(fmt::format("{}: reading the file failed", path));
-  return bytes;
+  return core::read_input_file(path, max_bytes, "the profile file");
 }
 
 namespace {
@@ -712,6 +700,9 @@ namespace {
 using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
 
 File open_input(const std::string& path) {
+  // A regular file within the cap, before anything is read (a stream such as /dev/zero
+  // would otherwise be read until memory runs out).
+  core::require_regular_input(path, core::kMaxProfileFileBytes, "the profile file");
   File f(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!f) throw InvalidInput(fmt::format("{}: cannot open the file (does it exist?)", path));
   return f;

@@ -29,7 +29,10 @@ namespace {
 // the part of main.xml outside the DataList that is parsed into a DOM (metadata of a
 // few KB in practice; a DOM node costs ~64 bytes, so 1 MiB bounds the tree at ~16 MB),
 // the bytes per inline point, and md5checksum.hex (32 hex digits and a file name).
-constexpr std::uint64_t kMaxPoints = std::uint64_t{1} << 28;         // 268 M points
+// Points: 2^25 = 33.5 million (8192 x 4096; 256 MiB as doubles). A declared size is
+// checked against it, and the point data's real uncompressed size (decompressed once
+// without keeping it) against the declared size, before anything is allocated.
+constexpr std::uint64_t kMaxPoints = std::uint64_t{1} << 25;
 constexpr std::uint64_t kMaxEntryBytes = std::uint64_t{1} << 31;     // 2 GiB
 constexpr std::uint64_t kMaxMainXmlBytes = std::uint64_t{1} << 26;   // 64 MiB
 constexpr std::uint64_t kMaxMetadataBytes = std::uint64_t{1} << 20;  // 1 MiB
@@ -169,6 +172,30 @@ class Reader {
     }
     if (out.size() != size) fail(name, "the archive entry is shorter than its header says");
     return out;
+  }
+
+  // The real uncompressed size of an entry and its MD5, decompressing it in 64 KiB
+  // pieces without keeping it; stops past `max_bytes`. The archive's header may lie.
+  std::pair<std::uint64_t, std::string> stream_size(const std::string& name,
+                                                    std::uint64_t max_bytes) const {
+    zip_int64_t index = 0;
+    entry_size(name, max_bytes, &index);
+    ZipFilePtr f(zip_fopen_index(zip_.get(), static_cast<zip_uint64_t>(index), 0));
+    if (!f) fail(name, "cannot open the archive entry (unsupported compression or encryption?)");
+    detail::Md5 md5;
+    std::uint64_t total = 0;
+    char buf[65536];
+    while (true) {
+      const zip_int64_t got = zip_fread(f.get(), buf, sizeof buf);
+      if (got < 0) fail(name, "the archive entry is corrupt (read or CRC error)");
+      if (got == 0) break;
+      total += static_cast<std::uint64_t>(got);
+      if (total > max_bytes) fail(name, "the archive entry is longer than its header says");
+      md5.update(std::string_view(buf, static_cast<std::size_t>(got)));
+    }
+    std::string hex;
+    for (const auto b : md5.digest()) hex += fmt::format("{:02x}", b);
+    return {total, hex};
   }
 
   bool has_entry(const std::string& name) const {
@@ -618,15 +645,21 @@ HeightMap parse_x3p(std::string_view bytes, std::string_view source) {
       reader.fail(link, fmt::format("{} bytes, but {} x {} points of type {} need {}", claimed, sx,
                                     sy, type_letter(type), want));
     }
+    // The real size and checksum first (nothing kept), then the data: a header that
+    // claims a size its compressed stream does not hold allocates nothing.
+    const auto [real, md5] = reader.stream_size(link, want);
+    if (real != want) {
+      reader.fail(link, fmt::format("{} bytes, but {} x {} points of type {} need {}", real, sx, sy,
+                                    type_letter(type), want));
+    }
+    if (!same_hex(md5, expected_md5)) {
+      reader.fail(link, fmt::format("MD5 checksum mismatch: the data has {}, main.xml says {}", md5,
+                                    excerpt(expected_md5)));
+    }
     const std::string data = reader.read_entry(link, want);
     if (data.size() != want) {
       reader.fail(link, fmt::format("{} bytes, but {} x {} points of type {} need {}", data.size(),
                                     sx, sy, type_letter(type), want));
-    }
-    const auto md5 = detail::md5_hex(data);
-    if (!same_hex(md5, expected_md5)) {
-      reader.fail(link, fmt::format("MD5 checksum mismatch: the data has {}, main.xml says {}", md5,
-                                    excerpt(expected_md5)));
     }
     map.z.resize(static_cast<std::size_t>(n));
     const auto* p = reinterpret_cast<const unsigned char*>(data.data());

@@ -190,7 +190,22 @@ void RoughFlatParameters::validate() const {
         "eta",
         core::format_value(beta)));
   }
-  core::require_positive("psi (plasticity index)", psi);
+  if (!std::isfinite(beta) || beta > kMaxRoughnessParameter) {
+    throw InvalidInput(fmt::format(
+        "beta = sigma_s R eta = {} is not allowed: it must be at most 1/pi = 0.318, beyond which "
+        "the asperity caps within one sigma_s of their summits would cover more than the nominal "
+        "area, so they cannot be the isolated asperities of the Greenwood-Williamson sum (Eq. "
+        "4.4; engineering surfaces give 0.02-0.06); check sigma, R and eta",
+        core::format_value(beta)));
+  }
+  if (!std::isfinite(psi) || !(psi >= kMinPlasticityIndex)) {
+    throw InvalidInput(fmt::format(
+        "psi (plasticity index) = {} is not allowed: it must be at least {}; below it "
+        "omega_c/sigma = (sigma_a/sigma)/psi^2 exceeds 350, no asperity yields and the asperity "
+        "friction laws give mu of 10 and more (BKE at P* = 1e-3: 14 at psi = 0.05, 49.9 at "
+        "0.01; the thesis uses psi = 0.5 to 4.7)",
+        core::format_value(psi), kMinPlasticityIndex));
+  }
   core::require_in_half_open("nu", nu, 0.0, 0.5);
   // Isotropic bodies give (1 - nu)/(2 (2 - nu)), 0.17-0.25, for each body and any pair;
   // measured shear moduli may differ, but not by a factor of four.
@@ -209,6 +224,34 @@ RoughFlat::RoughFlat(const RoughFlatParameters& params)
   s_a_ = std::sqrt(1.0 - 3.717e-4 / (params.beta * params.beta));
   omega_c_star_ = s_a_ / (params.psi * params.psi);
   prefactor_ = 2.0 * std::numbers::pi / 3.0 * params.beta * omega_c_star_;
+}
+
+std::vector<std::string> RoughFlat::warnings() const {
+  std::vector<std::string> w;
+  if (params_.psi < 0.5) {
+    w.push_back(fmt::format(
+        "plasticity index psi = {:.4g} is below 0.5, the smallest of the thesis (Fig. 4.4): the "
+        "asperities stay elastic (omega_c/sigma = {:.4g}) where the asperity friction laws give "
+        "mu growing as the load falls; read mu with care",
+        params_.psi, omega_c_star_));
+  }
+  if (params_.beta > 0.06) {
+    w.push_back(fmt::format(
+        "roughness parameter beta = sigma R eta = {:.4g} is above 0.06, the top of the range of "
+        "engineering surfaces (0.02-0.06, thesis below Eq. 4.2): the asperities are dense for the "
+        "Greenwood-Williamson sum of independent asperities",
+        params_.beta));
+  }
+  return w;
+}
+
+std::string friction_coefficient_warning(double mu) {
+  if (!(mu > 3.0)) return {};
+  return fmt::format(
+      "friction coefficient mu = {:.4g} is above 3: more than any of the thesis's computations "
+      "(BKE at psi = 0.5, P* = 1e-3, Fig. 4.4: 2.0) or measurements (0.33-0.35, ch. 5); check "
+      "the plasticity index and the model",
+      mu);
 }
 
 RoughFlat RoughFlat::from_dimensional(const contact::Material& body1,
@@ -232,6 +275,15 @@ RoughFlat RoughFlat::from_dimensional(const contact::Material& body1,
   const double s_a = std::sqrt(1.0 - 3.717e-4 / (p.beta * p.beta));
   // Plasticity index on sigma_a (SEED_NOTES.md): psi = (2E*/(pi K H)) sqrt(sigma_a/R).
   p.psi = 2.0 * pair.E_star / (std::numbers::pi * pair.K() * pair.H) * std::sqrt(s_a * sigma / R);
+  try {
+    p.validate();
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format(
+        "{} (from E* = {} Pa, H = {} Pa of the softer material, sigma = {} m, R = {} m, "
+        "eta = {} 1/m^2)",
+        e.what(), core::format_value(pair.E_star), core::format_value(pair.H),
+        core::format_value(sigma), core::format_value(R), core::format_value(eta)));
+  }
   RoughFlat flat(p);
   flat.scales_ = RoughFlatScales{
       .sigma = sigma, .force = pair.K() * pair.H * A0, .A0 = A0, .eta = eta, .R = R, .pair = pair};

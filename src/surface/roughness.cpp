@@ -456,10 +456,23 @@ namespace {
 // are taken as round-off: three orders of magnitude from either side.
 constexpr double kRoundOffLevel = 1e-12;
 
-double rms_about_zero(const std::vector<double>& z) {
+// The rms of the raw heights about zero, scaled by the largest height so that heights
+// near the double range do not overflow the sum of squares (which made +-1e300 heights
+// look flat); heights above a metre are refused (a wrong unit, not a surface).
+double rms_about_zero(const std::vector<double>& z, const std::string& name) {
+  double zmax = 0.0;
+  for (double v : z) zmax = std::max(zmax, std::abs(v));
+  if (zmax > 1.0) {
+    throw InvalidInput(fmt::format(
+        "{}: heights up to {:.3g} m: a surface profile's heights are micrometres to millimetres "
+        "(a profilometer's range), not more than a metre; check the unit of the height column",
+        name, zmax));
+  }
   double ss = 0.0;
-  for (double v : z) ss += v * v;
-  return std::sqrt(ss / static_cast<double>(z.size()));
+  if (zmax > 0.0) {
+    for (double v : z) ss += (v / zmax) * (v / zmax);
+  }
+  return zmax * std::sqrt(ss / static_cast<double>(z.size()));
 }
 
 void refuse_round_off(const std::string& name, double scale, double dx,
@@ -492,8 +505,8 @@ ProcessedProfile process_profile(const Profile& raw, Levelling levelling,
   p.levelled = level(raw, levelling);
   p.filtered = filter.is_none() ? p.levelled : filter.apply(p.levelled);
   p.moments = spectral_moments(p.filtered);
-  refuse_round_off(source_name(raw), rms_about_zero(raw.z), p.filtered.dx, p.moments, levelling,
-                   filter);
+  refuse_round_off(source_name(raw), rms_about_zero(raw.z, source_name(raw)), p.filtered.dx,
+                   p.moments, levelling, filter);
   p.moments.validate(source_name(raw));
   return p;
 }
@@ -501,7 +514,7 @@ ProcessedProfile process_profile(const Profile& raw, Levelling levelling,
 ProfileMoments profile_moments(Profile raw, Levelling levelling, const GaussianFilter& filter) {
   const std::string name = source_name(raw);
   raw.validate();
-  const double scale = rms_about_zero(raw.z);
+  const double scale = rms_about_zero(raw.z, name);
   const double dx = raw.dx;
   level_in_place(raw, levelling);
   ProfileMoments out;

@@ -14,6 +14,7 @@
 
 #include "asperity/contact/material.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
 #include "asperity/core/validate.hpp"
 #include "asperity/dynamics/epb.hpp"
@@ -887,14 +888,9 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
 }
 
 VibrationCase read_case_file(const std::string& path) {
-  std::string file_text;
-  {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InvalidInput(fmt::format("{}: cannot open the case file", path));
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    file_text = ss.str();
-  }
+  const std::string file_text =
+      core::read_input_file(path, core::kMaxCaseFileBytes, "the case file");
+  core::require_utf8(file_text, path, "the case file");
   const auto dir = std::filesystem::path(path).parent_path();
   return parse_case_text(file_text, path, dir.empty() ? "." : dir.string());
 }

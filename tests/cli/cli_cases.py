@@ -67,13 +67,18 @@ BAD_INPUT = {
     # internal variable (4th element: text that must not appear).
     "omega_star_overflow": (args(drop=("--P",), extra=["--omega-star=1e300"]), "--omega-star",
                             "too large", "P = inf"),
-    "tiny_modulus": (args({"--E1": "1e-300Pa", "--E2": "1e-300Pa"}), "--E1", "critical values",
+    "tiny_modulus": (args({"--E1": "1e-300Pa", "--E2": "1e-300Pa", "--G1": "4e-301Pa",
+                           "--G2": "4e-301Pa"}), "--E1", "critical values",
                      "contact radius a = 0"),
     "delta_max_overflow": (args(extra=["--delta-max=1e307m"]), "--delta-max", "too large",
                            "delta~max"),
     "number_overflow": (args({"--P": "1e400N"}), "--P", "overflows", "does not start"),
     "number_underflow": (args({"--P": "1e-400N"}), "--P", "underflows", "does not start"),
-    "points_one": (args(extra=["--delta-max=1um", "--points=1"]), "--points", "--points = 1"),
+    "points_one": (args(extra=["--delta-max=1um", "--points=1"]), "--points",
+                   "1 is not allowed: it must be a whole number in [2, 100000]"),
+    # Issue 13: shown as typed, not wrapped to 18446744073709551615.
+    "points_overflow": (args(extra=["--delta-max=1um", "--points=99999999999999999999"]),
+                        "--points", "99999999999999999999 is not allowed"),
 }
 
 

@@ -411,12 +411,55 @@ TEST(X3p, BadInputIsRefusedWithClearMessages) {
     pkg.file("main.xml") =
         replace(pkg.file("main.xml"), "<SizeX>20</SizeX>", "<SizeX>100000000</SizeX>");
     pkg.update_main_checksum();
-    expect_x3p_refused(zip_x3p_package(pkg), "exceeds");
+    expect_x3p_refused(zip_x3p_package(pkg), "is not a size between 1 and 33554432");
+    // Issue 13's decompression bomb: each axis within its cap, the product (2^28 points,
+    // 2 GiB of doubles) past the stated limit of 2^25 points.
+    pkg = good;
+    pkg.file("main.xml") =
+        replace(pkg.file("main.xml"), "<SizeX>20</SizeX>", "<SizeX>16384</SizeX>");
+    pkg.file("main.xml") =
+        replace(pkg.file("main.xml"), "<SizeY>10</SizeY>", "<SizeY>16384</SizeY>");
+    pkg.update_main_checksum();
+    expect_x3p_refused(zip_x3p_package(pkg),
+                       "SizeX x SizeY = 16384 x 16384 exceeds 33554432 points");
     pkg = good;
     pkg.file("main.xml") =
         replace(pkg.file("main.xml"), "<SizeX>20</SizeX>", "<SizeX>2000</SizeX>");
     pkg.update_main_checksum();
     expect_x3p_refused(zip_x3p_package(pkg), "need");
+  }
+  {  // the zip headers claim the size main.xml needs, the compressed stream holds less:
+     // the real uncompressed size is checked (streamed, nothing kept) before allocating
+    auto pkg = good;
+    pkg.file("main.xml") =
+        replace(pkg.file("main.xml"), "<SizeX>20</SizeX>", "<SizeX>2000</SizeX>");
+    pkg.update_main_checksum();
+    std::string bytes = zip_x3p_package(pkg);
+    const std::uint32_t claimed = 2000u * 10u * 8u;  // float64 points
+    const std::string name = "bindata/data.bin";
+    auto patch = [&](std::string_view signature, std::size_t name_at, std::size_t size_at) {
+      std::size_t found = 0;
+      for (auto p = bytes.find(signature); p != std::string::npos;
+           p = bytes.find(signature, p + 1)) {
+        if (bytes.compare(p + name_at, name.size(), name) != 0) continue;
+        for (int b = 0; b < 4; ++b)
+          bytes[p + size_at + static_cast<std::size_t>(b)] = static_cast<char>(claimed >> (8 * b));
+        ++found;
+      }
+      EXPECT_EQ(found, 1u) << signature;
+    };
+    patch(std::string_view("PK\x03\x04", 4), 30, 22);  // local header: size at 22, name at 30
+    patch(std::string_view("PK\x01\x02", 4), 46, 24);  // central directory: 24, 46
+    try {
+      (void)parse_x3p(bytes, "bad.x3p");
+      ADD_FAILURE() << "a zip entry shorter than its header was accepted";
+    } catch (const InvalidInput& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("bad.x3p: bindata/data.bin"), std::string::npos) << what;
+      EXPECT_TRUE(what.find("1600 bytes, but 2000 x 10 points") != std::string::npos ||
+                  what.find("corrupt") != std::string::npos)
+          << what;
+    }
   }
   {  // missing entries
     auto pkg = good;

@@ -2,7 +2,9 @@
 // Materials of two bodies in contact and their combined properties (thesis Eq. 3.5,
 // B.9; SEED_NOTES.md "Combined properties").
 #include <limits>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace asperity::contact {
 
@@ -28,6 +30,18 @@ struct CriticalValues {
   double a_c = 0.0;      ///< critical contact radius [m]
   double P_c = 0.0;      ///< critical normal load [N]
 };
+
+/// Throws InvalidInput unless E/3 <= G <= E/2: an isotropic elastic material has
+/// G = E/(2(1 + nu)), and G <= E/2 is nu >= 0, G >= E/3 is nu <= 0.5. The message names
+/// `G_name` and `E_name` (a flag or a field) with both values.
+void require_shear_modulus_range(std::string_view G_name, double G, std::string_view E_name,
+                                 double E);
+
+/// Sentences for a contact whose hardness is far from any solid's relative to E*
+/// (H/E* outside [1e-3, 0.2]: from lead to diamond-like coatings), where the asperity laws
+/// of ch. 3 (fitted to metals) and their critical interference omega_c = (pi K H/(2E*))^2 R
+/// (Eq. 3.5) leave their range; empty otherwise.
+[[nodiscard]] std::vector<std::string> hardness_warnings(double H, double E_star);
 
 /// Combined properties of a sphere-on-flat (or sphere-on-sphere) contact, SI units.
 /// Hardness H and Poisson's ratio nu are those of the softer material.

@@ -59,9 +59,10 @@ struct ProfileSettings {
   std::optional<double> dx;
 };
 
-/// Moments of one joint half from its scans: one scan is taken as isotropic, two as
-/// the max- and min-slope directions (the larger m2 is max slope) combined by
-/// `settings.rule` (Eq. 5.1). The same processing as `asperity roughness`.
+/// Moments of one joint half from its scans ("FILE", "FILE@max", "FILE@min"): the
+/// equivalent isotropic surface of surface::equivalent_isotropic_surface, the function
+/// `asperity roughness --surface` calls (one scan isotropic; two untagged scans: the
+/// larger m2 is max slope; tagged scans averaged per direction; one areal file).
 [[nodiscard]] HalfRoughness half_roughness_from_files(const std::vector<std::string>& files,
                                                       const ProfileSettings& settings);
 

@@ -1,13 +1,15 @@
 #pragma once
 // An output directory written whole or not at all, and never over somebody else's files.
 //
-// Files go into a temporary sibling (.DIR.tmp-XXXXXXXX) which commit() renames to DIR.
-// Every directory written this way holds a marker file, `.asperity-output`; an existing
-// DIR is replaced only when it carries that marker (asperity wrote it) or is empty. An
-// existing non-empty DIR without the marker is refused (InvalidInput, exit 2) before any
-// work is done, and checked again at commit(). If the object is destroyed before
-// commit() (an error), the temporary directory is removed, so no partial directory is
-// left behind as if complete.
+// Files go into a temporary sibling (.DIR.tmp-PID-XXXXXXXX) which commit() renames to
+// DIR. Every directory written this way holds a marker file, `.asperity-output`, that
+// lists the files asperity wrote there; an existing DIR is replaced only when it is
+// empty or holds nothing but the files its marker lists. Any other file (one the user
+// added, or any file at all when the marker is missing or lists nothing) makes it refused
+// (InvalidInput, exit 2, naming the files) before any work is done, and checked again at
+// commit(). If the object is destroyed before commit() (an error), the temporary
+// directory is removed; it is registered for removal on SIGINT/SIGTERM
+// (core/file_io.hpp), and a temporary left by a killed run is removed by the next one.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -16,6 +18,8 @@ namespace asperity::joint {
 
 /// Name of the marker file in every directory asperity writes with --out.
 inline constexpr const char* kOutputMarker = ".asperity-output";
+/// The line of the marker after which it lists the files, one relative path a line.
+inline constexpr const char* kOutputMarkerListHeader = "files:";
 
 class StagedDirectory {
  public:
@@ -40,12 +44,15 @@ class StagedDirectory {
   std::filesystem::path final_;
   std::filesystem::path tmp_;
   std::vector<std::filesystem::path> created_parents_;  // innermost first
+  std::string what_;
+  int slot_ = -1;  // registry slot of tmp_ (core/file_io.hpp)
   bool committed_ = false;
   void remove_created_parents() noexcept;
 };
 
 /// Throws InvalidInput unless `dir` may be replaced by an asperity output: it does not
-/// exist, or it is a directory that is empty or carries the marker file.
+/// exist, or it is a directory that is empty or holds only the marker and the files it
+/// lists. The message names (up to five of) the other files.
 void require_replaceable_output(const std::filesystem::path& dir, const std::string& given);
 
 /// An input of a command: what it is ("the case file", "data file") and its path.

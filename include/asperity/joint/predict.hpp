@@ -81,6 +81,10 @@ struct JointPrediction {
   double sigma = 0.0, eta = 0.0, R = 0.0, beta = 0.0, psi = 0.0;
   double force_scale = 0.0;  ///< K H A0 [N]
   std::vector<LoadPrediction> loads;
+  /// Inputs outside the range of the thesis's laws and implausible results, one
+  /// sentence each (RoughFlat::warnings, contact::hardness_warnings,
+  /// surface::friction_coefficient_warning per preload).
+  std::vector<std::string> warnings;
 };
 
 /// Predicts every load case of `c`. `progress(i, n)` (if given) is called after each.

@@ -111,9 +111,10 @@ struct X3pPackage {
 /// Writes `map` as an X3P file.
 void write_x3p(const std::string& path, const HeightMap& map, const X3pWriteOptions& options = {});
 
-/// Reads a whole file into memory; throws InvalidInput naming the path when it
-/// cannot be read. Refuses files larger than `max_bytes`.
+/// Reads a whole regular file into memory (core::read_input_file): throws InvalidInput
+/// naming the path when it cannot be read, is not a regular file or is larger than
+/// `max_bytes` (by default core::kMaxProfileFileBytes, 1 GiB).
 [[nodiscard]] std::string read_file_bytes(const std::string& path,
-                                          std::size_t max_bytes = std::size_t{1} << 31);
+                                          std::size_t max_bytes = std::size_t{1} << 30);
 
 }  // namespace asperity::surface

@@ -7,7 +7,9 @@
 // d* = d/sigma_s, delta* = delta/sigma_s; forces over K H A0; energies over
 // K H A0 sigma_s; stiffness over K H A0/sigma_s.
 #include <memory>
+#include <numbers>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "asperity/contact/asperity_model.hpp"
@@ -27,11 +29,23 @@ enum class SlipScaling {
   own_law,
 };
 
+/// Smallest plasticity index accepted: below it omega_c* = (sigma_a/sigma_s)/psi^2 > 350,
+/// no asperity yields, and the asperity friction laws of ch. 3 (whose mu grows without
+/// bound as P/P_c -> 0) give mu of 10 and more (BKE at P* = 1e-3: 14 at psi = 0.05, 7.9
+/// at 0.1, 49.9 at 0.01);
+/// the thesis computes psi = 0.5 to 4.7 (Fig. 4.4-4.6, Table 5.4).
+inline constexpr double kMinPlasticityIndex = 0.05;
+/// Largest roughness parameter beta = sigma_s R eta accepted, 1/pi: the asperities within
+/// one sigma_s of their summits would cover pi beta > 1 of the nominal area (cap area
+/// pi R sigma_s each, eta per area), so they could not be the isolated asperities of the
+/// Greenwood-Williamson sum. Engineering surfaces: 0.02-0.06 (thesis, below Eq. 4.2).
+inline constexpr double kMaxRoughnessParameter = std::numbers::inv_pi;
+
 /// Normalized inputs of a rough flat.
 struct RoughFlatParameters {
   contact::ModelName model = contact::ModelName::bke;
-  double beta = 0.0;      ///< sigma_s R eta; must exceed 0.01928 (sigma_a real)
-  double psi = 0.0;       ///< plasticity index on sigma_a, (2E*/(pi K H)) sqrt(sigma_a/R); > 0
+  double beta = 0.0;      ///< sigma_s R eta; in (0.01928, 1/pi] (sigma_a real; isolated asperities)
+  double psi = 0.0;       ///< plasticity index on sigma_a, (2E*/(pi K H)) sqrt(sigma_a/R); >= 0.05
   double nu = 0.3;        ///< Poisson's ratio of the softer material, [0, 0.5)
   double G_over_E = 0.0;  ///< G*/E*, in (0, 1) (0.2059 for identical materials, nu = 0.3)
   contact::FrictionParameters friction{};
@@ -51,6 +65,11 @@ struct RoughFlatScales {
 };
 
 class RoughFlatBackbone;
+
+/// A sentence when a friction coefficient mu = Q_max/P is above 3, more than any of the
+/// thesis's computations (BKE at psi = 0.5, P* = 1e-3, Fig. 4.4: 2.0) or measurements
+/// (0.33-0.35, ch. 5), else empty.
+[[nodiscard]] std::string friction_coefficient_warning(double mu);
 
 /// Sum of the asperity models over Gaussian asperity heights. Every member is const
 /// and thread-safe; integrals are adaptive quadratures split at the asperity laws'
@@ -74,6 +93,10 @@ class RoughFlat {
   [[nodiscard]] double sigma_a_over_sigma() const { return s_a_; }
   /// omega_c/sigma_s = (sigma_a/sigma_s)/psi^2 (Eq. 4.5 on sigma_a).
   [[nodiscard]] double omega_c_star() const { return omega_c_star_; }
+  /// Where the inputs leave the range the thesis's laws were built for (accepted, but to
+  /// be read with care): psi < 0.5 (the smallest plasticity index of ch. 4, Fig. 4.4) and
+  /// beta > 0.06 (engineering surfaces: 0.02-0.06, below Eq. 4.2). One sentence each.
+  [[nodiscard]] std::vector<std::string> warnings() const;
 
   /// P/(K H A0) at separation d* (Eq. 4.4).
   [[nodiscard]] double normal_load_star(double d_star) const;
