@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "../core/toml_case.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
@@ -35,31 +36,10 @@ namespace {
 
 using core::Dimension;
 namespace dim = core::dim;
-
-void check_keys(const toml::table& t, const std::string& where,
-                const std::set<std::string>& allowed) {
-  for (const auto& [k, v] : t) {
-    const std::string key(k.str());
-    if (!allowed.count(key)) {
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      const auto line = k.source().begin.line > 0 ? k.source().begin.line : v.source().begin.line;
-      const std::string at = line > 0 ? fmt::format(" at line {}", line) : std::string();
-      throw InvalidInput(fmt::format("{}: unknown key \"{}\"{} (allowed: {})",
-                                     where.empty() ? std::string("top level") : where, key, at,
-                                     list));
-    }
-  }
-}
-
-const toml::table* subtable(const toml::table& t, const std::string& key,
-                            const std::string& where) {
-  const auto* n = t.get(key);
-  if (!n) return nullptr;
-  const auto* tt = n->as_table();
-  if (!tt) throw InvalidInput(fmt::format("{}.{} must be a table", where, key));
-  return tt;
-}
+using core::toml_case::check_keys;
+using core::toml_case::collect_lines;
+using core::toml_case::number;
+using core::toml_case::subtable;
 
 // A value that is a plain number (non-dimensional) or a quantity string with units
 // converted by `to_nondim` (which needs the scales).
@@ -85,18 +65,6 @@ std::optional<double> value(const toml::table& t, const std::string& key, const 
     return to_nondim(si, s);
   }
   throw InvalidInput(fmt::format("{} must be a number or a quantity string", field));
-}
-
-double number(const toml::table& t, const std::string& key, const std::string& where, double dflt) {
-  const auto* n = t.get(key);
-  if (!n) return dflt;
-  if (auto x = n->value<double>(); x && (n->is_floating_point() || n->is_integer())) {
-    if (!std::isfinite(*x)) {
-      throw InvalidInput(fmt::format("{}.{} = {} must be finite", where, key, *x));
-    }
-    return *x;
-  }
-  throw InvalidInput(fmt::format("{}.{} must be a number", where, key));
 }
 
 std::string text(const toml::table& t, const std::string& key, const std::string& where,
@@ -138,33 +106,6 @@ void add_backbone_summary(SummaryObject& f, const hysteresis::Backbone& si, doub
 
 // Adds the lines of the case file that hold any part of `n` (a node of the [dynamics]
 // tree): the headers of its tables, its keys and its values.
-void collect_lines(const toml::node& n, std::set<std::uint32_t>& lines) {
-  auto add = [&lines](const toml::source_region& r) {
-    if (r.begin.line == 0) return;
-    for (auto l = r.begin.line; l <= std::max(r.begin.line, r.end.line); ++l) lines.insert(l);
-  };
-  if (const auto* t = n.as_table()) {
-    // A [header] table: only its header line (its region may span other tables).
-    if (t->is_inline()) {
-      add(t->source());
-    } else if (t->source().begin.line > 0) {
-      lines.insert(t->source().begin.line);
-    }
-    for (const auto& [k, v] : *t) {
-      add(k.source());
-      collect_lines(v, lines);
-    }
-    return;
-  }
-  if (const auto* a = n.as_array()) {
-    const bool headers =
-        a->is_array_of_tables() && !a->empty() && !a->get(0)->as_table()->is_inline();
-    if (!headers) add(a->source());  // [[header]] arrays: only their tables' headers
-    for (const auto& e : *a) collect_lines(e, lines);
-    return;
-  }
-  add(n.source());
-}
 
 // The case file with every line of its [dynamics] tree blanked: what remains is the
 // joint part ([joint], [load], [profiles], comments) at its original line numbers, so

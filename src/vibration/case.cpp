@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "../core/toml_case.hpp"
 #include "asperity/contact/material.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
@@ -29,55 +30,16 @@ namespace {
 
 using core::Dimension;
 namespace dim = core::dim;
-
-std::uint32_t line_of(const toml::node& n) {
-  return n.source().begin.line;
-}
-
-std::string at_line(const toml::node& n) {
-  return line_of(n) > 0 ? fmt::format(" (line {})", line_of(n)) : std::string();
-}
-
-void check_keys(const toml::table& t, const std::string& where,
-                const std::set<std::string>& allowed) {
-  for (const auto& [k, v] : t) {
-    const std::string key(k.str());
-    if (!allowed.count(key)) {
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      const auto line = k.source().begin.line > 0 ? k.source().begin.line : v.source().begin.line;
-      const std::string at = line > 0 ? fmt::format(" at line {}", line) : std::string();
-      throw InvalidInput(fmt::format("{}: unknown key \"{}\"{} (allowed: {})",
-                                     where.empty() ? std::string("top level") : where, key, at,
-                                     list));
-    }
-  }
-}
-
-const toml::table* subtable(const toml::table& t, const std::string& key,
-                            const std::string& where) {
-  const auto* n = t.get(key);
-  if (!n) return nullptr;
-  const auto* tt = n->as_table();
-  if (!tt) throw InvalidInput(fmt::format("{}.{} must be a table{}", where, key, at_line(*n)));
-  return tt;
-}
+using core::toml_case::at_line;
+using core::toml_case::check_keys;
+using core::toml_case::collect_lines;
+using core::toml_case::line_of;
+using core::toml_case::number;
+using core::toml_case::subtable;
 
 std::optional<double> plain_number(const toml::node& n) {
   if (n.is_floating_point() || n.is_integer()) return n.value<double>();
   return std::nullopt;
-}
-
-double number(const toml::table& t, const std::string& key, const std::string& where, double dflt) {
-  const auto* n = t.get(key);
-  if (!n) return dflt;
-  if (auto x = plain_number(*n)) {
-    if (!std::isfinite(*x)) {
-      throw InvalidInput(fmt::format("{}.{} = {} must be finite{}", where, key, *x, at_line(*n)));
-    }
-    return *x;
-  }
-  throw InvalidInput(fmt::format("{}.{} must be a number{}", where, key, at_line(*n)));
 }
 
 // A whole number in [lo, hi].
@@ -269,32 +231,6 @@ void parse_continuation(const toml::table& t, const std::string& where, Continua
 // ---- [joint] ---------------------------------------------------------------------------
 
 // Lines of the case file holding any part of `n`: table headers, keys and values.
-void collect_lines(const toml::node& n, std::set<std::uint32_t>& lines) {
-  auto add = [&lines](const toml::source_region& r) {
-    if (r.begin.line == 0) return;
-    for (auto l = r.begin.line; l <= std::max(r.begin.line, r.end.line); ++l) lines.insert(l);
-  };
-  if (const auto* t = n.as_table()) {
-    if (t->is_inline()) {
-      add(t->source());
-    } else if (t->source().begin.line > 0) {
-      lines.insert(t->source().begin.line);
-    }
-    for (const auto& [k, v] : *t) {
-      add(k.source());
-      collect_lines(v, lines);
-    }
-    return;
-  }
-  if (const auto* a = n.as_array()) {
-    const bool headers =
-        a->is_array_of_tables() && !a->empty() && !a->get(0)->as_table()->is_inline();
-    if (!headers) add(a->source());
-    for (const auto& e : *a) collect_lines(e, lines);
-    return;
-  }
-  add(n.source());
-}
 
 // The case file with the lines of every vibration table blanked: what remains is the
 // joint part ([joint], [load], [profiles], comments) at its original line numbers, so
