@@ -484,4 +484,25 @@ int run_guarded(const std::function<void(std::string& out)>& body) {
   return 0;
 }
 
+Json to_json(const dynamics::SummaryValue& v) {
+  return std::visit(
+      [](const auto& x) -> Json {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, std::nullptr_t>) {
+          return Json(nullptr);
+        } else if constexpr (std::is_same_v<T, dynamics::SummaryArray>) {
+          Json a = Json::array();
+          for (const auto& e : x) a.push_back(to_json(e));
+          return a;
+        } else if constexpr (std::is_same_v<T, dynamics::SummaryObject>) {
+          Json o = Json::object();
+          for (const auto& [k, e] : x) o[k] = to_json(e);
+          return o;
+        } else {
+          return Json(x);
+        }
+      },
+      v.data);
+}
+
 }  // namespace asperity::cli

@@ -10,6 +10,7 @@
 #include "asperity/contact/material.hpp"
 #include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
+#include "asperity/dynamics/case.hpp"
 
 namespace asperity::cli {
 
@@ -68,6 +69,8 @@ std::string version_text();
 /// "asperity_version" (version_text()) as its first key, indented by 2, newline-terminated.
 /// Every command writes its JSON through this function.
 std::string json_output(const Json& j);
+/// A library summary (dynamics and vibration case runs) as JSON, keys in order.
+Json to_json(const dynamics::SummaryValue& v);
 
 /// Writes `content` to `path` whole or not at all (core::write_output_file).
 void write_file_atomically(const std::string& path, const std::string& content);

@@ -54,27 +54,6 @@ struct PlotSeries {
   }
 };
 
-Json to_json(const SummaryValue& v) {
-  return std::visit(
-      [](const auto& x) -> Json {
-        using T = std::decay_t<decltype(x)>;
-        if constexpr (std::is_same_v<T, std::nullptr_t>) {
-          return Json(nullptr);
-        } else if constexpr (std::is_same_v<T, SummaryArray>) {
-          Json a = Json::array();
-          for (const auto& e : x) a.push_back(to_json(e));
-          return a;
-        } else if constexpr (std::is_same_v<T, SummaryObject>) {
-          Json o = Json::object();
-          for (const auto& [k, e] : x) o[k] = to_json(e);
-          return o;
-        } else {
-          return Json(x);
-        }
-      },
-      v.data);
-}
-
 void run_dynamics(const DynamicsOptions& o, std::string& out) {
   const OutKind kind = out_kind(o.out_dir, ".json");
   const bool files = kind == OutKind::directory;

@@ -33,27 +33,6 @@ struct VibrationOptions {
   bool no_plots = false;
 };
 
-Json to_json(const SummaryValue& v) {
-  return std::visit(
-      [](const auto& x) -> Json {
-        using T = std::decay_t<decltype(x)>;
-        if constexpr (std::is_same_v<T, std::nullptr_t>) {
-          return Json(nullptr);
-        } else if constexpr (std::is_same_v<T, SummaryArray>) {
-          Json a = Json::array();
-          for (const auto& e : x) a.push_back(to_json(e));
-          return a;
-        } else if constexpr (std::is_same_v<T, SummaryObject>) {
-          Json o = Json::object();
-          for (const auto& [k, e] : x) o[k] = to_json(e);
-          return o;
-        } else {
-          return Json(x);
-        }
-      },
-      v.data);
-}
-
 std::string num(double x) {
   return fmt::format("{:.12g}", x);
 }
