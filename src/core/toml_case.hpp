@@ -96,4 +96,23 @@ inline void collect_lines(const toml::node& n, std::set<std::uint32_t>& lines) {
   add(n.source());
 }
 
+/// `text` with the given (1-based) lines blanked, the others at their line numbers: what
+/// a reader of the rest of a case file sees, so that its errors point into the user's file.
+inline std::string without_lines(const std::string& text, const std::set<std::uint32_t>& lines) {
+  std::string out;
+  out.reserve(text.size());
+  std::uint32_t line = 1;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    std::size_t end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
+    if (!lines.count(line)) out.append(text, begin, end - begin);
+    if (end == text.size()) break;
+    out += '\n';
+    begin = end + 1;
+    ++line;
+  }
+  return out;
+}
+
 }  // namespace asperity::core::toml_case

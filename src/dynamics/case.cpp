@@ -113,20 +113,7 @@ void add_backbone_summary(SummaryObject& f, const hysteresis::Backbone& si, doub
 std::string joint_text(const std::string& text, const toml::node& dynamics) {
   std::set<std::uint32_t> lines;
   collect_lines(dynamics, lines);
-  std::string out;
-  out.reserve(text.size());
-  std::uint32_t line = 1;
-  std::size_t begin = 0;
-  while (begin <= text.size()) {
-    std::size_t end = text.find('\n', begin);
-    if (end == std::string::npos) end = text.size();
-    if (!lines.count(line)) out.append(text, begin, end - begin);
-    if (end == text.size()) break;
-    out += '\n';
-    begin = end + 1;
-    ++line;
-  }
-  return out;
+  return core::toml_case::without_lines(text, lines);
 }
 
 // The physics-based law of a joint described as for `asperity predict`: the joint's

@@ -243,20 +243,7 @@ std::string joint_text(const std::string& file_text, const toml::table& root) {
     lines.insert(k.source().begin.line);
     collect_lines(v, lines);
   }
-  std::string out;
-  out.reserve(file_text.size());
-  std::uint32_t line = 1;
-  std::size_t begin = 0;
-  while (begin <= file_text.size()) {
-    std::size_t end = file_text.find('\n', begin);
-    if (end == std::string::npos) end = file_text.size();
-    if (!lines.count(line)) out.append(file_text, begin, end - begin);
-    if (end == file_text.size()) break;
-    out += '\n';
-    begin = end + 1;
-    ++line;
-  }
-  return out;
+  return core::toml_case::without_lines(file_text, lines);
 }
 
 struct JointBackbone {
