@@ -219,46 +219,40 @@ HarmonicBalance::HarmonicBalance(Structure structure, std::vector<PlacedElement>
   unknowns_ = n * static_cast<Eigen::Index>(basis_.coefficients());
 }
 
-Eigen::MatrixXd HarmonicBalance::dynamic_stiffness(double omega,
-                                                   const Eigen::MatrixXd& C_eff) const {
-  const Eigen::Index n = dofs();
-  const auto nc = static_cast<Eigen::Index>(basis_.coefficients());
-  const Eigen::MatrixXd& D = basis_.derivative();
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(unknowns_, unknowns_);
+namespace {
+
+// kw K (x) I + cw C (x) D + mw M (x) D^2 (D^2 = diag(-h^2)), skipping zero blocks.
+Eigen::MatrixXd kronecker_sum(const Structure& s, const Eigen::MatrixXd& C, const HarmonicBasis& b,
+                              Eigen::Index unknowns, double kw, double cw, double mw) {
+  const Eigen::Index n = s.dofs();
+  const auto nc = static_cast<Eigen::Index>(b.coefficients());
+  const Eigen::MatrixXd& D = b.derivative();
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(unknowns, unknowns);
   for (Eigen::Index q = 0; q < n; ++q) {
     for (Eigen::Index p = 0; p < n; ++p) {
-      const double k = s_.K(p, q), c = C_eff(p, q), m = s_.M(p, q);
+      const double k = kw * s.K(p, q), c = cw * C(p, q), m = mw * s.M(p, q);
       if (k == 0.0 && c == 0.0 && m == 0.0) continue;
       auto blk = A.block(p * nc, q * nc, nc, nc);
       for (Eigen::Index r = 0; r < nc; ++r) {
-        const int h = basis_.harmonic_of(static_cast<std::size_t>(r));
-        blk(r, r) += k - omega * omega * h * h * m;
-      }
-      if (c != 0.0) blk += omega * c * D;
-    }
-  }
-  return A;
-}
-
-Eigen::MatrixXd HarmonicBalance::dynamic_stiffness_derivative(double omega,
-                                                              const Eigen::MatrixXd& C_eff) const {
-  const Eigen::Index n = dofs();
-  const auto nc = static_cast<Eigen::Index>(basis_.coefficients());
-  const Eigen::MatrixXd& D = basis_.derivative();
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(unknowns_, unknowns_);
-  for (Eigen::Index q = 0; q < n; ++q) {
-    for (Eigen::Index p = 0; p < n; ++p) {
-      const double c = C_eff(p, q), m = s_.M(p, q);
-      if (c == 0.0 && m == 0.0) continue;
-      auto blk = A.block(p * nc, q * nc, nc, nc);
-      for (Eigen::Index r = 0; r < nc; ++r) {
-        const int h = basis_.harmonic_of(static_cast<std::size_t>(r));
-        blk(r, r) -= 2.0 * omega * h * h * m;
+        const int h = b.harmonic_of(static_cast<std::size_t>(r));
+        blk(r, r) += k - h * h * m;
       }
       if (c != 0.0) blk += c * D;
     }
   }
   return A;
+}
+
+}  // namespace
+
+Eigen::MatrixXd HarmonicBalance::dynamic_stiffness(double omega,
+                                                   const Eigen::MatrixXd& C_eff) const {
+  return kronecker_sum(s_, C_eff, basis_, unknowns_, 1.0, omega, omega * omega);
+}
+
+Eigen::MatrixXd HarmonicBalance::dynamic_stiffness_derivative(double omega,
+                                                              const Eigen::MatrixXd& C_eff) const {
+  return kronecker_sum(s_, C_eff, basis_, unknowns_, 0.0, 1.0, 2.0 * omega);
 }
 
 void HarmonicBalance::nonlinear_force(const Eigen::VectorXd& U, double omega, Eigen::VectorXd& F,
