@@ -178,6 +178,29 @@ def case_sigint_cleanup(exe, src, tmp):
     signal_cleanup(exe, tmp, signal.SIGINT)
 
 
+def case_dynamics_sigterm_cleanup(exe, src, tmp):
+    """SIGTERM while `dynamics --out` streams its time series into the staged directory
+    (the 604 MB .timeseries.csv.tmp-* of the issue): nothing of ours stays behind."""
+    with open(os.path.join(src, "examples/dynamics/harmonic_coulomb.toml")) as f:
+        text = f.read().replace("duration = 60", "duration = 50000")
+    with open(os.path.join(tmp, "long.toml"), "w") as f:
+        f.write(text)
+    p = subprocess.Popen([exe, "dynamics", "long.toml", "--out", "dyn", "--no-plots"], cwd=tmp,
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 60
+    seen = []
+    while not seen and p.poll() is None and time.monotonic() < deadline:
+        seen = leftovers(tmp)
+        time.sleep(0.005)
+    check(seen, "no staged output was seen before the run ended (the test did not interrupt it)")
+    time.sleep(0.3)  # let it stream into the staged directory
+    p.send_signal(signal.SIGTERM)
+    rc = p.wait(timeout=60)
+    check(rc == -signal.SIGTERM, f"exit {rc}, expected death by SIGTERM")
+    check(not leftovers(tmp), f"temporaries left after SIGTERM: {leftovers(tmp)}")
+    check(not os.path.exists(os.path.join(tmp, "dyn")), "dyn written")
+
+
 def case_stale_temporaries_removed(exe, src, tmp):
     write_history(os.path.join(tmp, "h.csv"), 100)
     dead = dead_pid()
