@@ -81,8 +81,14 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--max-exponent", type=int, default=7)
     ap.add_argument("--long", action="store_true", help="also 1e5 dynamics cycles (~20 s a run)")
+    ap.add_argument("--threads-only", action="store_true",
+                    help="only the 1- and 2-thread table (seconds, not minutes)")
     args = ap.parse_args()
     A = args.asperity
+    if args.threads_only:
+        with tempfile.TemporaryDirectory(prefix="asperity_scaling_") as tmp:
+            thread_table(A, Path(tmp), args.repeat)
+        return
     rng = np.random.default_rng(14)
     sizes = [10 ** k for k in range(3, args.max_exponent + 1)]
     rows = {"roughness (filtered)": [], "roughness (--filter none)": [], "flat --history": []}
@@ -140,20 +146,38 @@ def main():
             print(f"| --out --decimate 10 --no-plots | {c:.0e} | {t:.3g} | {m:.0f} |")
 
         print()
-        print("| threads (ASPERITY_THREADS) | 1 thread [s] | 2 threads [s] | ratio |")
-        print("|---|---:|---:|---:|")
-        jobs = {
-            "predict steel420_two_bolts (4 load cases)":
-                [A, "predict", ROOT / "examples/joints/steel420_two_bolts.toml", "--out", d / "pred",
-                 "--no-plots"],
-            "roughness of the 650 x 650 X3P map (lc 20 um, ls 2.5 um)":
-                [A, "roughness", "--surface", ROOT / "tests/data/mountainsmap-650x650.x3p",
-                 "--lc", "20um", "--ls", "2.5um", "--json"],
-        }
-        for name, cmd in jobs.items():
-            t1, _ = measure(cmd, args.repeat, {"ASPERITY_THREADS": "1"})
-            t2, _ = measure(cmd, args.repeat, {"ASPERITY_THREADS": "2"})
-            print(f"| {name} | {t1:.3g} | {t2:.3g} | {t2 / t1:.2f} |")
+        thread_table(A, d, args.repeat)
+
+# A vectorized call of the Python package on 4e6 points (core::parallel_for in chunks).
+PYTHON_BATCH = (
+    "import numpy as np, asperity\n"
+    "flat = asperity.RoughFlat(model='bke', beta=0.04, psi=0.5, nu=0.3, G_over_E=0.7 / 3.4)\n"
+    "b = flat.backbone(flat.separation_star(1e-3))\n"
+    "x = np.linspace(0.0, 2.0, 4_000_000)\n"
+    "for _ in range(25): b.force(x)\n")
+
+
+def thread_table(A, d, repeat):
+    """1 and 2 threads (ASPERITY_THREADS) on the thread-parallel paths."""
+    print("| threads (ASPERITY_THREADS) | 1 thread [s] | 2 threads [s] | ratio |")
+    print("|---|---:|---:|---:|")
+    jobs = {
+        "predict steel420_two_bolts (4 load cases, uniform pressure)":
+            [A, "predict", ROOT / "examples/joints/steel420_two_bolts.toml", "--out", d / "pred",
+             "--no-plots"],
+        "predict steel420_bolt_field (4 load cases, bolt pressure field)":
+            [A, "predict", ROOT / "examples/joints/steel420_bolt_field.toml", "--out",
+             d / "pred_field", "--no-plots"],
+        "roughness of the 650 x 650 X3P map (lc 20 um, ls 2.5 um)":
+            [A, "roughness", "--surface", ROOT / "tests/data/mountainsmap-650x650.x3p",
+             "--lc", "20um", "--ls", "2.5um", "--json"],
+        "Python: RoughFlatBackbone.force on 4e6 points, 25 calls (incl. ~0.1 s start-up)":
+            [sys.executable, "-c", PYTHON_BATCH],
+    }
+    for name, cmd in jobs.items():
+        t1, _ = measure(cmd, repeat, {"ASPERITY_THREADS": "1"})
+        t2, _ = measure(cmd, repeat, {"ASPERITY_THREADS": "2"})
+        print(f"| {name} | {t1:.3g} | {t2:.3g} | {t2 / t1:.2f} |")
 
 
 if __name__ == "__main__":

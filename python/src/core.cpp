@@ -3,6 +3,7 @@
 #include <nanobind/stl/string.h>
 
 #include <asperity/core/error.hpp>
+#include <asperity/core/parallel.hpp>
 #include <asperity/core/units.hpp>
 #include <asperity/core/version.hpp>
 #include <string>
@@ -38,6 +39,23 @@ void bind_core(nb::module_& m) {
       },
       "The version of the compiled library: {'version', 'git_revision', 'build_type'} (as "
       "`asperity --version` prints them).");
+  m.def(
+      "thread_count", [] { return core::worker_count(); },
+      "Threads the library's parallel loops use (load cases of predict, rows and columns of "
+      "areal roughness, large vectorized calls): ASPERITY_THREADS, else the number of cores, "
+      "unless set_thread_count() changed it.");
+  m.def(
+      "set_thread_count",
+      [](long long n) {
+        if (n < 1) {
+          throw InvalidInput(fmt::format("thread count {} is not allowed: 1 to 256", n));
+        }
+        core::set_worker_count(static_cast<std::size_t>(n));
+      },
+      nb::arg("n"),
+      "Sets the threads of the library's parallel loops for this process (1 to 256). Results "
+      "do not depend on it. asperity.sweep sets 1 in its workers: the samples are the "
+      "parallel dimension there.");
   // asperity.Error is the base of both; InvalidInput is also a ValueError and
   // NumericalError a RuntimeError, so generic `except ValueError` code works.
   g_error =

@@ -9,9 +9,15 @@
 #include <thread>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "asperity/core/error.hpp"
+
 namespace asperity::core {
 
 namespace {
+
+constexpr std::size_t kMaxWorkers = 256;
 
 thread_local bool inside_item = false;
 
@@ -21,16 +27,25 @@ std::size_t read_worker_count() {
     std::size_t v = 0;
     const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
     if (ec == std::errc() && p == s.data() + s.size() && v >= 1)
-      return std::min<std::size_t>(v, 256);
+      return std::min<std::size_t>(v, kMaxWorkers);
   }
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
+std::atomic<std::size_t>& configured_worker_count() {
+  static std::atomic<std::size_t> n{read_worker_count()};
+  return n;
+}
+
 }  // namespace
 
-std::size_t worker_count() {
-  static const std::size_t n = read_worker_count();
-  return n;
+std::size_t worker_count() { return configured_worker_count().load(std::memory_order_relaxed); }
+
+void set_worker_count(std::size_t n) {
+  if (n < 1 || n > kMaxWorkers) {
+    throw InvalidInput(fmt::format("thread count {} is not allowed: 1 to {}", n, kMaxWorkers));
+  }
+  configured_worker_count().store(n, std::memory_order_relaxed);
 }
 
 void parallel_for(std::size_t n, const std::function<void(std::size_t)>& item) {

@@ -52,6 +52,22 @@ TEST(ParallelFor, NestedCallsComplete) {
   }
 }
 
+TEST(ParallelFor, SetWorkerCountIsValidatedAndHonoured) {
+  const std::size_t before = worker_count();
+  EXPECT_THROW(set_worker_count(0), InvalidInput);
+  EXPECT_THROW(set_worker_count(257), InvalidInput);
+  EXPECT_EQ(worker_count(), before);  // a refused value changes nothing
+  set_worker_count(1);
+  EXPECT_EQ(worker_count(), 1u);
+  // One thread: every item runs on the calling thread, in index order.
+  std::vector<std::size_t> order;
+  parallel_for(100, [&](std::size_t i) { order.push_back(i); });
+  ASSERT_EQ(order.size(), 100u);
+  for (std::size_t i = 0; i < order.size(); ++i) EXPECT_EQ(order[i], i);
+  set_worker_count(before);
+  EXPECT_EQ(worker_count(), before);
+}
+
 const std::string kData = ASPERITY_TEST_DATA_DIR;
 
 TEST(ParallelFor, PredictEqualsTheLoadCasesOneByOne) {

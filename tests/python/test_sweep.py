@@ -17,6 +17,7 @@ pytest.importorskip("distributed")
 pytest.importorskip("xarray")
 pytest.importorskip("scipy")
 
+import asperity  # noqa: E402
 from asperity import sweep  # noqa: E402
 from asperity.sweep import spec  # noqa: E402
 
@@ -132,7 +133,16 @@ def test_scheduler_two_workers_one_killed_equals_serial(tmp_path, dask_cluster):
     ds = sweep.open_results(str(out)).load()
     assert list(ds["sample"].values) == list(range(n))  # every sample, in order
     assert ds["ok"].values.all()
+    # The surviving worker ran its samples on one library thread each (the samples are
+    # the parallel dimension; engine.run_batch sets it).
+    from distributed import Client
+
+    with Client(address, timeout="10s") as client:
+        counts = client.run(lambda: __import__("asperity").thread_count())
+    assert set(counts.values()) == {1}, counts
+    before = asperity.thread_count()
     _same(ds, _serial(tmp_path, "serial", n, seed))
+    assert asperity.thread_count() == before  # a serial run leaves the caller's setting
 
 
 def test_default_local_cluster_equals_serial(tmp_path):

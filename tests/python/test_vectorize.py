@@ -155,3 +155,15 @@ def test_large_arrays_in_parallel_blocks_equal_scalar_calls_and_raise_the_first_
     with pytest.raises(asperity.InvalidInput) as alone:
         asperity.normal_load_star("bke", -1.0, 0.3)
     assert str(first.value) == str(alone.value)
+    # One thread (set_thread_count) gives the same numbers bit for bit.
+    before = asperity.thread_count()
+    try:
+        asperity.set_thread_count(1)
+        assert asperity.thread_count() == 1
+        np.testing.assert_array_equal(asperity.normal_load_star("bke", w, 0.3), out)
+    finally:
+        asperity.set_thread_count(before)
+    for n in (0, -3, 257):
+        with pytest.raises(asperity.InvalidInput, match=f"thread count {n} is not allowed"):
+            asperity.set_thread_count(n)
+    assert asperity.thread_count() == before

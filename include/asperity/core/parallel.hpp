@@ -10,8 +10,14 @@ namespace asperity::core {
 
 /// Threads parallel_for() uses: the environment variable ASPERITY_THREADS when set
 /// (an integer >= 1; 1 runs everything on the calling thread), else the number of
-/// cores (std::thread::hardware_concurrency, at least 1). Read once.
+/// cores (std::thread::hardware_concurrency, at least 1). Read once; set_worker_count()
+/// overrides it for the whole process.
 [[nodiscard]] std::size_t worker_count();
+
+/// Sets the threads parallel_for() uses from now on (1 to 256; InvalidInput otherwise).
+/// A process that already runs one item per core (a Dask worker in a sweep) sets 1, so
+/// that the library does not start a second team of threads per core.
+void set_worker_count(std::size_t n);
 
 /// Calls item(i) for i in [0, n), on up to worker_count() threads (the caller is one of
 /// them; items are handed out one at a time, so uneven items balance). Returns when all

@@ -28,12 +28,26 @@ MARKER = ".asperity-output"  # as the C++ commands' output directories (output_d
 
 # --------------------------------------------------------------------------- worker side
 
+def _in_dask_worker() -> bool:
+    try:
+        from distributed import get_worker
+
+        get_worker()
+        return True
+    except (ImportError, ValueError):
+        return False
+
+
 def run_batch(kind: str, base_dir: str, case: dict, items: list) -> list:
     """Runs ``[(sample, assignments)]`` (each sample's values written into the base
     ``case``, :func:`spec.apply_assignments`); returns ``[(sample, outputs or None,
     error or "")]``. A sample that fails (asperity.Error: bad input drawn, numerical
     failure; or any other exception) is returned with its error, never dropped."""
     runner = runner_for(kind)
+    if _in_dask_worker():
+        # One library thread per sample: the samples are spread over the workers' cores
+        # already, and a second team of threads per core would only compete with them.
+        _core.set_thread_count(1)
     out = []
     for s, assignments in items:
         try:
