@@ -47,7 +47,7 @@ from . import joints  # noqa: F401  (matplotlib helpers for predict / analyze_fr
 from . import dynamics  # noqa: F401  (dynamics case files, Fig. 7.3-7.7 helpers)
 from . import vibration  # noqa: F401  (harmonic balance, nonlinear modes, FRFs)
 
-# inspect.signature() on the compiled functions and constructors (see _signatures.py).
+# inspect.signature() on the compiled functions, methods and constructors (_signatures.py).
 from . import _signatures  # noqa: E402
 
 for _name in dir(_core):
@@ -58,6 +58,7 @@ for _name in dir(_core):
         globals()[_name] = _signatures.with_signature(_obj)
     elif isinstance(_obj, type):
         _signatures.add_class_signature(_obj)
+        _signatures.add_method_signatures(_obj)
 # asperity.mindlin: the same functions as asperity._core.mindlin, with signatures.
 mindlin = _types.ModuleType("asperity.mindlin", _core.mindlin.__doc__)
 for _name in dir(_core.mindlin):

@@ -2,19 +2,26 @@
 
 nanobind's functions carry their signatures only as text (``__nb_signature__``, what the
 stub file ``_core.pyi`` is generated from); ``inspect.signature`` cannot read it. This
-module turns that text into :class:`inspect.Signature` objects: every public function of
-:mod:`asperity._core` gets a thin Python wrapper with ``__signature__`` (same name, docstring
-and behaviour), and every class with a constructor gets ``__signature__`` on the class.
+module turns that text into :class:`inspect.Signature` objects. Every public function of
+:mod:`asperity._core` and every public method of its classes is wrapped in a C-level
+forwarder (``_core._signed``, python/src/signatures.cpp) that carries ``__signature__``,
+the name and the docstring, and passes each call on unchanged (vectorcall; a method
+wrapper binds as nanobind's own methods do); every class with a constructor gets
+``__signature__`` on the class. Functions with several overloads have no single
+signature and stay as they are. With the environment variable ``ASPERITY_RAW_BINDINGS=1``
+nothing is wrapped: the build sets it for nanobind's stub generator, which reads the
+compiled callables themselves.
 """
 from __future__ import annotations
 
 import ast
-import functools
 import inspect
+import os
 import re
 from typing import Any, Callable, Optional
 
 _DEFAULT = re.compile(r"\\(\d+)")
+_RAW = os.environ.get("ASPERITY_RAW_BINDINGS") == "1"
 
 
 def _split_top_level(text: str, sep: str) -> list:
@@ -101,20 +108,36 @@ def signature_of(fn: Any, drop_first: bool = False) -> Optional[inspect.Signatur
                                  __validate_parameters__=False)
 
 
-def with_signature(fn: Callable, module: str = "asperity") -> Callable:
-    """A Python function of ``module`` calling ``fn``, with its signature readable by
-    ``inspect``."""
-    sig = signature_of(fn)
+def _signed(fn: Any, method: bool, module: str, qualname: str) -> Any:
+    from . import _core
+
+    sig = None if _RAW else signature_of(fn)
     if sig is None:
         return fn
-
-    @functools.wraps(fn)
-    def wrapper(*args, **kwargs):
-        return fn(*args, **kwargs)
-
+    wrapper = _core._signed(fn, method)
     wrapper.__signature__ = sig
+    wrapper.__name__ = fn.__name__
+    wrapper.__qualname__ = qualname
     wrapper.__module__ = module
+    wrapper.__doc__ = fn.__doc__
     return wrapper
+
+
+def with_signature(fn: Callable, module: str = "asperity") -> Callable:
+    """``fn`` as a function of ``module`` with its signature readable by ``inspect``."""
+    return _signed(fn, False, module, fn.__name__)
+
+
+def add_method_signatures(cls: type, module: str = "asperity") -> None:
+    """Wraps the public methods (and static methods) defined by ``cls`` itself."""
+    for name, value in list(vars(cls).items()):
+        if name.startswith("_"):
+            continue
+        kind = type(value).__name__
+        if kind not in ("nb_method", "nb_func"):
+            continue
+        setattr(cls, name, _signed(value, kind == "nb_method", module,
+                                   f"{cls.__name__}.{name}"))
 
 
 def add_class_signature(cls: type) -> None:

@@ -1,0 +1,123 @@
+// Callables that carry an inspect.Signature: nanobind's functions and methods keep their
+// signatures as text only (__nb_signature__), and their types accept no new attributes,
+// so inspect.signature() fails on them. asperity/_signatures.py parses that text and
+// wraps each public function and method in one of the two types below: a C-level
+// forwarder with an instance __dict__ (for __signature__, __doc__, __name__, ...), whose
+// call passes the arguments on unchanged through the vectorcall protocol. A method
+// wrapper is a method descriptor like nanobind's own (Py_TPFLAGS_METHOD_DESCRIPTOR:
+// `obj.method(x)` calls it with obj prepended, no bound object made); a function wrapper
+// (module functions, static methods) never binds.
+#include <cstddef>
+
+#include "bindings.hpp"  // nanobind, hence Python.h, first
+
+#include <structmember.h>
+
+namespace asperity::python {
+
+namespace {
+
+struct SignedCallable {
+  PyObject_HEAD PyObject* target;  // the nanobind function or method
+  PyObject* dict;                  // __signature__, __doc__, __name__, __qualname__, ...
+  vectorcallfunc vectorcall;
+};
+
+PyObject* signed_vectorcall(PyObject* self, PyObject* const* args, std::size_t nargsf,
+                            PyObject* kwnames) {
+  return PyObject_Vectorcall(reinterpret_cast<SignedCallable*>(self)->target, args, nargsf,
+                             kwnames);
+}
+
+int signed_traverse(PyObject* self, visitproc visit, void* arg) {
+  auto* s = reinterpret_cast<SignedCallable*>(self);
+  Py_VISIT(s->target);
+  Py_VISIT(s->dict);
+  Py_VISIT(Py_TYPE(self));  // heap type
+  return 0;
+}
+
+int signed_clear(PyObject* self) {
+  auto* s = reinterpret_cast<SignedCallable*>(self);
+  Py_CLEAR(s->target);
+  Py_CLEAR(s->dict);
+  return 0;
+}
+
+void signed_dealloc(PyObject* self) {
+  PyTypeObject* type = Py_TYPE(self);
+  PyObject_GC_UnTrack(self);
+  signed_clear(self);
+  type->tp_free(self);
+  Py_DECREF(type);
+}
+
+// Looked up on the class (obj == NULL or None): the wrapper itself, so that
+// inspect.signature(Class.method) finds its __signature__; on an instance: a bound method.
+PyObject* signed_method_get(PyObject* self, PyObject* obj, PyObject*) {
+  if (obj == nullptr || obj == Py_None) return Py_NewRef(self);
+  return PyMethod_New(self, obj);
+}
+
+PyMemberDef signed_members[] = {
+    {"__dictoffset__", T_PYSSIZET, offsetof(SignedCallable, dict), READONLY, nullptr},
+    {"__vectorcalloffset__", T_PYSSIZET, offsetof(SignedCallable, vectorcall), READONLY, nullptr},
+    {"__wrapped__", T_OBJECT, offsetof(SignedCallable, target), READONLY,
+     "the nanobind function or method called"},
+    {nullptr, 0, 0, 0, nullptr}};
+
+PyType_Slot function_slots[] = {{Py_tp_dealloc, reinterpret_cast<void*>(signed_dealloc)},
+                                {Py_tp_traverse, reinterpret_cast<void*>(signed_traverse)},
+                                {Py_tp_clear, reinterpret_cast<void*>(signed_clear)},
+                                {Py_tp_call, reinterpret_cast<void*>(PyVectorcall_Call)},
+                                {Py_tp_members, signed_members},
+                                {0, nullptr}};
+
+PyType_Slot method_slots[] = {{Py_tp_dealloc, reinterpret_cast<void*>(signed_dealloc)},
+                              {Py_tp_traverse, reinterpret_cast<void*>(signed_traverse)},
+                              {Py_tp_clear, reinterpret_cast<void*>(signed_clear)},
+                              {Py_tp_call, reinterpret_cast<void*>(PyVectorcall_Call)},
+                              {Py_tp_descr_get, reinterpret_cast<void*>(signed_method_get)},
+                              {Py_tp_members, signed_members},
+                              {0, nullptr}};
+
+constexpr unsigned long kFlags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_HAVE_GC |
+                                 Py_TPFLAGS_HAVE_VECTORCALL | Py_TPFLAGS_DISALLOW_INSTANTIATION;
+
+PyType_Spec function_spec = {"asperity._core.signed_function",
+                             static_cast<int>(sizeof(SignedCallable)), 0, kFlags, function_slots};
+PyType_Spec method_spec = {"asperity._core.signed_method", static_cast<int>(sizeof(SignedCallable)),
+                           0, kFlags | Py_TPFLAGS_METHOD_DESCRIPTOR, method_slots};
+
+PyTypeObject* g_function_type = nullptr;
+PyTypeObject* g_method_type = nullptr;
+
+nb::object make_signed(nb::handle target, bool method) {
+  PyTypeObject* type = method ? g_method_type : g_function_type;
+  PyObject* o = type->tp_alloc(type, 0);
+  if (o == nullptr) throw nb::python_error();
+  auto* s = reinterpret_cast<SignedCallable*>(o);
+  s->target = Py_NewRef(target.ptr());
+  s->dict = PyDict_New();
+  s->vectorcall = signed_vectorcall;
+  if (s->dict == nullptr) {
+    Py_DECREF(o);
+    throw nb::python_error();
+  }
+  return nb::steal(o);
+}
+
+}  // namespace
+
+void bind_signatures(nb::module_& m) {
+  g_function_type = reinterpret_cast<PyTypeObject*>(PyType_FromSpec(&function_spec));
+  if (g_function_type == nullptr) throw nb::python_error();
+  g_method_type = reinterpret_cast<PyTypeObject*>(PyType_FromSpec(&method_spec));
+  if (g_method_type == nullptr) throw nb::python_error();
+  // Both types live as long as the interpreter (the references above are never released).
+  m.def("_signed", &make_signed, nb::arg("target"), nb::arg("method"),
+        "A forwarder to `target` with an instance __dict__ (asperity/_signatures.py sets "
+        "__signature__ and the names there); `method` makes it bind like a method.");
+}
+
+}  // namespace asperity::python
