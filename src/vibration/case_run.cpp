@@ -62,6 +62,19 @@ void add_continuation(Work& w, const ContinuationResult& c) {
   }
 }
 
+// One analysis's work into the run's total; the first analysis that stopped early gives
+// the total its stop reason, prefixed with `analysis`.
+void add_analysis(Work& total, const Work& w, const std::string& analysis) {
+  total.points += w.points;
+  total.newton += w.newton;
+  total.rejected += w.rejected;
+  total.turning += w.turning;
+  if (!w.complete && total.complete) {
+    total.complete = false;
+    total.stop_reason = analysis + ": " + w.stop_reason;
+  }
+}
+
 }  // namespace
 
 VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
@@ -157,14 +170,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                                                    {"xi_per_s", array(m.xi)},
                                                    {"output_amplitude", rows(m.output_amplitude)},
                                                    {"solver", solver_summary(w)}});
-    total.points += w.points;
-    total.newton += w.newton;
-    total.rejected += w.rejected;
-    total.turning += w.turning;
-    if (!w.complete && total.complete) {
-      total.complete = false;
-      total.stop_reason = "nonlinear_mode: " + w.stop_reason;
-    }
+    add_analysis(total, w, "nonlinear_mode");
   }
 
   if (!c.frequency_responses.empty()) {
@@ -177,6 +183,8 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
         // One curve per call, so that each has its own counters and wall time.
         FrequencyResponseOptions one = all;
         one.force_scales = {scale};
+        const std::string curve =
+            fmt::format("frequency_response[{}] at force scale {}", k, core::format_value(scale));
         const auto before = counters();
         const auto t0 = clock::now();
         std::vector<FrequencyResponseCurve> cs;
@@ -189,9 +197,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                                   })
                                            : ProgressFunction{});
         } catch (const NumericalError& e) {
-          throw cannot_start(
-              fmt::format("frequency_response[{}] at force scale {}", k, core::format_value(scale)),
-              e);
+          throw cannot_start(curve, e);
         }
         ++done_curves;
         FrequencyResponseCurve& cv = cs.front();
@@ -215,15 +221,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                         {"harmonic_amplitude", std::move(ha)}};
         o.emplace_back("solver", solver_summary(w));
         curves.emplace_back(std::move(o));
-        total.points += w.points;
-        total.newton += w.newton;
-        total.rejected += w.rejected;
-        total.turning += w.turning;
-        if (!w.complete && total.complete) {
-          total.complete = false;
-          total.stop_reason = fmt::format("frequency_response[{}] at force scale {}: {}", k,
-                                          core::format_value(cv.force_scale), w.stop_reason);
-        }
+        add_analysis(total, w, curve);
         r.frequency_response.push_back(std::move(cv));
         r.frequency_response_table.push_back(k);
       }
@@ -257,8 +255,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                                                       {"modal_force", array(q.modal_force)},
                                                       {"dissipation_J", array(q.dissipation)},
                                                       {"solver", solver_summary(w)}});
-    total.points += w.points;
-    total.newton += w.newton;
+    add_analysis(total, w, "quasi_static_mode");
   }
   {
     const WorkCounters wc = counters();
