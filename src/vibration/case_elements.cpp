@@ -1,0 +1,295 @@
+#include "case_parse.hpp"
+
+#include <fmt/format.h>
+
+#include <toml++/toml.h>
+#include <cstdint>
+#include <memory>
+#include <set>
+
+#include "../core/toml_case.hpp"
+#include "asperity/contact/material.hpp"
+#include "asperity/core/error.hpp"
+#include "asperity/core/units.hpp"
+#include "asperity/core/validate.hpp"
+#include "asperity/dynamics/epb.hpp"
+#include "asperity/hysteresis/backbones.hpp"
+#include "asperity/joint/case.hpp"
+#include "asperity/joint/predict.hpp"
+#include "asperity/surface/rough_flat.hpp"
+
+namespace asperity::vibration::detail {
+
+namespace {
+
+using core::Dimension;
+namespace dim = core::dim;
+using core::toml_case::at_line;
+using core::toml_case::check_keys;
+using core::toml_case::collect_lines;
+using core::toml_case::number;
+
+// The case file with the lines of every vibration table blanked: what remains is the
+// joint part ([joint], [load], [profiles], comments) at its original line numbers, so
+// that the joint reader's errors point into the user's file.
+std::string joint_text(const std::string& file_text, const toml::table& root) {
+  std::set<std::uint32_t> lines;
+  for (const auto& [k, v] : root) {
+    const std::string key(k.str());
+    if (key == "joint" || key == "load" || key == "profiles" || key == "interface") continue;
+    lines.insert(k.source().begin.line);
+    collect_lines(v, lines);
+  }
+  return core::toml_case::without_lines(file_text, lines);
+}
+
+void add_backbone_summary(SummaryObject& f, const hysteresis::Backbone& b, double P) {
+  f.emplace_back("P_N", P);
+  f.emplace_back("Q_max_N", b.limit());
+  f.emplace_back("mu", b.limit() / P);
+  f.emplace_back("k_t_N_per_m", b.initial_stiffness());
+}
+
+std::shared_ptr<const Element> rough_flat_element(const toml::table& t, const std::string& w,
+                                                  const std::optional<JointBackbone>& joint) {
+  std::string bb = text(t, "backbone", w, "");
+  if (bb.empty()) {
+    if (t.get("beta")) {
+      bb = "normalized";
+    } else if (t.get("E_star")) {
+      bb = "dimensional";
+    } else if (joint) {
+      bb = "joint";
+    } else {
+      throw InvalidInput(fmt::format(
+          "{}: a rough_flat element needs its parameters: backbone = \"dimensional\" (E_star, "
+          "G_star, H, nu, sigma, R, eta, A0, P), \"normalized\" (beta, psi, nu, G_over_E, P_star, "
+          "sigma, force_scale) or \"joint\" with a [joint] and [load] table{}",
+          w, at_line(t)));
+    }
+  }
+  const std::set<std::string> common{"type", "name", "T", "backbone"};
+  auto with = [&](std::set<std::string> keys) {
+    keys.insert(common.begin(), common.end());
+    return keys;
+  };
+  auto friction_of = [&](contact::FrictionParameters fp) {
+    if (t.get("mu_cfc")) fp.mu_cfc = number(t, "mu_cfc", w, fp.mu_cfc);
+    return fp;
+  };
+  if (bb == "joint") {
+    check_keys(t, w, with({}));
+    if (!joint) {
+      throw InvalidInput(fmt::format(
+          "{}: backbone = \"joint\" needs a [joint] table (and [load]) as for `asperity predict`{}",
+          w, at_line(t)));
+    }
+    SummaryObject d{{"type", "rough_flat"}, {"backbone", "joint"}};
+    add_backbone_summary(d, *joint->backbone,
+                         std::get<double>(SummaryValue(joint->summary).find("preload_N")->data));
+    return make_rough_flat_element(joint->backbone, std::move(d));
+  }
+  if (bb == "dimensional") {
+    check_keys(t, w,
+               with({"E_star", "G_star", "H", "nu", "sigma", "R", "eta", "A0", "P",
+                     "asperity_model", "mu_cfc"}));
+    const std::string what = "a dimensional rough_flat";
+    dynamics::EpbContact c{.E_star = need_si(t, "E_star", w, dim::pressure, what),
+                           .G_star = need_si(t, "G_star", w, dim::pressure, what),
+                           .H = need_si(t, "H", w, dim::pressure, what),
+                           .nu = 0.3,
+                           .sigma = need_si(t, "sigma", w, dim::length, what),
+                           .R = need_si(t, "R", w, dim::length, what),
+                           .eta = need_si(t, "eta", w, dim::inverse_area, what),
+                           .A0 = need_si(t, "A0", w, dim::area, what),
+                           .P = need_si(t, "P", w, dim::force, what),
+                           .model = contact::parse_model_name(text(t, "asperity_model", w, "bke")),
+                           .friction = {}};
+    if (!t.get("nu")) throw InvalidInput(fmt::format("{}: {} needs nu{}", w, what, at_line(t)));
+    c.nu = number(t, "nu", w, 0.3);
+    c.friction = friction_of(c.friction);
+    const auto b = dynamics::epb_backbone(c);
+    SummaryObject d{{"type", "rough_flat"},
+                    {"backbone", "dimensional"},
+                    {"asperity_model", std::string(contact::to_string(c.model))},
+                    {"E_star_Pa", c.E_star},
+                    {"G_star_Pa", c.G_star},
+                    {"H_Pa", c.H},
+                    {"nu", c.nu},
+                    {"sigma_m", c.sigma},
+                    {"R_m", c.R},
+                    {"eta_per_m2", c.eta},
+                    {"A0_m2", c.A0}};
+    add_backbone_summary(d, *b, c.P);
+    return make_rough_flat_element(b, std::move(d));
+  }
+  if (bb == "normalized") {
+    check_keys(t, w,
+               with({"beta", "psi", "nu", "G_over_E", "P_star", "sigma", "force_scale",
+                     "asperity_model", "mu_cfc"}));
+    for (const char* k : {"beta", "psi", "nu", "G_over_E", "P_star", "sigma", "force_scale"}) {
+      if (!t.get(k)) {
+        throw InvalidInput(fmt::format(
+            "{}: a normalized rough_flat needs {} (beta, psi, nu, G_over_E, P_star = P/(K H A0), "
+            "and the SI scales sigma [m] and force_scale = K H A0 [N]){}",
+            w, k, at_line(t)));
+      }
+    }
+    surface::RoughFlatParameters rp;
+    rp.model = contact::parse_model_name(text(t, "asperity_model", w, "bke"));
+    rp.beta = number(t, "beta", w, 0.0);
+    rp.psi = number(t, "psi", w, 0.0);
+    rp.nu = number(t, "nu", w, 0.3);
+    rp.G_over_E = number(t, "G_over_E", w, 0.0);
+    rp.friction = friction_of(rp.friction);
+    const double P_star = number(t, "P_star", w, 0.0);
+    const double sigma = *si(t, "sigma", w, dim::length);
+    const double force_scale = *si(t, "force_scale", w, dim::force);
+    core::require_positive(w + ".P_star", P_star);
+    core::require_positive(w + ".sigma", sigma);
+    core::require_positive(w + ".force_scale", force_scale);
+    const surface::RoughFlat flat(rp);
+    const double d_star = flat.separation_star(P_star);
+    const auto b =
+        std::make_shared<hysteresis::ScaledBackbone>(flat.backbone(d_star), sigma, force_scale);
+    SummaryObject d{{"type", "rough_flat"},
+                    {"backbone", "normalized"},
+                    {"asperity_model", std::string(contact::to_string(rp.model))},
+                    {"beta", rp.beta},
+                    {"psi", rp.psi},
+                    {"nu", rp.nu},
+                    {"G_over_E", rp.G_over_E},
+                    {"P_star", P_star},
+                    {"d_star", d_star},
+                    {"sigma_m", sigma},
+                    {"force_scale_N", force_scale}};
+    add_backbone_summary(d, *b, P_star * force_scale);
+    return make_rough_flat_element(b, std::move(d));
+  }
+  throw InvalidInput(
+      fmt::format("{}.backbone = \"{}\": use \"dimensional\", \"normalized\" or \"joint\"{}", w, bb,
+                  at_line(t)));
+}
+
+}  // namespace
+
+JointBackbone joint_backbone(const std::string& path, const std::string& base_dir,
+                             const std::string& file_text, const toml::table& root) {
+  const joint::JointCase jc = joint::parse_case(joint_text(file_text, root), path, base_dir);
+  const auto load_line = root.get("load")        ? root.get("load")->source().begin.line
+                         : root.get("interface") ? root.get("interface")->source().begin.line
+                                                 : 0;
+  if (jc.preloads.size() != 1) {
+    throw InvalidInput(fmt::format(
+        "{}:{}: load: a rough_flat element takes one preload; the [load] table gives {} (a "
+        "sweep): keep one",
+        path, load_line, jc.preloads.size()));
+  }
+  const double P = jc.preloads.front();
+  const joint::LoadPrediction lp = [&] {
+    try {
+      // Uniform, or the summed backbone of an [interface]'s patches (joint/interface.hpp).
+      return joint::predict_case_load(jc, P);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("{}:{}: load: {}", path, load_line, e.what()));
+    }
+  }();
+  JointBackbone j;
+  j.backbone = lp.backbone;
+  j.summary = SummaryObject{{"name", jc.name},
+                            {"model", std::string(contact::to_string(jc.model))},
+                            {"area_m2", jc.area},
+                            {"preload_N", P},
+                            {"separation_m", lp.separation},
+                            {"Q_max_N", lp.Q_max},
+                            {"mu", lp.mu},
+                            {"stiffness_N_per_m", lp.stiffness}};
+  return j;
+}
+
+PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Index dofs,
+                            const std::optional<JointBackbone>& joint) {
+  const std::string w = fmt::format("element[{}]", index);
+  if (!t.get("type")) {
+    throw InvalidInput(
+        fmt::format("{}: needs type = \"rough_flat\" | \"jenkins\" | \"iwan4\" | \"coulomb\" | "
+                    "\"elastic_dry_friction_2d\"{}",
+                    w, at_line(t)));
+  }
+  const std::string type = text(t, "type", w, "");
+  const std::set<std::string> common{"type", "name", "T"};
+  auto keys = [&](std::set<std::string> k) {
+    k.insert(common.begin(), common.end());
+    return k;
+  };
+  const Dimension force = dim::force, stiffness = dim::stiffness;
+  std::shared_ptr<const Element> e;
+  if (type == "jenkins") {
+    check_keys(t, w, keys({"k_t", "F_s"}));
+    e = make_jenkins_element(need_si(t, "k_t", w, stiffness, "a jenkins element"),
+                             need_si(t, "F_s", w, force, "a jenkins element"));
+  } else if (type == "coulomb") {
+    check_keys(t, w, keys({"F_s", "k_tan"}));
+    e = make_coulomb_element(need_si(t, "F_s", w, force, "a coulomb element"),
+                             need_si(t, "k_tan", w, Dimension{-1, 0, 1}, "a coulomb element"));
+  } else if (type == "iwan4") {
+    check_keys(t, w, keys({"F_S", "K_T", "chi", "beta"}));
+    for (const char* k : {"chi", "beta"}) {
+      if (!t.get(k)) {
+        throw InvalidInput(fmt::format(
+            "{}: an iwan4 element needs {} (Segalman's four parameters F_S, K_T, chi in (-1, 0], "
+            "beta >= 0 are all required; e.g. chi = -0.5, beta = 0.1){}",
+            w, k, at_line(t)));
+      }
+    }
+    dynamics::SegalmanIwanParameters p{.F_S = need_si(t, "F_S", w, force, "an iwan4 element"),
+                                       .K_T = need_si(t, "K_T", w, stiffness, "an iwan4 element"),
+                                       .chi = number(t, "chi", w, 0.0),
+                                       .beta = number(t, "beta", w, 0.0)};
+    e = make_iwan4_element(p);
+  } else if (type == "elastic_dry_friction_2d") {
+    check_keys(t, w, keys({"k_t", "k_n", "mu", "N0"}));
+    const std::string what = "an elastic_dry_friction_2d element";
+    if (!t.get("mu")) throw InvalidInput(fmt::format("{}: {} needs mu{}", w, what, at_line(t)));
+    ElasticDryFriction2dParameters p{.k_t = need_si(t, "k_t", w, stiffness, what),
+                                     .k_n = need_si(t, "k_n", w, stiffness, what),
+                                     .mu = number(t, "mu", w, 0.0),
+                                     .N0 = si(t, "N0", w, force).value_or(0.0)};
+    e = make_elastic_dry_friction_2d_element(p);
+  } else if (type == "rough_flat") {
+    e = rough_flat_element(t, w, joint);
+  } else {
+    throw InvalidInput(
+        fmt::format("{}.type = \"{}\" is not known: use rough_flat, jenkins, iwan4, coulomb or "
+                    "elastic_dry_friction_2d{}",
+                    w, type, at_line(t)));
+  }
+  PlacedElement pe;
+  pe.element = e;
+  pe.name = text(t, "name", w, fmt::format("element {}", index + 1));
+  const auto* T = t.get("T");
+  if (!T) {
+    throw InvalidInput(fmt::format(
+        "{}: needs T, the map from the structure's {} DOFs to the element's {} direction(s) (one "
+        "row per direction){}",
+        w, dofs, e->directions(), at_line(t)));
+  }
+  pe.T = matrix(*T, w + ".T", true);
+  if (pe.T.cols() != dofs) {
+    throw InvalidInput(fmt::format(
+        "{}.T has {} column(s) but the structure has {} DOFs: give one column per DOF{}", w,
+        pe.T.cols(), dofs, at_line(*T)));
+  }
+  if (pe.T.rows() != static_cast<Eigen::Index>(e->directions())) {
+    throw InvalidInput(fmt::format(
+        "{}.T has {} row(s) but a {} element has {} direction(s): give one row per direction{}", w,
+        pe.T.rows(), type, e->directions(), at_line(*T)));
+  }
+  if (pe.T.cwiseAbs().maxCoeff() == 0.0) {
+    throw InvalidInput(
+        fmt::format("{}.T is zero: the element would not touch the structure{}", w, at_line(*T)));
+  }
+  return pe;
+}
+
+}  // namespace asperity::vibration::detail

@@ -1,0 +1,551 @@
+#include "asperity/vibration/case.hpp"
+
+#include <fmt/format.h>
+
+#include <toml++/toml.h>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <numbers>
+
+#include "../core/toml_case.hpp"
+#include "asperity/core/error.hpp"
+#include "asperity/core/file_io.hpp"
+#include "asperity/core/units.hpp"
+#include "case_parse.hpp"
+
+namespace asperity::vibration {
+
+namespace {
+
+using core::Dimension;
+namespace dim = core::dim;
+using core::toml_case::at_line;
+using core::toml_case::check_keys;
+using core::toml_case::number;
+using core::toml_case::subtable;
+
+}  // namespace
+
+namespace detail {
+
+std::optional<double> plain_number(const toml::node& n) {
+  if (n.is_floating_point() || n.is_integer()) return n.value<double>();
+  return std::nullopt;
+}
+
+std::string text(const toml::table& t, const std::string& key, const std::string& where,
+                 const std::string& dflt) {
+  const auto* n = t.get(key);
+  if (!n) return dflt;
+  if (auto x = n->value<std::string>()) return *x;
+  throw InvalidInput(fmt::format("{}.{} must be a string{}", where, key, at_line(*n)));
+}
+
+std::optional<double> si(const toml::table& t, const std::string& key, const std::string& where,
+                         Dimension d) {
+  const auto* n = t.get(key);
+  if (!n) return std::nullopt;
+  const std::string field = where + "." + key;
+  if (auto x = plain_number(*n)) {
+    if (!std::isfinite(*x))
+      throw InvalidInput(fmt::format("{} = {} must be finite{}", field, *x, at_line(*n)));
+    return *x;
+  }
+  if (auto s = n->value<std::string>()) return core::parse_quantity(*s, d, field);
+  throw InvalidInput(
+      fmt::format("{} must be a number (SI) or a quantity string with units, e.g. "
+                  "\"2.5e7 N/m\"{}",
+                  field, at_line(*n)));
+}
+
+double need_si(const toml::table& t, const std::string& key, const std::string& where, Dimension d,
+               const std::string& what) {
+  auto v = si(t, key, where, d);
+  if (!v) throw InvalidInput(fmt::format("{}: {} needs {}{}", where, what, key, at_line(t)));
+  return *v;
+}
+
+Eigen::MatrixXd matrix(const toml::node& n, const std::string& field, bool allow_vector) {
+  const auto* a = n.as_array();
+  if (!a || a->empty()) {
+    throw InvalidInput(
+        fmt::format("{} must be a non-empty array of rows, e.g. [[1.0, 0.0], [0.0, "
+                    "1.0]]{}",
+                    field, at_line(n)));
+  }
+  if (allow_vector && !a->get(0)->is_array()) {
+    Eigen::MatrixXd m(1, static_cast<Eigen::Index>(a->size()));
+    for (std::size_t j = 0; j < a->size(); ++j) {
+      const auto x = plain_number(*a->get(j));
+      if (!x || !std::isfinite(*x)) {
+        throw InvalidInput(
+            fmt::format("{}[{}] must be a finite number{}", field, j, at_line(*a->get(j))));
+      }
+      m(0, static_cast<Eigen::Index>(j)) = *x;
+    }
+    return m;
+  }
+  std::size_t cols = 0;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const auto* row = a->get(i)->as_array();
+    if (!row || row->empty()) {
+      throw InvalidInput(fmt::format("{}[{}] must be a non-empty array of numbers (a row){}", field,
+                                     i, at_line(*a->get(i))));
+    }
+    if (i == 0) cols = row->size();
+    if (row->size() != cols) {
+      throw InvalidInput(
+          fmt::format("{}: row {} has {} entries, row 0 has {}: every row needs the "
+                      "same number of columns{}",
+                      field, i, row->size(), cols, at_line(*row)));
+    }
+  }
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(a->size()), static_cast<Eigen::Index>(cols));
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const auto* row = a->get(i)->as_array();
+    for (std::size_t j = 0; j < cols; ++j) {
+      const auto x = plain_number(*row->get(j));
+      if (!x || !std::isfinite(*x)) {
+        throw InvalidInput(fmt::format("{}[{}][{}] must be a finite number{}", field, i, j,
+                                       at_line(*row->get(j))));
+      }
+      m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = *x;
+    }
+  }
+  return m;
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::joint_backbone;
+using detail::JointBackbone;
+using detail::matrix;
+using detail::parse_element;
+using detail::plain_number;
+using detail::text;
+
+// A whole number in [lo, hi].
+long long integer(const toml::table& t, const std::string& key, const std::string& where,
+                  long long dflt, long long lo, long long hi) {
+  const auto* n = t.get(key);
+  if (!n) return dflt;
+  const auto x = n->value<long long>();
+  if (!n->is_integer() || !x) {
+    throw InvalidInput(fmt::format("{}.{} must be a whole number{}", where, key, at_line(*n)));
+  }
+  if (*x < lo || *x > hi) {
+    throw InvalidInput(
+        fmt::format("{}.{} = {} must lie in [{}, {}]{}", where, key, *x, lo, hi, at_line(*n)));
+  }
+  return *x;
+}
+
+// `key` inline or `key_file` (MatrixMarket, relative to base_dir); nullopt if neither.
+std::optional<Eigen::MatrixXd> structure_matrix(const toml::table& t, const std::string& key,
+                                                const std::string& base_dir) {
+  const auto* inl = t.get(key);
+  const auto* file = t.get(key + "_file");
+  if (inl && file) {
+    throw InvalidInput(
+        fmt::format("structure: give {} or {}_file, not both{}", key, key, at_line(*file)));
+  }
+  if (inl) return matrix(*inl, "structure." + key, false);
+  if (!file) return std::nullopt;
+  const std::string name = text(t, key + "_file", "structure", "");
+  std::filesystem::path p(name);
+  if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+  return read_matrix_market(p.lexically_normal().string());
+}
+
+// {from = .., to = ..} with `convert` turning each node into a value.
+std::pair<double, double> range(
+    const toml::table& t, const std::string& key, const std::string& where,
+    const std::function<double(const toml::node&, const std::string&)>& convert) {
+  const auto* n = t.get(key);
+  if (!n) {
+    throw InvalidInput(
+        fmt::format("{} needs {} = {{ from = .., to = .. }}{}", where, key, at_line(t)));
+  }
+  const auto* r = n->as_table();
+  if (!r) {
+    throw InvalidInput(
+        fmt::format("{}.{} must be a table {{ from = .., to = .. }}{}", where, key, at_line(*n)));
+  }
+  const std::string w = where + "." + key;
+  check_keys(*r, w, {"from", "to"});
+  for (const char* k : {"from", "to"}) {
+    if (!r->get(k)) throw InvalidInput(fmt::format("{} needs {}{}", w, k, at_line(*r)));
+  }
+  return {convert(*r->get("from"), w + ".from"), convert(*r->get("to"), w + ".to")};
+}
+
+double finite_number(const toml::node& n, const std::string& field) {
+  const auto x = plain_number(n);
+  if (!x || !std::isfinite(*x))
+    throw InvalidInput(fmt::format("{} must be a finite number{}", field, at_line(n)));
+  return *x;
+}
+
+// Angular frequency [rad/s]: a number (rad/s), or a quantity in Hz (times 2 pi) or rad/s.
+double angular_frequency(const toml::node& n, const std::string& field) {
+  if (auto s = n.value<std::string>()) {
+    const double v = core::parse_quantity(*s, dim::frequency, field);
+    if (s->find("Hz") != std::string::npos) return 2.0 * std::numbers::pi * v;
+    if (s->find("rad") != std::string::npos) return v;
+    throw InvalidInput(fmt::format(
+        "{} = \"{}\": write the frequency in Hz (\"10 Hz\") or in rad/s (\"62.8 rad/s\"), or as a "
+        "number in rad/s{}",
+        field, *s, at_line(n)));
+  }
+  return finite_number(n, field);
+}
+
+void parse_continuation(const toml::table& t, const std::string& where, ContinuationOptions& c) {
+  const auto* ct = subtable(t, "continuation", where);
+  if (!ct) return;
+  const std::string w = where + ".continuation";
+  check_keys(*ct, w,
+             {"step", "min_step", "max_step", "max_points", "target_iterations", "max_angle",
+              "max_iterations", "step_tolerance", "residual_tolerance"});
+  c.step = number(*ct, "step", w, c.step);
+  c.min_step = number(*ct, "min_step", w, c.min_step);
+  c.max_step = number(*ct, "max_step", w, std::max(c.max_step, c.step));
+  c.max_points = static_cast<std::size_t>(
+      integer(*ct, "max_points", w, static_cast<long long>(c.max_points), 2, 1000000));
+  c.target_iterations =
+      static_cast<int>(integer(*ct, "target_iterations", w, c.target_iterations, 1, 1000));
+  c.max_angle = number(*ct, "max_angle", w, c.max_angle);
+  c.newton.max_iterations =
+      static_cast<int>(integer(*ct, "max_iterations", w, c.newton.max_iterations, 1, 1000));
+  c.newton.step_tolerance = number(*ct, "step_tolerance", w, c.newton.step_tolerance);
+  c.newton.residual_tolerance = number(*ct, "residual_tolerance", w, c.newton.residual_tolerance);
+  try {
+    c.validate();
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format("{}: {}", w, e.what()));
+  }
+}
+
+// The force coefficients of a [[frequency_response]] in the unknowns' layout.
+Eigen::VectorXd force_vector(const HarmonicBasis& basis, Eigen::Index dofs,
+                             const Eigen::MatrixXd& fc, const Eigen::MatrixXd& fs) {
+  const auto nc = static_cast<Eigen::Index>(basis.coefficients());
+  Eigen::VectorXd F = Eigen::VectorXd::Zero(nc * dofs);
+  const auto& h = basis.harmonics();
+  for (Eigen::Index r = 0; r < static_cast<Eigen::Index>(h.size()); ++r) {
+    const int hr = h[static_cast<std::size_t>(r)];
+    for (Eigen::Index d = 0; d < dofs; ++d) {
+      if (r < fc.rows()) F(d * nc + basis.index_of(hr, 0)) = fc(r, d);
+      if (r < fs.rows() && hr > 0) F(d * nc + basis.index_of(hr, 1)) = fs(r, d);
+    }
+  }
+  return F;
+}
+
+}  // namespace
+
+VibrationCase parse_case_text(const std::string& file_text, const std::string& path,
+                              const std::string& base_dir) {
+  toml::table root;
+  try {
+    root = toml::parse(file_text, path);
+  } catch (const toml::parse_error& e) {
+    throw InvalidInput(
+        fmt::format("{}: {} (line {})", path, e.description(), e.source().begin.line));
+  }
+  check_keys(root, path,
+             {"structure", "element", "harmonic_balance", "nonlinear_mode", "frequency_response",
+              "quasi_static_mode", "joint", "load", "profiles", "interface"});
+  if (!root.get("joint")) {
+    for (const char* k : {"load", "profiles", "interface"}) {
+      if (root.get(k)) {
+        throw InvalidInput(
+            fmt::format("{}: [{}] belongs to a [joint] table, which is missing (line {})", path, k,
+                        root.get(k)->source().begin.line));
+      }
+    }
+  }
+  VibrationCase c;
+  c.source = path;
+
+  // [structure]
+  const toml::table* st = subtable(root, "structure", "");
+  if (!st) throw InvalidInput(fmt::format("{}: the case file needs a [structure] table", path));
+  const std::string S = "structure";
+  check_keys(*st, S,
+             {"mass", "mass_file", "stiffness", "stiffness_file", "damping", "damping_file",
+              "rayleigh", "output_dofs"});
+  auto M = structure_matrix(*st, "mass", base_dir);
+  auto K = structure_matrix(*st, "stiffness", base_dir);
+  if (!M) throw InvalidInput(fmt::format("structure needs mass (or mass_file){}", at_line(*st)));
+  if (!K) {
+    throw InvalidInput(
+        fmt::format("structure needs stiffness (or stiffness_file){}", at_line(*st)));
+  }
+  c.structure.M = std::move(*M);
+  c.structure.K = std::move(*K);
+  auto Cm = structure_matrix(*st, "damping", base_dir);
+  if (const auto* r = subtable(*st, "rayleigh", S)) {
+    if (Cm) {
+      throw InvalidInput(
+          fmt::format("structure: give damping (or damping_file) or rayleigh, not "
+                      "both{}",
+                      at_line(*r)));
+    }
+    check_keys(*r, S + ".rayleigh", {"alpha", "beta"});
+    c.rayleigh.alpha = number(*r, "alpha", S + ".rayleigh", 0.0);
+    c.rayleigh.beta = number(*r, "beta", S + ".rayleigh", 0.0);
+    c.damping = "rayleigh";
+  } else if (Cm) {
+    c.structure.C = std::move(*Cm);
+    c.damping = "matrix";
+  }
+  try {
+    if (c.damping == "rayleigh") {
+      // Sizes and symmetry first, so that the Rayleigh sum is well formed.
+      c.structure.validate();
+      c.structure.C = rayleigh(c.structure.M, c.structure.K, c.rayleigh);
+    }
+    c.structure.validate();
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format("{}: structure: {}", path, e.what()));
+  }
+  const Eigen::Index n = c.structure.dofs();
+  if (const auto* od = st->get("output_dofs")) {
+    const auto* a = od->as_array();
+    if (!a || a->empty()) {
+      throw InvalidInput(
+          fmt::format("structure.output_dofs must be a non-empty list of DOFs (0 .. "
+                      "{}){}",
+                      n - 1, at_line(*od)));
+    }
+    for (std::size_t k = 0; k < a->size(); ++k) {
+      const auto v = (*a)[k].value<long long>();
+      if (!(*a)[k].is_integer() || !v || *v < 0 || *v >= n) {
+        throw InvalidInput(fmt::format("structure.output_dofs[{}]: DOFs are numbered 0 .. {}{}", k,
+                                       n - 1, at_line((*a)[k])));
+      }
+      c.output_dofs.push_back(static_cast<Eigen::Index>(*v));
+    }
+  } else {
+    for (Eigen::Index d = 0; d < n; ++d) c.output_dofs.push_back(d);
+  }
+
+  // [joint] (for rough_flat elements)
+  std::optional<JointBackbone> joint;
+  if (root.get("joint")) {
+    joint = joint_backbone(path, base_dir, file_text, root);
+    c.joint = joint->summary;
+  }
+
+  // [[element]]
+  if (const auto* en = root.get("element")) {
+    const auto* arr = en->as_array();
+    if (!arr || !arr->is_array_of_tables()) {
+      throw InvalidInput(
+          fmt::format("element must be an array of tables: write [[element]]{}", at_line(*en)));
+    }
+    for (std::size_t k = 0; k < arr->size(); ++k) {
+      c.elements.push_back(parse_element(*arr->get(k)->as_table(), k, n, joint));
+    }
+  }
+  if (joint) {
+    const bool used = std::any_of(c.elements.begin(), c.elements.end(), [](const auto& e) {
+      const SummaryValue described(e.element->describe());  // find() points into it
+      const auto* b = described.find("backbone");
+      return b && std::holds_alternative<std::string>(b->data) &&
+             std::get<std::string>(b->data) == "joint";
+    });
+    if (!used) {
+      throw InvalidInput(fmt::format(
+          "{}: the [joint] table is not used: add an [[element]] with type = \"rough_flat\" and "
+          "backbone = \"joint\", or remove [joint]",
+          path));
+    }
+  }
+
+  // [harmonic_balance]
+  if (const auto* hb = subtable(root, "harmonic_balance", "")) {
+    const std::string w = "harmonic_balance";
+    check_keys(*hb, w, {"harmonics", "max", "time_points"});
+    if (hb->get("harmonics") && hb->get("max")) {
+      throw InvalidInput(
+          fmt::format("harmonic_balance: give harmonics or max, not both{}", at_line(*hb)));
+    }
+    if (const auto* hn = hb->get("harmonics")) {
+      const auto* a = hn->as_array();
+      if (!a || a->empty()) {
+        throw InvalidInput(fmt::format(
+            "harmonic_balance.harmonics must be a list of harmonics, e.g. [0, 1, 2, 3]{}",
+            at_line(*hn)));
+      }
+      c.harmonic_balance.harmonics.clear();
+      for (std::size_t k = 0; k < a->size(); ++k) {
+        const auto v = (*a)[k].value<long long>();
+        if (!(*a)[k].is_integer() || !v || *v < 0 || *v > 1000) {
+          throw InvalidInput(
+              fmt::format("harmonic_balance.harmonics[{}] must be a whole number in [0, 1000]{}", k,
+                          at_line((*a)[k])));
+        }
+        c.harmonic_balance.harmonics.push_back(static_cast<int>(*v));
+      }
+    } else if (hb->get("max")) {
+      const auto H = integer(*hb, "max", w, 3, 1, 1000);
+      c.harmonic_balance.harmonics.clear();
+      for (int h = 0; h <= H; ++h) c.harmonic_balance.harmonics.push_back(h);
+    }
+    c.harmonic_balance.time_points = static_cast<std::size_t>(integer(
+        *hb, "time_points", w, static_cast<long long>(c.harmonic_balance.time_points), 2, 1 << 20));
+  }
+  {
+    const auto& h = c.harmonic_balance.harmonics;
+    if (std::find(h.begin(), h.end(), 1) == h.end()) {
+      std::string list;
+      for (int x : h) list += (list.empty() ? "" : ", ") + std::to_string(x);
+      throw InvalidInput(fmt::format(
+          "harmonic_balance.harmonics = [{}] lacks harmonic 1, the fundamental every analysis "
+          "needs: add 1",
+          list));
+    }
+    try {
+      c.harmonic_balance.validate();
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("harmonic_balance: {}", e.what()));
+    }
+  }
+  const HarmonicBasis basis(c.harmonic_balance);
+  const std::size_t nh = basis.harmonics().size();
+
+  // [nonlinear_mode]
+  if (const auto* t = subtable(root, "nonlinear_mode", "")) {
+    const std::string w = "nonlinear_mode";
+    check_keys(*t, w, {"mode", "log10_amplitude", "continuation"});
+    NonlinearModeOptions o;
+    o.mode = static_cast<int>(integer(*t, "mode", w, 1, 1, n));
+    const auto [from, to] = range(*t, "log10_amplitude", w, finite_number);
+    o.log10_amplitude_from = from;
+    o.log10_amplitude_to = to;
+    parse_continuation(*t, w, o.continuation);
+    o.validate();
+    c.nonlinear_mode = o;
+  }
+
+  // [[frequency_response]]
+  if (const auto* fn = root.get("frequency_response")) {
+    const auto* arr = fn->as_array();
+    if (!arr || !arr->is_array_of_tables()) {
+      throw InvalidInput(fmt::format(
+          "frequency_response must be an array of tables: write [[frequency_response]]{}",
+          at_line(*fn)));
+    }
+    for (std::size_t k = 0; k < arr->size(); ++k) {
+      const toml::table& t = *arr->get(k)->as_table();
+      const std::string w = fmt::format("frequency_response[{}]", k);
+      check_keys(t, w,
+                 {"force_cos", "force_sin", "force_per_omega_cos", "force_per_omega_sin",
+                  "force_per_omega2_cos", "force_per_omega2_sin", "force_scales", "omega",
+                  "continuation"});
+      FrequencyResponseCase fr;
+      // One (cos, sin) pair of coefficient tables: rows harmonics, columns DOFs.
+      auto pair = [&](const std::string& prefix, Eigen::MatrixXd& cos_part,
+                      Eigen::MatrixXd& sin_part) {
+        cos_part = Eigen::MatrixXd::Zero(0, n);
+        sin_part = Eigen::MatrixXd::Zero(0, n);
+        for (const std::string kind : {"_cos", "_sin"}) {
+          const std::string key = prefix + kind;
+          const auto* fnode = t.get(key);
+          if (!fnode) continue;
+          Eigen::MatrixXd m = matrix(*fnode, w + "." + key, false);
+          if (m.cols() != n) {
+            throw InvalidInput(fmt::format(
+                "{}.{} has {} column(s) but the structure has {} DOFs: one column per DOF{}", w,
+                key, m.cols(), n, at_line(*fnode)));
+          }
+          if (static_cast<std::size_t>(m.rows()) > nh) {
+            throw InvalidInput(fmt::format(
+                "{}.{} has {} rows but {} harmonics are kept: one row per harmonic in the order "
+                "of harmonic_balance.harmonics{}",
+                w, key, m.rows(), nh, at_line(*fnode)));
+          }
+          if (kind == "_sin" && basis.harmonics().front() == 0 && m.rows() > 0 &&
+              m.row(0).cwiseAbs().maxCoeff() > 0.0) {
+            throw InvalidInput(fmt::format(
+                "{}.{}: the first row belongs to harmonic 0, which has no sine part: make it "
+                "zero{}",
+                w, key, at_line(*fnode)));
+          }
+          (kind == "_cos" ? cos_part : sin_part) = std::move(m);
+        }
+        return force_vector(basis, n, cos_part, sin_part);
+      };
+      FrequencyResponseOptions& o = fr.options;
+      o.force = pair("force", fr.force_cos, fr.force_sin);
+      if (!t.get("force_cos") && !t.get("force_sin")) {
+        throw InvalidInput(
+            fmt::format("{} needs force_cos and/or force_sin (rows: harmonics, columns: DOFs){}", w,
+                        at_line(t)));
+      }
+      Eigen::MatrixXd c1, s1, c2, s2;
+      if (t.get("force_per_omega_cos") || t.get("force_per_omega_sin"))
+        o.force_per_omega = pair("force_per_omega", c1, s1);
+      if (t.get("force_per_omega2_cos") || t.get("force_per_omega2_sin"))
+        o.force_per_omega2 = pair("force_per_omega2", c2, s2);
+      if (const auto* sn = t.get("force_scales")) {
+        const auto* a = sn->as_array();
+        if (!a || a->empty()) {
+          throw InvalidInput(fmt::format("{}.force_scales must be a non-empty list of numbers{}", w,
+                                         at_line(*sn)));
+        }
+        o.force_scales.clear();
+        for (std::size_t j = 0; j < a->size(); ++j) {
+          o.force_scales.push_back(
+              finite_number(*a->get(j), fmt::format("{}.force_scales[{}]", w, j)));
+        }
+      }
+      const auto [from, to] = range(t, "omega", w, angular_frequency);
+      o.omega_from = from;
+      o.omega_to = to;
+      parse_continuation(t, w, o.continuation);
+      try {
+        o.validate(static_cast<Eigen::Index>(basis.coefficients()) * n);
+      } catch (const InvalidInput& e) {
+        throw InvalidInput(fmt::format("{}: {}", w, e.what()));
+      }
+      c.frequency_responses.push_back(std::move(fr));
+    }
+  }
+
+  // [quasi_static_mode]
+  if (const auto* t = subtable(root, "quasi_static_mode", "")) {
+    const std::string w = "quasi_static_mode";
+    check_keys(*t, w, {"mode", "amplitude", "points"});
+    QuasiStaticModeOptions o;
+    o.mode = static_cast<int>(integer(*t, "mode", w, 1, 1, n));
+    const auto [from, to] = range(*t, "amplitude", w, finite_number);
+    o.amplitude_from = from;
+    o.amplitude_to = to;
+    o.points = static_cast<std::size_t>(integer(*t, "points", w, 60, 2, 100000));
+    o.validate();
+    c.quasi_static_mode = o;
+  }
+  if (!c.nonlinear_mode && c.frequency_responses.empty() && !c.quasi_static_mode) {
+    throw InvalidInput(fmt::format(
+        "{}: nothing to run: add [nonlinear_mode], [[frequency_response]] or [quasi_static_mode]",
+        path));
+  }
+  return c;
+}
+
+VibrationCase read_case_file(const std::string& path) {
+  const std::string file_text =
+      core::read_input_file(path, core::kMaxCaseFileBytes, "the case file");
+  core::require_utf8(file_text, path, "the case file");
+  const auto dir = std::filesystem::path(path).parent_path();
+  return parse_case_text(file_text, path, dir.empty() ? "." : dir.string());
+}
+
+}  // namespace asperity::vibration

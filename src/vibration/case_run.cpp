@@ -1,0 +1,276 @@
+#include "asperity/vibration/case.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <numbers>
+
+#include "asperity/core/error.hpp"
+#include "asperity/core/validate.hpp"
+
+namespace asperity::vibration {
+
+namespace {
+
+SummaryArray array(const Eigen::VectorXd& v) {
+  SummaryArray a;
+  a.reserve(static_cast<std::size_t>(v.size()));
+  for (Eigen::Index i = 0; i < v.size(); ++i) a.emplace_back(v(i));
+  return a;
+}
+
+// Rows of a matrix (points x outputs) as [[...], ...].
+SummaryArray rows(const Eigen::MatrixXd& m) {
+  SummaryArray a;
+  for (Eigen::Index i = 0; i < m.rows(); ++i) a.emplace_back(array(m.row(i).transpose()));
+  return a;
+}
+
+SummaryArray matrix_summary(const Eigen::MatrixXd& m) {
+  return rows(m);
+}
+
+struct Work {
+  std::size_t points = 0, newton = 0, residuals = 0, jacobians = 0, rejected = 0, turning = 0;
+  double wall = 0.0;
+  bool complete = true;
+  std::string stop_reason;
+};
+
+SummaryObject solver_summary(const Work& w) {
+  return {{"points", w.points},
+          {"newton_iterations", w.newton},
+          {"residual_evaluations", w.residuals},
+          {"jacobian_evaluations", w.jacobians},
+          {"rejected_steps", w.rejected},
+          {"turning_points", w.turning},
+          {"wall_time_s", w.wall},
+          {"complete", w.complete},
+          {"stop_reason", w.stop_reason}};
+}
+
+void add_continuation(Work& w, const ContinuationResult& c) {
+  w.points += c.points.size();
+  w.newton += c.newton_iterations;
+  w.rejected += c.rejected_steps;
+  w.turning += c.turning_points;
+  if (!c.complete && w.complete) {
+    w.complete = false;
+    w.stop_reason = c.stop_reason;
+  } else if (w.complete) {
+    w.stop_reason = c.stop_reason;
+  }
+}
+
+// One analysis's work into the run's total; the first analysis that stopped early gives
+// the total its stop reason, prefixed with `analysis`.
+void add_analysis(Work& total, const Work& w, const std::string& analysis) {
+  total.points += w.points;
+  total.newton += w.newton;
+  total.rejected += w.rejected;
+  total.turning += w.turning;
+  if (!w.complete && total.complete) {
+    total.complete = false;
+    total.stop_reason = analysis + ": " + w.stop_reason;
+  }
+}
+
+}  // namespace
+
+VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
+  using clock = std::chrono::steady_clock;
+  VibrationResult r;
+  const HarmonicBalance hb(c.structure, c.elements, c.harmonic_balance);
+  SummaryObject& j = r.summary;
+  const Eigen::Index n = c.structure.dofs();
+
+  // The case echoed.
+  j.emplace_back("case", c.source);
+  {
+    SummaryObject s{{"dofs", static_cast<std::size_t>(n)}, {"damping", c.damping}};
+    if (c.damping == "rayleigh") {
+      s.emplace_back("rayleigh",
+                     SummaryObject{{"alpha_per_s", c.rayleigh.alpha}, {"beta_s", c.rayleigh.beta}});
+    }
+    SummaryArray od;
+    for (auto d : c.output_dofs) od.emplace_back(static_cast<std::size_t>(d));
+    s.emplace_back("output_dofs", std::move(od));
+    const LinearModes free_modes = linear_modes(c.structure.K, c.structure.M);
+    const LinearModes stuck = linear_modes(hb.stuck_stiffness(), c.structure.M);
+    SummaryArray fs, fss;
+    for (Eigen::Index i = 0; i < free_modes.omega.size(); ++i) {
+      fs.emplace_back(free_modes.omega(i) / (2.0 * std::numbers::pi));
+      fss.emplace_back(stuck.omega(i) / (2.0 * std::numbers::pi));
+    }
+    s.emplace_back("linear_frequencies_hz_without_elements", std::move(fs));
+    s.emplace_back("linear_frequencies_hz_elements_stuck", std::move(fss));
+    j.emplace_back("structure", std::move(s));
+  }
+  {
+    SummaryArray es;
+    for (const auto& pe : c.elements) {
+      SummaryObject e{{"name", pe.name}, {"type", pe.element->type()}};
+      e.emplace_back("T", matrix_summary(pe.T));
+      for (auto& kv : pe.element->describe()) {
+        if (kv.first != "type") e.push_back(kv);
+      }
+      es.emplace_back(std::move(e));
+    }
+    j.emplace_back("elements", std::move(es));
+  }
+  {
+    SummaryArray h;
+    for (int x : c.harmonic_balance.harmonics) h.emplace_back(x);
+    j.emplace_back("harmonic_balance",
+                   SummaryObject{{"harmonics", std::move(h)},
+                                 {"time_points", c.harmonic_balance.time_points},
+                                 {"unknowns", static_cast<std::size_t>(hb.unknowns())}});
+  }
+  if (c.joint) j.emplace_back("joint", *c.joint);
+
+  Work total;
+  const auto t_all = clock::now();
+  auto counters = [&hb] { return hb.counters(); };
+  auto account = [&](Work& w, const WorkCounters& before, clock::time_point t0) {
+    const WorkCounters after = counters();
+    w.residuals = after.residual_evaluations - before.residual_evaluations;
+    w.jacobians = after.jacobian_evaluations - before.jacobian_evaluations;
+    w.wall = std::chrono::duration<double>(clock::now() - t0).count();
+  };
+  auto cannot_start = [](const std::string& analysis, const NumericalError& e) {
+    return InvalidInput(fmt::format(
+        "{}: {} (change the start of the range, the force, or the continuation settings)", analysis,
+        e.what()));
+  };
+
+  if (c.nonlinear_mode) {
+    Work w;
+    const auto before = counters();
+    const auto t0 = clock::now();
+    try {
+      r.nonlinear_mode = nonlinear_mode(
+          hb, *c.nonlinear_mode, c.output_dofs,
+          progress ? ProgressFunction([&](double x) { progress("nonlinear_mode", x); })
+                   : ProgressFunction{});
+    } catch (const NumericalError& e) {
+      throw cannot_start("nonlinear_mode", e);
+    }
+    const NonlinearModeResult& m = *r.nonlinear_mode;
+    add_continuation(w, m.continuation);
+    account(w, before, t0);
+    r.warnings.insert(r.warnings.end(), m.warnings.begin(), m.warnings.end());
+    j.emplace_back("nonlinear_mode", SummaryObject{{"mode", c.nonlinear_mode->mode},
+                                                   {"linear_omega_rad_s", m.linear_omega},
+                                                   {"linear_damping_ratio", m.linear_damping_ratio},
+                                                   {"log10_amplitude", array(m.log10_amplitude)},
+                                                   {"amplitude", array(m.amplitude)},
+                                                   {"omega_rad_s", array(m.omega)},
+                                                   {"frequency_hz", array(m.frequency_hz)},
+                                                   {"damping_ratio", array(m.damping_ratio)},
+                                                   {"xi_per_s", array(m.xi)},
+                                                   {"output_amplitude", rows(m.output_amplitude)},
+                                                   {"solver", solver_summary(w)}});
+    add_analysis(total, w, "nonlinear_mode");
+  }
+
+  if (!c.frequency_responses.empty()) {
+    SummaryArray curves;
+    std::size_t total_curves = 0, done_curves = 0;
+    for (const auto& fr : c.frequency_responses) total_curves += fr.options.force_scales.size();
+    for (std::size_t k = 0; k < c.frequency_responses.size(); ++k) {
+      const FrequencyResponseOptions& all = c.frequency_responses[k].options;
+      for (const double scale : all.force_scales) {
+        // One curve per call, so that each has its own counters and wall time.
+        FrequencyResponseOptions one = all;
+        one.force_scales = {scale};
+        const std::string curve =
+            fmt::format("frequency_response[{}] at force scale {}", k, core::format_value(scale));
+        const auto before = counters();
+        const auto t0 = clock::now();
+        std::vector<FrequencyResponseCurve> cs;
+        try {
+          const double nk = static_cast<double>(total_curves);
+          const double d0 = static_cast<double>(done_curves);
+          cs = frequency_response(hb, one, c.output_dofs,
+                                  progress ? ProgressFunction([&](double x) {
+                                    progress("frequency_response", (d0 + x) / nk);
+                                  })
+                                           : ProgressFunction{});
+        } catch (const NumericalError& e) {
+          throw cannot_start(curve, e);
+        }
+        ++done_curves;
+        FrequencyResponseCurve& cv = cs.front();
+        Work w;
+        add_continuation(w, cv.continuation);
+        account(w, before, t0);
+        r.warnings.insert(r.warnings.end(), cv.warnings.begin(), cv.warnings.end());
+        SummaryArray ha;  // per point, per output, per harmonic
+        for (Eigen::Index p = 0; p < cv.omega.size(); ++p) {
+          SummaryArray per_output;
+          for (const auto& hm : cv.harmonic_amplitude)
+            per_output.emplace_back(array(hm.row(p).transpose()));
+          ha.emplace_back(std::move(per_output));
+        }
+        SummaryObject o{{"table", k},
+                        {"force_scale", cv.force_scale},
+                        {"omega_rad_s", array(cv.omega)},
+                        {"frequency_hz", array(cv.omega / (2.0 * std::numbers::pi))},
+                        {"output_amplitude", rows(cv.output_amplitude)},
+                        {"max_displacement", rows(cv.max_displacement)},
+                        {"harmonic_amplitude", std::move(ha)}};
+        o.emplace_back("solver", solver_summary(w));
+        curves.emplace_back(std::move(o));
+        add_analysis(total, w, curve);
+        r.frequency_response.push_back(std::move(cv));
+        r.frequency_response_table.push_back(k);
+      }
+    }
+    j.emplace_back("frequency_response", std::move(curves));
+  }
+
+  if (c.quasi_static_mode) {
+    Work w;
+    const auto before = counters();
+    const auto t0 = clock::now();
+    if (progress) progress("quasi_static_mode", 0.0);
+    try {
+      r.quasi_static_mode = quasi_static_mode(hb, *c.quasi_static_mode);
+    } catch (const NumericalError& e) {
+      throw InvalidInput(fmt::format("quasi_static_mode: {}", e.what()));
+    }
+    if (progress) progress("quasi_static_mode", 1.0);
+    const QuasiStaticModeResult& q = *r.quasi_static_mode;
+    w.points = static_cast<std::size_t>(q.amplitude.size());
+    w.newton = q.newton_iterations;
+    w.stop_reason = "reached the end of the amplitude range";
+    account(w, before, t0);
+    r.warnings.insert(r.warnings.end(), q.warnings.begin(), q.warnings.end());
+    j.emplace_back("quasi_static_mode", SummaryObject{{"mode", c.quasi_static_mode->mode},
+                                                      {"linear_omega_rad_s", q.linear_omega},
+                                                      {"amplitude", array(q.amplitude)},
+                                                      {"omega_rad_s", array(q.omega)},
+                                                      {"frequency_hz", array(q.frequency_hz)},
+                                                      {"damping_ratio", array(q.damping_ratio)},
+                                                      {"modal_force", array(q.modal_force)},
+                                                      {"dissipation_J", array(q.dissipation)},
+                                                      {"solver", solver_summary(w)}});
+    add_analysis(total, w, "quasi_static_mode");
+  }
+  {
+    const WorkCounters wc = counters();
+    total.residuals = wc.residual_evaluations;
+    total.jacobians = wc.jacobian_evaluations;
+    total.wall = std::chrono::duration<double>(clock::now() - t_all).count();
+    if (total.complete) total.stop_reason = "every analysis reached the end of its range";
+    r.complete = total.complete;
+    r.stop_reason = total.stop_reason;
+    j.emplace_back("solver", solver_summary(total));
+  }
+  SummaryArray w;
+  for (const auto& s : r.warnings) w.emplace_back(s);
+  j.emplace_back("warnings", std::move(w));
+  return r;
+}
+
+}  // namespace asperity::vibration
