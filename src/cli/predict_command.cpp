@@ -5,10 +5,13 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <optional>
+#include <string_view>
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
@@ -21,6 +24,36 @@
 namespace asperity::cli {
 
 namespace {
+
+// Seconds between the plain progress lines when stderr is not a terminal (README, "The
+// command line").
+constexpr double kDefaultProgressInterval = 10.0;
+constexpr const char* kProgressIntervalVariable = "ASPERITY_PROGRESS_INTERVAL";
+
+// The environment variable ASPERITY_PROGRESS_INTERVAL when set, else the default. A value
+// that is not a finite number of seconds >= 0 is refused (InvalidInput, exit 2), never
+// ignored: 0 prints a line after every preload.
+double progress_interval() {
+  const char* env = std::getenv(kProgressIntervalVariable);
+  if (env == nullptr) return kDefaultProgressInterval;
+  const std::string_view s(env);
+  double seconds = 0.0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), seconds);
+  if (!s.empty() && ec == std::errc() && end == s.data() + s.size() && std::isfinite(seconds) &&
+      seconds >= 0.0) {
+    return seconds;
+  }
+  std::string shown;  // bytes a terminal would act on shown as \xNN
+  for (const char ch : s) {
+    const auto b = static_cast<unsigned char>(ch);
+    shown += b >= 0x20 && b < 0x7F ? std::string(1, ch) : fmt::format("\\x{:02X}", b);
+  }
+  throw InvalidInput(fmt::format(
+      "{}=\"{}\" is not allowed: give the seconds between predict's progress lines when stderr "
+      "is not a terminal, a number >= 0 such as 10 (the default) or 0 (a line after every "
+      "preload)",
+      kProgressIntervalVariable, shown));
+}
 
 struct PredictOptions {
   std::string case_file;
@@ -619,9 +652,14 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
       "it");
   cmd->add_flag("--json", o->json, "print summary.json instead of the table");
   cmd->add_flag("--no-plots", o->no_plots, "do not draw PNG plots (no gnuplot needed)");
+  cmd->footer(fmt::format(
+      "Environment: {}, the seconds between the progress lines of a sweep when stderr is not "
+      "a terminal (default: {:g}; 0: a line after every preload).",
+      kProgressIntervalVariable, kDefaultProgressInterval));
   cmd->callback([o, &action] {
     action = [o] {
       return run_guarded([o](std::string& out) {
+        const double interval_seconds = progress_interval();  // refused before any work
         const OutKind kind = out_kind(o->out, ".json");
         const bool to_dir = kind == OutKind::directory;
         if (kind == OutKind::standard_output && o->json)
@@ -641,17 +679,20 @@ void add_predict_command(CLI::App& app, std::function<int()>& action) {
         }
         std::vector<std::string> written;
         const bool bar = c.preloads.size() > 1 && isatty(STDERR_FILENO);
-        // Not a terminal (a log, a pipe): a plain line at most every 10 s, so a long sweep
-        // shows that it runs without flooding the log; nothing for a sweep under 10 s.
+        // Not a terminal (a log, a pipe): a plain line at most every `interval` seconds
+        // (10, or ASPERITY_PROGRESS_INTERVAL), so a long sweep shows that it runs without
+        // flooding the log; nothing for a sweep shorter than the interval.
         using Clock = std::chrono::steady_clock;
+        const std::chrono::duration<double> interval(interval_seconds);
         auto last_line = Clock::now();
         bool any_line = false;
         const auto progress = [&](std::size_t i, std::size_t n) {
           if (!bar) {
             const auto now = Clock::now();
-            if (n > 1 && (now - last_line >= std::chrono::seconds(10) || (any_line && i == n))) {
-              std::cerr << fmt::format("asperity predict: {}/{} preloads ({:.0f} %)\n", i, n,
-                                       100.0 * static_cast<double>(i) / static_cast<double>(n))
+            if (n > 1 && (now - last_line >= interval || (any_line && i == n))) {
+              // Whole per cent rounded down: 100 % only when every preload is done.
+              std::cerr << fmt::format("asperity predict: {}/{} preloads ({} %)\n", i, n,
+                                       100 * i / n)
                         << std::flush;
               last_line = now;
               any_line = true;

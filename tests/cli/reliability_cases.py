@@ -201,6 +201,152 @@ def case_dynamics_sigterm_cleanup(exe, src, tmp):
     check(not os.path.exists(os.path.join(tmp, "dyn")), "dyn written")
 
 
+def predict_sweep(src, tmp, n):
+    """examples/joints/steel_smooth.toml with n preloads (200, 202, ... N) and its 12
+    amplitudes: about 5 ms of computation and 100 KB of loops.csv per preload."""
+    with open(os.path.join(src, "examples/joints/steel_smooth.toml")) as f:
+        text = f.read()
+    bolts = text[text.index("bolts = {"):]
+    bolts = bolts[:bolts.index("\n")]
+    preloads = ", ".join(f'"{200 + 2 * i} N"' for i in range(n))
+    with open(os.path.join(tmp, "sweep.toml"), "w") as f:
+        f.write(text.replace(bolts, f"preloads = [{preloads}]"))
+    return "sweep.toml"
+
+
+def tree(directory):
+    """{relative path: bytes} of every file below `directory`."""
+    files = {}
+    for root, _, names in os.walk(directory):
+        for name in names:
+            path = os.path.join(root, name)
+            with open(path, "rb") as f:
+                files[os.path.relpath(path, directory)] = f.read()
+    return files
+
+
+def earlier_predict_output(exe, src, tmp, plots):
+    """A complete `predict --out out` of the shipped 3-preload case: what a kill of a
+    later run must leave alone (or replace whole)."""
+    case = os.path.join(src, "examples/joints/steel_smooth.toml")
+    r = run(exe, ["predict", case, "--out", "out"] + ([] if plots else ["--no-plots"]), tmp)
+    check(r.returncode == 0, r.stderr)
+    old = tree(os.path.join(tmp, "out"))
+    check("summary.json" in old and ".asperity-output" in old, f"earlier output: {sorted(old)}")
+    return old
+
+
+def replaced_whole(out_dir, n):
+    """True when `out_dir` is a complete output of the n-preload sweep: its marker lists
+    exactly the files present and summary.json holds every preload."""
+    files = tree(out_dir)
+    marker = files.get(".asperity-output", b"").decode().splitlines()
+    if "files:" not in marker:
+        return False
+    listed = marker[marker.index("files:") + 1:]
+    if sorted(listed) != sorted(f for f in files if f != ".asperity-output"):
+        return False
+    try:
+        return len(json.loads(files["summary.json"])["loads"]) == n
+    except (KeyError, ValueError):
+        return False
+
+
+def case_predict_sigterm_computing(exe, src, tmp):
+    """SIGTERM while `predict --out out` computes its load cases: exit by the signal,
+    nothing of ours left, the earlier complete output in `out` untouched."""
+    old = earlier_predict_output(exe, src, tmp, plots=False)
+    n = 400
+    case = predict_sweep(src, tmp, n)
+    env = dict(os.environ, ASPERITY_PROGRESS_INTERVAL="0")  # a line after every preload
+    p = subprocess.Popen([exe, "predict", case, "--out", "out", "--no-plots"], cwd=tmp, env=env,
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    # Wait until a tenth of the preloads are done: the computation runs.
+    def count(line):  # "asperity predict: i/n preloads (p %)" -> i
+        return int(line.split()[2].split("/")[0]) if line.startswith("asperity predict:") else 0
+    done = 0
+    while done < n // 10:
+        line = p.stderr.readline()
+        check(line, "the run ended before its progress reached a tenth")
+        done = max(done, count(line))
+    p.send_signal(signal.SIGTERM)
+    rest = p.stderr.read()
+    rc = p.wait(timeout=60)
+    p.stderr.close()
+    # Evidence that the signal came mid-computation: the last progress line is below n.
+    last = max([done] + [count(line) for line in rest.splitlines()])
+    check(last < n, f"the computation finished ({last}/{n}) before the signal")
+    check(rc == -signal.SIGTERM, f"exit {rc}, expected death by SIGTERM")
+    check(not leftovers(tmp), f"temporaries left after SIGTERM: {leftovers(tmp)}")
+    check(tree(os.path.join(tmp, "out")) == old, "the earlier output was changed")
+
+
+def predict_sigterm_writing(exe, src, tmp, plots):
+    """SIGTERM while `predict --out out` writes its staged directory `.out.tmp-*` (with
+    plots: while gnuplot draws, its own temporary under TMPDIR): exit by the signal, no
+    staged directory, temporary or plot directory left, and `out` either the earlier
+    complete output or (a signal after the commit) the new one whole; never a mixture."""
+    old = earlier_predict_output(exe, src, tmp, plots)
+    n = 100
+    case = predict_sweep(src, tmp, n)
+    plot_tmp = os.path.join(tmp, "plot-tmp")
+    os.mkdir(plot_tmp)
+    env = dict(os.environ, TMPDIR=plot_tmp)
+    argv = [exe, "predict", case, "--out", "out"] + ([] if plots else ["--no-plots"])
+    for _ in range(3):
+        p = subprocess.Popen(argv, cwd=tmp, env=env, start_new_session=True,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        # The staged directory exists only once the computation is over. Without plots,
+        # kill while it holds a file being written (`.loops.csv.tmp-*`, 10 MB); with
+        # plots, while gnuplot draws (its directory under TMPDIR exists).
+        staged, killed = [], False
+        deadline = time.monotonic() + 60
+        while not killed and p.poll() is None and time.monotonic() < deadline:
+            staged = []
+            for d in [f for f in os.listdir(tmp) if f.startswith(".out.tmp-")]:
+                try:
+                    staged = os.listdir(os.path.join(tmp, d))
+                except FileNotFoundError:
+                    staged = []
+            drawing = staged and os.listdir(plot_tmp)
+            if drawing if plots else any(".tmp-" in f for f in staged):
+                p.send_signal(signal.SIGTERM)
+                killed = True
+            else:
+                time.sleep(0.001)
+        rc = p.wait(timeout=60)
+        try:  # gnuplot, started by the killed process, in its new session
+            os.killpg(p.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        stderr = p.stderr.read().decode()
+        p.stderr.close()
+        now = tree(os.path.join(tmp, "out"))
+        if not killed:  # the run ended between two looks: nothing was tested
+            check(rc == 0 and replaced_whole(os.path.join(tmp, "out"), n),
+                  f"exit {rc} without a signal: {stderr}")
+            old = now
+            continue
+        check(rc == -signal.SIGTERM, f"exit {rc}, expected death by SIGTERM: {stderr}")
+        check(not leftovers(tmp), f"temporaries left after SIGTERM: {leftovers(tmp)}")
+        check(not os.listdir(plot_tmp), f"gnuplot's temporaries left: {os.listdir(plot_tmp)}")
+        if now == old:
+            return  # the signal came before the commit: the earlier output intact
+        check(replaced_whole(os.path.join(tmp, "out"), n),
+              f"out is neither the earlier output nor the new one whole: {sorted(now)} "
+              f"(staged directory at the signal: {staged})")
+        old = now  # the signal came after the commit: nothing was tested mid-write
+    check(False, "in 3 runs the signal never came while the staged directory was written")
+
+
+def case_predict_sigterm_writing(exe, src, tmp):
+    predict_sigterm_writing(exe, src, tmp, plots=False)
+
+
+def case_predict_sigterm_plotting(exe, src, tmp):
+    predict_sigterm_writing(exe, src, tmp, plots=True)
+
+
 def case_stale_temporaries_removed(exe, src, tmp):
     write_history(os.path.join(tmp, "h.csv"), 100)
     dead = dead_pid()
