@@ -3,7 +3,9 @@
 #include <functional>
 #include <iostream>
 
+#include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
+#include "asperity/core/parallel.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 #include "suggest.hpp"
@@ -38,6 +40,12 @@ int main(int argc, char** argv) {
     // for a mistyped one; bad input: exit 2 like every other input error.
     std::cerr << "asperity: error: " << asperity::cli::parse_error_message(app, e, argc, argv)
               << "\n";
+    return 2;
+  }
+  try {
+    (void)asperity::core::worker_count();  // ASPERITY_THREADS checked before any work
+  } catch (const asperity::InvalidInput& e) {
+    std::cerr << "asperity: error: " << e.what() << "\n";
     return 2;
   }
   // A SIGINT or SIGTERM while outputs are written removes their temporaries.

@@ -15,6 +15,7 @@
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/validate.hpp"
 #include "asperity/joint/case.hpp"
 #include "asperity/joint/output_dir.hpp"
 #include "asperity/joint/predict.hpp"
@@ -43,16 +44,11 @@ double progress_interval() {
       seconds >= 0.0) {
     return seconds;
   }
-  std::string shown;  // bytes a terminal would act on shown as \xNN
-  for (const char ch : s) {
-    const auto b = static_cast<unsigned char>(ch);
-    shown += b >= 0x20 && b < 0x7F ? std::string(1, ch) : fmt::format("\\x{:02X}", b);
-  }
   throw InvalidInput(fmt::format(
       "{}=\"{}\" is not allowed: give the seconds between predict's progress lines when stderr "
       "is not a terminal, a number >= 0 such as 10 (the default) or 0 (a line after every "
       "preload)",
-      kProgressIntervalVariable, shown));
+      kProgressIntervalVariable, core::printable(s)));
 }
 
 struct PredictOptions {

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "asperity/core/error.hpp"
+#include "asperity/core/validate.hpp"
 
 namespace asperity::core {
 
@@ -26,26 +27,39 @@ std::size_t read_worker_count() {
     const std::string_view s(env);
     std::size_t v = 0;
     const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec == std::errc() && p == s.data() + s.size() && v >= 1)
-      return std::min<std::size_t>(v, kMaxWorkers);
+    if (ec != std::errc() || p != s.data() + s.size() || v < 1 || v > kMaxWorkers) {
+      throw InvalidInput(fmt::format(
+          "environment variable ASPERITY_THREADS=\"{}\" is not allowed: an integer from 1 to {} "
+          "(or unset: one thread per core)",
+          printable(s), kMaxWorkers));
+    }
+    return v;
   }
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
-std::atomic<std::size_t>& configured_worker_count() {
-  static std::atomic<std::size_t> n{read_worker_count()};
-  return n;
-}
+// 0 until the first worker_count() reads ASPERITY_THREADS or set_worker_count() sets it.
+std::atomic<std::size_t> configured_workers{0};
 
 }  // namespace
 
-std::size_t worker_count() { return configured_worker_count().load(std::memory_order_relaxed); }
+std::size_t worker_count() {
+  std::size_t n = configured_workers.load(std::memory_order_relaxed);
+  if (n == 0) {
+    std::size_t expected = 0;
+    n = read_worker_count();  // throws on a bad ASPERITY_THREADS, every time it is asked
+    if (!configured_workers.compare_exchange_strong(expected, n, std::memory_order_relaxed)) {
+      n = expected;  // set meanwhile by another thread
+    }
+  }
+  return n;
+}
 
 void set_worker_count(std::size_t n) {
   if (n < 1 || n > kMaxWorkers) {
     throw InvalidInput(fmt::format("thread count {} is not allowed: 1 to {}", n, kMaxWorkers));
   }
-  configured_worker_count().store(n, std::memory_order_relaxed);
+  configured_workers.store(n, std::memory_order_relaxed);
 }
 
 void parallel_for(std::size_t n, const std::function<void(std::size_t)>& item) {

@@ -47,4 +47,13 @@ void require_in_closed(std::string_view field, double value, double lo, double h
   }
 }
 
+std::string printable(std::string_view text) {
+  std::string shown;
+  for (const char ch : text) {
+    const auto b = static_cast<unsigned char>(ch);
+    shown += b >= 0x20 && b < 0x7F ? std::string(1, ch) : fmt::format("\\x{:02X}", b);
+  }
+  return shown;
+}
+
 }  // namespace asperity::core

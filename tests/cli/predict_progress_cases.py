@@ -187,6 +187,26 @@ def case_bad_interval(exe, src, tmp):
           f"escape sequence echoed: {r.stderr!r}")
 
 
+def case_bad_threads(exe, src, tmp):
+    # ASPERITY_THREADS (core::worker_count) is checked by every command before any work:
+    # refused with exit 2, never ignored or capped.
+    case = sweep_case(src, tmp, 3)
+    out = os.path.join(tmp, "out")
+    for value in ["abc", "0", "-2", "", "257", "1.5", "4 "]:
+        env = {**os.environ, "ASPERITY_THREADS": value}
+        r = subprocess.run([exe, "predict", case, "--out", out, "--no-plots"], capture_output=True,
+                           text=True, cwd=tmp, timeout=120, env=env)
+        check(r.returncode == 2, f"ASPERITY_THREADS={value!r}: exit {r.returncode}: {r.stderr}")
+        check(f'asperity: error: environment variable ASPERITY_THREADS="{value}" is not allowed: '
+              "an integer from 1 to 256" in r.stderr, f"ASPERITY_THREADS={value!r}: {r.stderr}")
+        check(not os.path.exists(out), f"ASPERITY_THREADS={value!r}: the output was written")
+    for value in ["1", "2", "256"]:
+        env = {**os.environ, "ASPERITY_THREADS": value}
+        r = subprocess.run([exe, "predict", case, "--json"], capture_output=True, text=True,
+                           cwd=tmp, timeout=120, env=env)
+        check(r.returncode == 0, f"ASPERITY_THREADS={value!r}: exit {r.returncode}: {r.stderr}")
+
+
 CASES = {name[5:]: fn for name, fn in globals().items() if name.startswith("case_")}
 
 

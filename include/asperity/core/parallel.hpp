@@ -9,8 +9,9 @@
 namespace asperity::core {
 
 /// Threads parallel_for() uses: the environment variable ASPERITY_THREADS when set
-/// (an integer >= 1; 1 runs everything on the calling thread), else the number of
-/// cores (std::thread::hardware_concurrency, at least 1). Read once; set_worker_count()
+/// (an integer from 1 to 256; 1 runs everything on the calling thread; anything else
+/// throws InvalidInput naming the variable), else the number of cores
+/// (std::thread::hardware_concurrency, at least 1). Read once; set_worker_count()
 /// overrides it for the whole process.
 [[nodiscard]] std::size_t worker_count();
 
