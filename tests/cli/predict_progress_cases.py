@@ -15,21 +15,14 @@ import pty
 import re
 import subprocess
 import sys
-import tempfile
 import time
+
+from case_runner import check, main  # tests/cli/case_runner.py
 
 VARIABLE = "ASPERITY_PROGRESS_INTERVAL"
 LINE = re.compile(r"asperity predict: (\d+)/(\d+) preloads \((\d+) %\)")
 BAR_WIDTH = 30  # predict_command.cpp
 
-
-class Failure(Exception):
-    pass
-
-
-def check(cond, msg):
-    if not cond:
-        raise Failure(msg)
 
 
 def sweep_case(src, tmp, n):
@@ -207,24 +200,5 @@ def case_bad_threads(exe, src, tmp):
         check(r.returncode == 0, f"ASPERITY_THREADS={value!r}: exit {r.returncode}: {r.stderr}")
 
 
-CASES = {name[5:]: fn for name, fn in globals().items() if name.startswith("case_")}
-
-
-def main():
-    if len(sys.argv) != 4 or sys.argv[3] not in CASES:
-        print(f"usage: {sys.argv[0]} ASPERITY_EXE SOURCE_DIR CASE ({', '.join(CASES)})",
-              file=sys.stderr)
-        return 1
-    exe, src, name = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2]), sys.argv[3]
-    with tempfile.TemporaryDirectory() as tmp:
-        try:
-            CASES[name](exe, src, tmp)
-        except Failure as e:
-            print("FAIL:", e, file=sys.stderr)
-            return 1
-    print("ok")
-    return 0
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(globals()))

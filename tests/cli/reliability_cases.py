@@ -14,21 +14,14 @@ import resource
 import signal
 import subprocess
 import sys
-import tempfile
 import time
+
+from case_runner import check, main  # tests/cli/case_runner.py
 
 SPHERE = ["sphere", "--E1=207GPa", "--nu1=0.3", "--E2=207GPa", "--nu2=0.3", "--H=6.83GPa",
           "--R1=2.5mm", "--P=35N", "--mu-cfc=0.284", "--delta-max=1.5um"]
 FLAT = ["flat", "--beta=0.04", "--psi=0.5", "--nu=0.3", "--P-star=1e-3", "--model=bke"]
 
-
-class Failure(Exception):
-    pass
-
-
-def check(cond, msg):
-    if not cond:
-        raise Failure(msg)
 
 
 def run(exe, argv, cwd, limit_bytes=None, timeout=120):
@@ -543,24 +536,5 @@ def case_messages_name_the_input(exe, src, tmp):
     expect_exit2(r, 'unknown tag "@diagonal" (allowed: @max, @min')
 
 
-CASES = {name[5:]: fn for name, fn in globals().items() if name.startswith("case_")}
-
-
-def main():
-    if len(sys.argv) != 4 or sys.argv[3] not in CASES:
-        print(f"usage: {sys.argv[0]} ASPERITY_EXE SOURCE_DIR CASE ({', '.join(CASES)})",
-              file=sys.stderr)
-        return 1
-    exe, src, name = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2]), sys.argv[3]
-    with tempfile.TemporaryDirectory() as tmp:
-        try:
-            CASES[name](exe, src, tmp)
-        except Failure as e:
-            print("FAIL:", e, file=sys.stderr)
-            return 1
-    print("ok")
-    return 0
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(globals()))
