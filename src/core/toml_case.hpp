@@ -11,10 +11,21 @@
 #include <cstdint>
 #include <set>
 #include <string>
+#include <string_view>
 
 #include "asperity/core/error.hpp"
 
 namespace asperity::core::toml_case {
+
+/// The document of a case file; a syntax error is InvalidInput "PATH: what (line N)".
+inline toml::table parse(std::string_view text, const std::string& path) {
+  try {
+    return toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw InvalidInput(
+        fmt::format("{}: {} (line {})", path, e.description(), e.source().begin.line));
+  }
+}
 
 inline std::uint32_t line_of(const toml::node& n) {
   return n.source().begin.line;

@@ -382,13 +382,7 @@ std::unique_ptr<FrictionModel> parse_friction(const toml::table* t, const CaseSc
 
 DynamicsCase parse_case_text(const std::string& file_text, const std::string& path,
                              const std::string& base_dir) {
-  toml::table root;
-  try {
-    root = toml::parse(file_text, path);
-  } catch (const toml::parse_error& e) {
-    throw InvalidInput(
-        fmt::format("{}: {} (line {})", path, e.description(), e.source().begin.line));
-  }
+  const toml::table root = core::toml_case::parse(file_text, path);
   check_keys(root, path, {"dynamics", "joint", "load", "profiles", "interface"});
   if (!root.get("joint")) {
     for (const char* k : {"load", "profiles", "interface"}) {

@@ -250,13 +250,7 @@ Eigen::VectorXd force_vector(const HarmonicBasis& basis, Eigen::Index dofs,
 
 VibrationCase parse_case_text(const std::string& file_text, const std::string& path,
                               const std::string& base_dir) {
-  toml::table root;
-  try {
-    root = toml::parse(file_text, path);
-  } catch (const toml::parse_error& e) {
-    throw InvalidInput(
-        fmt::format("{}: {} (line {})", path, e.description(), e.source().begin.line));
-  }
+  const toml::table root = core::toml_case::parse(file_text, path);
   check_keys(root, path,
              {"structure", "element", "harmonic_balance", "nonlinear_mode", "frequency_response",
               "quasi_static_mode", "joint", "load", "profiles", "interface"});
