@@ -80,6 +80,23 @@ void Hysteresis::reset() {
   direction_ = 0;
 }
 
+void Hysteresis::assign_borrowing(const Hysteresis& other) {
+  // Every member of the class: the aliasing constructor makes a shared_ptr that points
+  // at the backbone and owns nothing (no count to change, now or on destruction).
+  backbone_ =
+      std::shared_ptr<const Backbone>(std::shared_ptr<const Backbone>(), other.backbone_.get());
+  rule_ = other.rule_;
+  table_ = other.table_;
+  table_scaled_ = other.table_scaled_;
+  table_Q_scale_ = other.table_Q_scale_;
+  table_x_scale_ = other.table_x_scale_;
+  top_ = other.top_;
+  stack_.assign(other.stack_.begin(), other.stack_.end());
+  x_ = other.x_;
+  Q_ = other.Q_;
+  direction_ = other.direction_;
+}
+
 void Hysteresis::push_reversal(double x, double Q, int direction) {
   const double closes_at = stack_.empty() ? -x : stack_.back().x;
   stack_.push_back({x, Q, static_cast<double>(direction), closes_at});

@@ -215,6 +215,40 @@ INSTANTIATE_TEST_SUITE_P(Backbones, PeekExactness,
                                                               MemoryRule::reset_at_reversal)),
                          peek_case_name);
 
+TEST(Masing, BorrowingCopyEqualsACopyAndOwnsNothing) {
+  // A scratch reused over many states (each assigned from a different point of a random
+  // history, with stacks deeper and shallower than the last) follows the same histories
+  // as a plain copy, bit for bit, and never changes the backbone's reference count.
+  for (MemoryRule rule : {MemoryRule::masing, MemoryRule::reset_at_reversal}) {
+    std::shared_ptr<const Backbone> bb =
+        std::make_shared<ScaledBackbone>(tabulated_mindlin(), 2.0, 3.0);
+    const long uses = bb.use_count();
+    const double scale = 3.0 * bb->limit() / bb->initial_stiffness();
+    std::mt19937_64 rng(99);
+    std::uniform_real_distribution<double> uni(-1.0, 1.0);
+    Hysteresis h(bb, rule);
+    Hysteresis scratch(std::make_shared<JenkinsBackbone>(1.0, 1.0));  // another backbone first
+    std::size_t deepest = 0;
+    for (int step = 0; step < 500; ++step) {
+      h.update(scale * uni(rng) * (step % 7 == 0 ? 1.0 : 0.1));
+      deepest = std::max(deepest, h.reversals().size());
+      scratch.assign_borrowing(h);
+      ASSERT_EQ(bb.use_count(), uses + 1);  // h's own reference only
+      Hysteresis copy = h;
+      for (int k = 0; k < 5; ++k) {
+        const double x = scale * uni(rng);
+        ASSERT_EQ(scratch.update(x), copy.update(x)) << step;
+        const double Q = 0.5 * copy.Q();  // within the static limit on every branch
+        ASSERT_EQ(scratch.update_force(Q), copy.update_force(Q)) << step;
+      }
+      ASSERT_EQ(scratch.reversals().size(), copy.reversals().size());
+    }
+    if (rule == MemoryRule::masing) {
+      EXPECT_GE(deepest, 4u);
+    }
+  }
+}
+
 TEST(Masing, InverseRecoversDisplacementHistory) {
   const double s = mindlin().slip_displacement();
   Hysteresis h(mindlin_backbone());

@@ -99,6 +99,12 @@ class Hysteresis {
   /// Forgets the history: back at the origin on the virgin curve.
   void reset();
 
+  /// Makes this object a copy of `other` that borrows its backbone: no reference is
+  /// taken and, once the stack has the room, nothing is allocated. For a scratch state
+  /// reused across calls (about 30 ns a copy saved); it must not be used once `other`'s
+  /// backbone is gone (assign again first). Destroying it never touches the backbone.
+  void assign_borrowing(const Hysteresis& other);
+
   /// Current position and force.
   [[nodiscard]] double x() const { return x_; }
   [[nodiscard]] double Q() const { return Q_; }
