@@ -141,3 +141,19 @@ def test_read_only_out_and_out_with_a_float_are_refused():
     assert h.forces(0.3, out=None) == h.forces(0.3)
     with pytest.raises(TypeError):
         h.forces(np.array([0.1]), np.empty(1))
+
+
+def test_an_error_inside_a_history_leaves_later_calls_right():
+    # Force control beyond the static limit (F = 1) fails part-way through the history,
+    # leaving the per-thread scratch state the call ran on mid-history: the next calls
+    # (short and long, scalar and array) equal those made before the failure.
+    h = jenkins_with_reversals()
+    q = np.array([0.2, -0.4, 0.5])
+    x = history(3000)
+    before = (h.displacements(q), h.displacements(0.3), h.forces(x), h.forces(x[:5]))
+    for bad in (np.array([0.2, 5.0, 0.1]), 5.0, np.full(2000, 5.0)):
+        with pytest.raises(asperity.InvalidInput, match="static friction limit"):
+            h.displacements(bad)
+    after = (h.displacements(q), h.displacements(0.3), h.forces(x), h.forces(x[:5]))
+    for a, b in zip(before, after):
+        np.testing.assert_array_equal(a, b)
