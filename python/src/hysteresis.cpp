@@ -78,7 +78,8 @@ std::pair<const char*, const char*> byte_range(const char* data, npy_intp n, npy
 
 // The state a history runs on, a copy of `h`: this thread's scratch state, borrowing
 // h's backbone (Hysteresis::assign_borrowing: no allocation, no reference count; a
-// plain copy costs about 30 ns, as much as the rest of a small call), or a plain copy
+// plain copy allocates its stack, again at the first reversal pushed, and counts a
+// reference: 12-20 ns of a 110-170 ns call on 2-8 points, measured), or a plain copy
 // when the scratch is in use further up this thread's stack.
 class StateCopy {
  public:

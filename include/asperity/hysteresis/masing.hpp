@@ -101,8 +101,8 @@ class Hysteresis {
 
   /// Makes this object a copy of `other` that borrows its backbone: no reference is
   /// taken and, once the stack has the room, nothing is allocated. For a scratch state
-  /// reused across calls (about 30 ns a copy saved); it must not be used once `other`'s
-  /// backbone is gone (assign again first). Destroying it never touches the backbone.
+  /// reused across calls; it must not be used once `other`'s backbone is gone (assign
+  /// again first). Destroying it never touches the backbone.
   void assign_borrowing(const Hysteresis& other);
 
   /// Current position and force.
