@@ -5,8 +5,14 @@ Python function call. Timed with timeit (best of 7 repeats of 200000 calls, the
 minimum being the least disturbed by other load); the reference is a Python function
 of one argument that returns it, called with the same argument in the same run.
 
+Two states: `h` has just turned (x = -0.2 after 0.5), so 0.3 is a reversal (the
+slow path of Hysteresis::peek); `hc` is moving up from -0.2 at 0.1, so 0.3 continues
+its branch (the inline path). `out=` writes into a preallocated array instead of
+making a new one (a build without it prints "n/a" on those lines).
+
     PYTHONPATH=build/ci/python .venv/bin/python bench/python_call_overhead.py
 """
+import os
 import timeit
 
 import numpy as np
@@ -16,32 +22,53 @@ import asperity
 
 def main():
     flat = asperity.RoughFlat(model="bke", beta=0.04, psi=0.5, nu=0.3, G_over_E=0.7 / 3.4)
-    h = asperity.Hysteresis(flat.backbone(flat.separation_star(1e-3)))
+    load_before = os.getloadavg()
+    backbone = flat.backbone(flat.separation_star(1e-3))
+    h = asperity.Hysteresis(backbone)
     h.update(0.5)
-    h.update(-0.2)  # two reversals on the stack: the copy made per call is not trivial
+    h.update(-0.2)  # two reversals on the stack; 0.3 turns the motion again
+    hc = asperity.Hysteresis(backbone)
+    for x in (0.5, -0.2, 0.1):
+        hc.update(x)  # moving up from -0.2: 0.3 continues the branch (closes at 0.5)
 
     def python_function(x):
         return x
 
     a1 = np.array([0.3])
     a8 = np.linspace(-0.3, 0.3, 8)
+    o1 = np.empty(1)
+    o8 = np.empty(8)
+    try:
+        h.forces(a1, out=o1)
+        has_out = True
+    except TypeError:
+        has_out = False
     cases = {
         "python_function(0.3)": lambda: python_function(0.3),
         "python_function(a1)": lambda: python_function(a1),
         "h.force(0.3)": lambda: h.force(0.3),
-        "h.forces(0.3)": lambda: h.forces(0.3),
+        "h.forces(0.3)  [reversal]": lambda: h.forces(0.3),
+        "hc.forces(0.3)  [continuing]": lambda: hc.forces(0.3),
         "h.forces(a1)  [1-element float64 array]": lambda: h.forces(a1),
+        "hc.forces(a1)  [continuing]": lambda: hc.forces(a1),
+        "h.forces(a1, out=o1)": (lambda: h.forces(a1, out=o1)) if has_out else None,
+        "hc.forces(a1, out=o1)  [continuing]": (lambda: hc.forces(a1, out=o1)) if has_out else None,
         "h.forces(a8)  [8-element float64 array]": lambda: h.forces(a8),
+        "h.forces(a8, out=o8)": (lambda: h.forces(a8, out=o8)) if has_out else None,
         "h.forces([0.3])  [list, via numpy.asarray]": lambda: h.forces([0.3]),
     }
     number = 200_000
     best = {}
     for name, f in cases.items():
-        best[name] = min(timeit.repeat(f, number=number, repeat=7)) / number
+        best[name] = min(timeit.repeat(f, number=number, repeat=7)) / number if f else None
     ref = best["python_function(0.3)"]
+    print(f"load average (1, 5, 15 min) before: {load_before}, after: {os.getloadavg()}")
     print(f"{'call':45s} {'ns':>8s} {'/ Python call':>14s}")
     for name, t in best.items():
-        print(f"{name:45s} {t * 1e9:8.1f} {t / ref:14.2f}")
+        if t is None:
+            print(f"{name:45s} {'n/a':>8s} {'n/a':>14s}")
+        else:
+            print(f"{name:45s} {t * 1e9:8.1f} {t / ref:14.2f}")
     print("(the lambda wrapper's own call is in every line, the reference included)")
 
 

@@ -80,14 +80,30 @@ void Hysteresis::reset() {
   direction_ = 0;
 }
 
+void Hysteresis::assign_borrowing(const Hysteresis& other) {
+  // Every member of the class: the aliasing constructor makes a shared_ptr that points
+  // at the backbone and owns nothing (no count to change, now or on destruction).
+  backbone_ =
+      std::shared_ptr<const Backbone>(std::shared_ptr<const Backbone>(), other.backbone_.get());
+  rule_ = other.rule_;
+  table_ = other.table_;
+  table_scaled_ = other.table_scaled_;
+  table_Q_scale_ = other.table_Q_scale_;
+  table_x_scale_ = other.table_x_scale_;
+  top_ = other.top_;
+  stack_.assign(other.stack_.begin(), other.stack_.end());
+  x_ = other.x_;
+  Q_ = other.Q_;
+  direction_ = other.direction_;
+}
+
 void Hysteresis::push_reversal(double x, double Q, int direction) {
   const double closes_at = stack_.empty() ? -x : stack_.back().x;
   stack_.push_back({x, Q, static_cast<double>(direction), closes_at});
   refresh_top();
 }
 
-std::size_t Hysteresis::active_branch(double x) const {
-  std::size_t k = stack_.size();
+std::size_t Hysteresis::active_branch(double x, std::size_t k) const {
   while (k >= 1) {
     const ReversalPoint& r = stack_[k - 1];
     const double d = r.direction;
@@ -131,8 +147,7 @@ std::size_t Hysteresis::active_branch_force(double Q) const {
 
 double Hysteresis::branch_force(std::size_t k, double x) const {
   if (k == 0) return odd_force(*backbone_, x);
-  const ReversalPoint& r = stack_[k - 1];
-  return r.Q + r.direction * 2.0 * backbone_force(std::abs(x - r.x) * 0.5);
+  return branch_force(stack_[k - 1], x);
 }
 
 double Hysteresis::branch_displacement(std::size_t k, double Q) const {
@@ -224,6 +239,46 @@ double Hysteresis::update_slow(double x) {
     }
   }
   return update_general(x);
+}
+
+double Hysteresis::peek_slow(double x) const {
+  // update_slow's reversal whose fresh branch does not close within the step.
+  const double d = (x > x_) ? 1.0 : (x < x_ ? -1.0 : 0.0);
+  if (d == -direction_ && d != 0.0 && rule_ == MemoryRule::masing && std::isfinite(x)) {
+    const ReversalPoint fresh{x_, Q_, d, stack_.empty() ? -x_ : stack_.back().x};
+    if ((x - fresh.closes_at) * d < 0.0) return branch_force(fresh, x);
+  }
+  // update_general.
+  core::require_finite("displacement", x);
+  const int s = sign_of(x - x_);
+  if (s == 0) return Q_;
+  const std::size_t n = stack_.size();
+  if (direction_ == 0.0 || s == direction_) return branch_force(active_branch(x, n), x);
+  if (rule_ == MemoryRule::masing) {
+    // push_reversal(x_, Q_, s), then active_branch(x) over the stack with it on top.
+    const ReversalPoint fresh{x_, Q_, static_cast<double>(s), n == 0 ? -x_ : stack_.back().x};
+    std::size_t k = n;
+    if ((x - fresh.x) * fresh.direction >= 0.0) {
+      if ((x - fresh.closes_at) * fresh.direction < 0.0) return branch_force(fresh, x);
+      k = n >= 1 ? n - 1 : 0;
+    }
+    return branch_force(active_branch(x, k), x);
+  }
+  // Eq. 7.10: commit_reversal(x_), then active_branch(x) over what it leaves.
+  const std::size_t k = active_branch(x_, n);
+  const int current = k ? static_cast<int>(stack_[k - 1].direction)
+                        : (direction_ != 0.0 ? static_cast<int>(direction_) : sign_of(x_));
+  if (current == 0) return branch_force(active_branch(x, k), x);
+  const double turned = -current;
+  if (turned * x_ < 0.0) {
+    // The one entry left: the unloading from u_max = |x_| towards the origin.
+    const ReversalPoint unloading{x_, odd_force(*backbone_, x_), turned, -x_};
+    if ((x - unloading.x) * unloading.direction >= 0.0 &&
+        (x - unloading.closes_at) * unloading.direction < 0.0) {
+      return branch_force(unloading, x);
+    }
+  }
+  return odd_force(*backbone_, x);
 }
 
 double Hysteresis::update_general(double x) {

@@ -5,13 +5,16 @@
 #include "../support.hpp"
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <random>
+#include <string>
 
 #include "asperity/contact/mindlin.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 #include "asperity/hysteresis/masing.hpp"
+#include "asperity/hysteresis/tabulated_backbone.hpp"
 
 namespace asperity::hysteresis {
 namespace {
@@ -114,6 +117,135 @@ TEST(Masing, PeekEqualsUpdateOnACopy) {
     EXPECT_EQ(h.Q(), q_before);
     EXPECT_EQ(h.reversals().size(), stack_before);
     h.update(x);
+  }
+}
+
+// Cattaneo-Mindlin loading tabulated (B.15 inverted: Q = F (1 - (1 - x/s)^{3/2}) up to
+// the slip displacement s), so that peek is also checked on the inline table look-up.
+std::shared_ptr<const TabulatedBackbone> tabulated_mindlin() {
+  constexpr double F = 2.0, s = 3e-6;
+  BackboneTabulation in;
+  in.sample = [](double x) {
+    const double r = std::sqrt(1.0 - x / s);
+    return BackboneSample{-F * std::expm1(1.5 * std::log1p(-x / s)), 1.5 * F / s * r,
+                          -0.75 * F / (s * s) / r};
+  };
+  in.initial_stiffness = 1.5 * F / s;
+  in.initial_curvature = -0.75 * F / (s * s);
+  in.limit = F;
+  in.x_end = s;
+  return std::make_shared<TabulatedBackbone>(in);
+}
+
+// peek(x) against update(x) on a copy, bit for bit (EXPECT_EQ: peek computes the same
+// operations on the same doubles, it is not an approximation), for both memory rules on
+// an analytic backbone, a table and a table scaled to SI (the three force paths), over
+// random histories with many reversals. The probes include the points where the branch
+// rules switch: the remembered reversals, their closing points and mirrors, the current
+// point itself, and non-finite values (both must throw).
+class PeekExactness : public ::testing::TestWithParam<std::tuple<int, MemoryRule>> {};
+
+TEST_P(PeekExactness, EqualsUpdateOnACopyOverRandomHistories) {
+  const auto [which, rule] = GetParam();
+  std::shared_ptr<const Backbone> bb;
+  if (which == 0) bb = mindlin_backbone();
+  if (which == 1) bb = tabulated_mindlin();
+  if (which == 2) bb = std::make_shared<ScaledBackbone>(tabulated_mindlin(), 1e-3 / 3e-6, 5e2);
+  const double scale = 3.0 * bb->limit() / bb->initial_stiffness();
+  std::mt19937_64 rng(4321 + static_cast<unsigned>(which) + (rule == MemoryRule::masing ? 0 : 7));
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  Hysteresis h(bb, rule);
+  std::size_t deepest = 0, reversal_probes = 0;
+  for (int step = 0; step < 3000; ++step) {
+    std::vector<double> probes{
+        h.x(),       -h.x(),      scale * uni(rng), h.x() + 1e-3 * scale * uni(rng),
+        2.0 * scale, -2.0 * scale};
+    for (const ReversalPoint& r : h.reversals()) {
+      probes.insert(probes.end(), {r.x, -r.x, r.closes_at, std::nextafter(r.x, 0.0),
+                                   std::nextafter(r.closes_at, r.x)});
+    }
+    for (double p : probes) {
+      Hysteresis copy = h;
+      EXPECT_EQ(h.peek(p), copy.update(p)) << "step " << step << " probe " << p;
+      if ((p - h.x()) * (h.x() - (h.reversals().empty() ? 0.0 : h.reversals().back().x)) < 0.0)
+        ++reversal_probes;
+    }
+    for (double bad :
+         {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+          -std::numeric_limits<double>::infinity()}) {
+      Hysteresis copy = h;
+      EXPECT_THROW((void)h.peek(bad), InvalidInput);
+      EXPECT_THROW((void)copy.update(bad), InvalidInput);
+    }
+    // Next point: mostly a fresh random reversal or continuation, sometimes exactly a
+    // remembered reversal or closing point (where a loop closes).
+    double next = scale * uni(rng);
+    if (!h.reversals().empty() && step % 5 == 0) {
+      const auto& rs = h.reversals();
+      const auto& r = rs[std::uniform_int_distribution<std::size_t>(0, rs.size() - 1)(rng)];
+      next = step % 10 == 0 ? r.x : r.closes_at;
+    } else if (step % 3 == 0) {
+      next = h.x() + 0.02 * scale * uni(rng);  // short steps keep many reversals on the stack
+    }
+    const double x_before = h.x(), q_before = h.Q();
+    const std::size_t n_before = h.reversals().size();
+    (void)h.peek(next);
+    ASSERT_EQ(h.x(), x_before);
+    ASSERT_EQ(h.Q(), q_before);
+    ASSERT_EQ(h.reversals().size(), n_before);
+    h.update(next);
+    deepest = std::max(deepest, h.reversals().size());
+  }
+  // The walk must have exercised deep stacks (Masing) and many reversals.
+  if (rule == MemoryRule::masing) {
+    EXPECT_GE(deepest, 5u);
+  }
+  EXPECT_GT(reversal_probes, 1000u);
+}
+
+std::string peek_case_name(const ::testing::TestParamInfo<PeekExactness::ParamType>& param) {
+  static const std::string backbones[] = {"analytic", "table", "scaled_table"};
+  return backbones[std::get<0>(param.param)] +
+         (std::get<1>(param.param) == MemoryRule::masing ? "_masing" : "_reset");
+}
+
+INSTANTIATE_TEST_SUITE_P(Backbones, PeekExactness,
+                         ::testing::Combine(::testing::Range(0, 3),
+                                            ::testing::Values(MemoryRule::masing,
+                                                              MemoryRule::reset_at_reversal)),
+                         peek_case_name);
+
+TEST(Masing, BorrowingCopyEqualsACopyAndOwnsNothing) {
+  // A scratch reused over many states (each assigned from a different point of a random
+  // history, with stacks deeper and shallower than the last) follows the same histories
+  // as a plain copy, bit for bit, and never changes the backbone's reference count.
+  for (MemoryRule rule : {MemoryRule::masing, MemoryRule::reset_at_reversal}) {
+    std::shared_ptr<const Backbone> bb =
+        std::make_shared<ScaledBackbone>(tabulated_mindlin(), 2.0, 3.0);
+    const long uses = bb.use_count();
+    const double scale = 3.0 * bb->limit() / bb->initial_stiffness();
+    std::mt19937_64 rng(99);
+    std::uniform_real_distribution<double> uni(-1.0, 1.0);
+    Hysteresis h(bb, rule);
+    Hysteresis scratch(std::make_shared<JenkinsBackbone>(1.0, 1.0));  // another backbone first
+    std::size_t deepest = 0;
+    for (int step = 0; step < 500; ++step) {
+      h.update(scale * uni(rng) * (step % 7 == 0 ? 1.0 : 0.1));
+      deepest = std::max(deepest, h.reversals().size());
+      scratch.assign_borrowing(h);
+      ASSERT_EQ(bb.use_count(), uses + 1);  // h's own reference only
+      Hysteresis copy = h;
+      for (int k = 0; k < 5; ++k) {
+        const double x = scale * uni(rng);
+        ASSERT_EQ(scratch.update(x), copy.update(x)) << step;
+        const double Q = 0.5 * copy.Q();  // within the static limit on every branch
+        ASSERT_EQ(scratch.update_force(Q), copy.update_force(Q)) << step;
+      }
+      ASSERT_EQ(scratch.reversals().size(), copy.reversals().size());
+    }
+    if (rule == MemoryRule::masing) {
+      EXPECT_GE(deepest, 4u);
+    }
   }
 }
 

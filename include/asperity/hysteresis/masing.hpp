@@ -77,14 +77,13 @@ class Hysteresis {
   /// InvalidInput if a branch would need |Q| beyond the static limit (gross slip
   /// under force control has no finite displacement).
   double update_force(double Q);
-  /// What update(x) would return, without changing the state (and without copying it
-  /// when x continues the current branch: the inline fast path of update()).
+  /// What update(x) would return, bit for bit, without changing or copying the state
+  /// (inline when x continues the current branch: the fast path of update()).
   [[nodiscard]] double peek(double x) const {
     if ((x - x_) * direction_ > 0.0 && (x - top_.closes_at) * top_.direction < 0.0) {
       return top_.Q + top_.direction * 2.0 * backbone_force(std::abs(x - top_.x) * 0.5);
     }
-    Hysteresis copy = *this;
-    return copy.update_slow(x);
+    return peek_slow(x);
   }
 
   /// Force at x reached from the last committed state by monotone motion (no reversal
@@ -99,6 +98,12 @@ class Hysteresis {
 
   /// Forgets the history: back at the origin on the virgin curve.
   void reset();
+
+  /// Makes this object a copy of `other` that borrows its backbone: no reference is
+  /// taken and, once the stack has the room, nothing is allocated. For a scratch state
+  /// reused across calls; it must not be used once `other`'s backbone is gone (assign
+  /// again first). Destroying it never touches the backbone.
+  void assign_borrowing(const Hysteresis& other);
 
   /// Current position and force.
   [[nodiscard]] double x() const { return x_; }
@@ -115,9 +120,20 @@ class Hysteresis {
  private:
   double update_slow(double x);
   double update_general(double x);
+  // update_slow(x) evaluated on the unchanged state: the same operations on the same
+  // doubles, with a reversal's fresh stack entry held in a local instead of pushed.
+  [[nodiscard]] double peek_slow(double x) const;
   // Index of the active branch for motion to x: the number of stack entries that stay
   // after loop closing. Branch k >= 1 starts at stack_[k-1]; 0 is the virgin curve.
-  [[nodiscard]] std::size_t active_branch(double x) const;
+  [[nodiscard]] std::size_t active_branch(double x) const {
+    return active_branch(x, stack_.size());
+  }
+  // The same search over stack_[0, k) only (the entries above k already dropped).
+  [[nodiscard]] std::size_t active_branch(double x, std::size_t k) const;
+  // Branch force from a reversal point r: Q_r + s 2 Q_l(|x - x_r| / 2).
+  [[nodiscard]] double branch_force(const ReversalPoint& r, double x) const {
+    return r.Q + r.direction * 2.0 * backbone_force(std::abs(x - r.x) * 0.5);
+  }
   [[nodiscard]] std::size_t active_branch_force(double Q) const;
   [[nodiscard]] double branch_force(std::size_t k, double x) const;
   [[nodiscard]] double branch_displacement(std::size_t k, double Q) const;

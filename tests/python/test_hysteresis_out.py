@@ -1,0 +1,159 @@
+"""Hysteresis.forces / displacements with out= (issue 14, item 6): the result written into
+a caller's array equals the allocating call bit for bit (same C++ loop, same doubles),
+for contiguous and strided outputs, in place and with overlapping views; a wrong `out`
+is an InvalidInput naming `out`, what it got and what is allowed.
+
+References: the allocating call on the same state (itself tested against closed forms in
+test_rough_flat.py); the Jenkins element (k = 2, F = 1) and the Fig. 4.4 rough flat
+(beta = 0.04, psi = 0.5, nu = 0.3, P* = 1e-3) as backbones."""
+import numpy as np
+import pytest
+
+import asperity
+
+
+def jenkins_with_reversals():
+    h = asperity.Hysteresis(asperity.JenkinsBackbone(2.0, 1.0))
+    for x in (1.0, -0.25, 0.1):
+        h.update(x)
+    assert len(h.reversals) == 2  # a non-empty stack: the histories below close loops
+    return h
+
+
+def rough_flat_with_reversals(memory="masing"):
+    flat = asperity.RoughFlat("bke", beta=0.04, psi=0.5, nu=0.3, G_over_E=0.7 / 3.4)
+    h = asperity.Hysteresis(flat.backbone(flat.separation_star(1e-3)), memory=memory)
+    for x in (0.5, -0.2, 0.3, 0.1):
+        h.update(x)
+    return h
+
+
+def history(n, seed=3):
+    """A path with many reversals and jumps across remembered points."""
+    rng = np.random.default_rng(seed)
+    return np.cumsum(rng.normal(0.0, 0.15, n)) % 1.2 - 0.6
+
+
+def snapshot(h):
+    return h.x, h.Q, h.reversals
+
+
+# n = 1 (the peek path), 2-8 (small, GIL held), 1023 and 5000 (either side of where the
+# loop releases the GIL).
+@pytest.mark.parametrize("n", [0, 1, 2, 8, 1023, 5000])
+@pytest.mark.parametrize("make", [jenkins_with_reversals, rough_flat_with_reversals,
+                                  lambda: rough_flat_with_reversals("reset_at_reversal")])
+def test_out_equals_the_allocating_call(make, n):
+    h = make()
+    before = snapshot(h)
+    x = history(n)
+    expected = h.forces(x)
+    out = np.full(n, np.nan)
+    assert h.forces(x, out=out) is out
+    np.testing.assert_array_equal(out, expected)
+    # A strided output (every third element of a larger array) and a strided input.
+    big = np.full(3 * n, -7.0)
+    assert h.forces(x, out=big[::3]) is not None
+    np.testing.assert_array_equal(big[::3], expected)
+    np.testing.assert_array_equal(big[1::3], -7.0)  # nothing written between
+    wide = np.repeat(x, 2)
+    np.testing.assert_array_equal(h.forces(wide[::2], out=np.empty(n)), expected)
+    # Any sequence as input (through numpy.asarray), into out.
+    np.testing.assert_array_equal(h.forces(list(x), out=np.empty(n)), expected)
+    assert snapshot(h) == before
+    # The inverse, on the forces of a smaller history (reachable under force control).
+    q = h.forces(0.2 * x)
+    back = h.displacements(q)
+    into = np.full(n, np.nan)
+    assert h.displacements(q, out=into) is into
+    np.testing.assert_array_equal(into, back)
+    assert snapshot(h) == before
+
+
+def test_prefix_of_a_long_history_equals_the_short_call():
+    # The loop with the GIL released (5000 points) and held (1000) compute the same
+    # thing: forces(x)[:m] == forces(x[:m]).
+    h = rough_flat_with_reversals()
+    x = history(5000)
+    np.testing.assert_array_equal(h.forces(x)[:1000], h.forces(x[:1000]))
+    np.testing.assert_array_equal(h.forces(x, out=np.empty(5000))[:7], h.forces(x[:7]))
+
+
+@pytest.mark.parametrize("n", [1, 8, 3000])
+def test_out_aliasing_the_input(n):
+    h = jenkins_with_reversals()
+    x = history(n, seed=11) * 2.0  # beyond the slip displacement: gross slip and loops
+    expected = h.forces(x)
+    # In place: out is x itself (each point is read before its force is written).
+    y = x.copy()
+    assert h.forces(y, out=y) is y
+    np.testing.assert_array_equal(y, expected)
+    if n > 1:
+        # Overlapping but shifted views: writing out[k] would overwrite x[k + 1] before it
+        # is read, so the history is copied first.
+        buf = np.empty(n + 1)
+        buf[:n] = x
+        np.testing.assert_array_equal(h.forces(buf[:n], out=buf[1:]), expected)
+        buf[1:] = x
+        np.testing.assert_array_equal(h.forces(buf[1:], out=buf[:n]), expected)
+        # Reversed view of the same memory.
+        z = x.copy()
+        np.testing.assert_array_equal(h.forces(z, out=z[::-1]), expected)
+    # Displacements in place (within partial slip of the Jenkins element: |Q - Q_r| < 2F).
+    q = np.clip(expected, -0.9, 0.9) * 0.5
+    back = h.displacements(q)
+    p = q.copy()
+    np.testing.assert_array_equal(h.displacements(p, out=p), back)
+
+
+@pytest.mark.parametrize("bad, got", [
+    (np.empty(3), r"got a numpy\.float64 array of shape \(3,\)"),
+    (np.empty(4, dtype=np.float32), r"got a numpy\.float32 array of shape \(4,\)"),
+    (np.empty((4, 1)), r"got a numpy\.float64 array of shape \(4, 1\)"),
+    (np.empty((2, 2)), r"shape \(2, 2\)"),
+    ([0.0, 0.0, 0.0, 0.0], "got a list"),
+    (np.empty(4, dtype=">f8" if np.little_endian else "<f8"), "byte-swapped"),
+    (np.empty(4, dtype=np.int64), "int64"),
+    (0.0, "got a float"),
+])
+def test_a_wrong_out_names_out_the_value_and_what_is_allowed(bad, got):
+    h = jenkins_with_reversals()
+    x = np.array([0.3, -0.6, 0.2, 0.9])
+    allowed = r"out must be a writable 1-D numpy float64 array .* of length 4"
+    for call in (h.forces, h.displacements):
+        with pytest.raises(asperity.InvalidInput, match=allowed) as e:
+            call(x * 0.1, out=bad)
+        assert e.match(got)
+
+
+def test_read_only_out_and_out_with_a_float_are_refused():
+    h = jenkins_with_reversals()
+    ro = np.empty(2)
+    ro.flags.writeable = False
+    with pytest.raises(asperity.InvalidInput, match=r"out must be a writable.*read-only"):
+        h.forces(np.array([0.1, 0.2]), out=ro)
+    # A float history gives a float: there is no array to fill.
+    with pytest.raises(asperity.InvalidInput, match=r"out is for a 1-D history.*float \(0.3\)"):
+        h.forces(0.3, out=np.empty(1))
+    with pytest.raises(asperity.InvalidInput, match=r"out is for a 1-D history"):
+        h.displacements(0.1, out=np.empty(1))
+    # out=None is the allocating call; out is keyword-only (numpy's convention).
+    assert h.forces(0.3, out=None) == h.forces(0.3)
+    with pytest.raises(TypeError):
+        h.forces(np.array([0.1]), np.empty(1))
+
+
+def test_an_error_inside_a_history_leaves_later_calls_right():
+    # Force control beyond the static limit (F = 1) fails part-way through the history,
+    # leaving the per-thread scratch state the call ran on mid-history: the next calls
+    # (short and long, scalar and array) equal those made before the failure.
+    h = jenkins_with_reversals()
+    q = np.array([0.2, -0.4, 0.5])
+    x = history(3000)
+    before = (h.displacements(q), h.displacements(0.3), h.forces(x), h.forces(x[:5]))
+    for bad in (np.array([0.2, 5.0, 0.1]), 5.0, np.full(2000, 5.0)):
+        with pytest.raises(asperity.InvalidInput, match="static friction limit"):
+            h.displacements(bad)
+    after = (h.displacements(q), h.displacements(0.3), h.forces(x), h.forces(x[:5]))
+    for a, b in zip(before, after):
+        np.testing.assert_array_equal(a, b)
