@@ -21,12 +21,14 @@ struct SignedCallable {
   PyObject_HEAD PyObject* target;  // the nanobind function or method
   PyObject* dict;                  // __signature__, __doc__, __name__, __qualname__, ...
   vectorcallfunc vectorcall;
+  vectorcallfunc target_vectorcall;  // the target's own entry point (nanobind's are vectorcall)
 };
 
 PyObject* signed_vectorcall(PyObject* self, PyObject* const* args, std::size_t nargsf,
                             PyObject* kwnames) {
-  return PyObject_Vectorcall(reinterpret_cast<SignedCallable*>(self)->target, args, nargsf,
-                             kwnames);
+  auto* s = reinterpret_cast<SignedCallable*>(self);
+  return s->target_vectorcall != nullptr ? s->target_vectorcall(s->target, args, nargsf, kwnames)
+                                         : PyObject_Vectorcall(s->target, args, nargsf, kwnames);
 }
 
 int signed_traverse(PyObject* self, visitproc visit, void* arg) {
@@ -100,6 +102,7 @@ nb::object make_signed(nb::handle target, bool method) {
   s->target = Py_NewRef(target.ptr());
   s->dict = PyDict_New();
   s->vectorcall = signed_vectorcall;
+  s->target_vectorcall = PyVectorcall_Function(target.ptr());
   if (s->dict == nullptr) {
     Py_DECREF(o);
     throw nb::python_error();
