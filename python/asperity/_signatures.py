@@ -136,8 +136,10 @@ def add_method_signatures(cls: type, module: str = "asperity") -> None:
         kind = type(value).__name__
         if kind not in ("nb_method", "nb_func"):
             continue
-        setattr(cls, name, _signed(value, kind == "nb_method", module,
-                                   f"{cls.__name__}.{name}"))
+        wrapper = _signed(value, kind == "nb_method", module, f"{cls.__name__}.{name}")
+        if kind == "nb_func" and wrapper is not value:
+            wrapper = staticmethod(wrapper)  # what it is (help() lists it so)
+        setattr(cls, name, wrapper)
 
 
 def add_class_signature(cls: type) -> None:

@@ -17,6 +17,9 @@ namespace asperity::python {
 
 namespace {
 
+PyTypeObject* g_function_type = nullptr;
+PyTypeObject* g_method_type = nullptr;
+
 struct SignedCallable {
   PyObject_HEAD PyObject* target;  // the nanobind function or method
   PyObject* dict;                  // __signature__, __doc__, __name__, __qualname__, ...
@@ -54,6 +57,14 @@ void signed_dealloc(PyObject* self) {
   Py_DECREF(type);
 }
 
+PyObject* signed_repr(PyObject* self) {
+  auto* s = reinterpret_cast<SignedCallable*>(self);
+  PyObject* name = s->dict != nullptr ? PyDict_GetItemString(s->dict, "__qualname__") : nullptr;
+  if (name == nullptr) return PyObject_Repr(s->target);
+  return PyUnicode_FromFormat("<compiled %s %U>",
+                              Py_TYPE(self) == g_method_type ? "method" : "function", name);
+}
+
 // Looked up on the class (obj == NULL or None): the wrapper itself, so that
 // inspect.signature(Class.method) finds its __signature__; on an instance: a bound method.
 PyObject* signed_method_get(PyObject* self, PyObject* obj, PyObject*) {
@@ -72,6 +83,7 @@ PyType_Slot function_slots[] = {{Py_tp_dealloc, reinterpret_cast<void*>(signed_d
                                 {Py_tp_traverse, reinterpret_cast<void*>(signed_traverse)},
                                 {Py_tp_clear, reinterpret_cast<void*>(signed_clear)},
                                 {Py_tp_call, reinterpret_cast<void*>(PyVectorcall_Call)},
+                                {Py_tp_repr, reinterpret_cast<void*>(signed_repr)},
                                 {Py_tp_members, signed_members},
                                 {0, nullptr}};
 
@@ -79,6 +91,7 @@ PyType_Slot method_slots[] = {{Py_tp_dealloc, reinterpret_cast<void*>(signed_dea
                               {Py_tp_traverse, reinterpret_cast<void*>(signed_traverse)},
                               {Py_tp_clear, reinterpret_cast<void*>(signed_clear)},
                               {Py_tp_call, reinterpret_cast<void*>(PyVectorcall_Call)},
+                              {Py_tp_repr, reinterpret_cast<void*>(signed_repr)},
                               {Py_tp_descr_get, reinterpret_cast<void*>(signed_method_get)},
                               {Py_tp_members, signed_members},
                               {0, nullptr}};
@@ -90,9 +103,6 @@ PyType_Spec function_spec = {"asperity._core.signed_function",
                              static_cast<int>(sizeof(SignedCallable)), 0, kFlags, function_slots};
 PyType_Spec method_spec = {"asperity._core.signed_method", static_cast<int>(sizeof(SignedCallable)),
                            0, kFlags | Py_TPFLAGS_METHOD_DESCRIPTOR, method_slots};
-
-PyTypeObject* g_function_type = nullptr;
-PyTypeObject* g_method_type = nullptr;
 
 nb::object make_signed(nb::handle target, bool method) {
   PyTypeObject* type = method ? g_method_type : g_function_type;

@@ -71,7 +71,7 @@ def _public_compiled_methods():
         for name, value in vars(cls).items():
             if name.startswith("_"):
                 continue
-            raw = getattr(value, "__wrapped__", value)
+            raw = inspect.unwrap(value.__func__ if isinstance(value, staticmethod) else value)
             if type(raw).__name__ in ("nb_method", "nb_func"):
                 yield f"asperity.{cname}.{name}", cls, name, raw
 
@@ -97,7 +97,9 @@ def test_wrapped_methods_bind_and_call_as_the_compiled_ones():
     raw = asperity.Hysteresis.forces.__wrapped__
     # Bound method: self dropped from the signature, results equal to the compiled call by
     # position, by keyword and through the class.
-    assert list(inspect.signature(h.forces).parameters) == ["x"]
+    bound = inspect.signature(h.forces).parameters
+    assert list(bound) == ["x", "out"]
+    assert bound["out"].kind is inspect.Parameter.KEYWORD_ONLY and bound["out"].default is None
     assert h.forces(0.2) == raw(h, 0.2) == h.forces(x=0.2) == asperity.Hysteresis.forces(h, 0.2)
     with pytest.raises(TypeError, match="incompatible function arguments"):
         h.forces()
