@@ -50,6 +50,8 @@ from . import vibration  # noqa: F401  (harmonic balance, nonlinear modes, FRFs)
 # inspect.signature() on the compiled functions, methods and constructors (_signatures.py).
 from . import _signatures  # noqa: E402
 
+if not _signatures.RAW:
+    _core._install_fast_history_methods()  # Hysteresis.forces/displacements (hysteresis.cpp)
 for _name in dir(_core):
     _obj = getattr(_core, _name)
     if _name.startswith("_"):

@@ -21,7 +21,7 @@ import re
 from typing import Any, Callable, Optional
 
 _DEFAULT = re.compile(r"\\(\d+)")
-_RAW = os.environ.get("ASPERITY_RAW_BINDINGS") == "1"
+RAW = os.environ.get("ASPERITY_RAW_BINDINGS") == "1"
 
 
 def _split_top_level(text: str, sep: str) -> list:
@@ -111,7 +111,7 @@ def signature_of(fn: Any, drop_first: bool = False) -> Optional[inspect.Signatur
 def _signed(fn: Any, method: bool, module: str, qualname: str) -> Any:
     from . import _core
 
-    sig = None if _RAW else signature_of(fn)
+    sig = None if RAW else signature_of(fn)
     if sig is None:
         return fn
     wrapper = _core._signed(fn, method)

@@ -29,4 +29,8 @@ void bind_vibration(nb::module_& m);
 /// The forwarders that give compiled functions and methods an inspect.Signature.
 void bind_signatures(nb::module_& m);
 
+/// For raw CPython entry points (python/src/hysteresis.cpp): the C++ exception being
+/// handled, as the Python error nanobind's translators would set (call inside catch).
+void set_python_error_from_current_exception();
+
 }  // namespace asperity::python

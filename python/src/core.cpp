@@ -6,6 +6,8 @@
 #include <asperity/core/parallel.hpp>
 #include <asperity/core/units.hpp>
 #include <asperity/core/version.hpp>
+#include <new>
+#include <stdexcept>
 #include <string>
 
 #include "bindings.hpp"
@@ -25,6 +27,26 @@ PyObject* new_exception(const char* name, const char* doc, PyObject* bases) {
 }
 
 }  // namespace
+
+void set_python_error_from_current_exception() {
+  try {
+    throw;
+  } catch (nb::python_error& e) {
+    e.restore();
+  } catch (const InvalidInput& e) {
+    PyErr_SetString(g_invalid_input, e.what());
+  } catch (const NumericalError& e) {
+    PyErr_SetString(g_numerical_error, e.what());
+  } catch (const Error& e) {
+    PyErr_SetString(g_error, e.what());
+  } catch (const std::bad_alloc&) {
+    PyErr_NoMemory();
+  } catch (const std::exception& e) {
+    PyErr_SetString(PyExc_RuntimeError, e.what());
+  } catch (...) {
+    PyErr_SetString(PyExc_SystemError, "an unknown C++ exception");
+  }
+}
 
 void bind_core(nb::module_& m) {
   m.def(

@@ -245,6 +245,76 @@ nb::object along_history(const Hysteresis& h, const ArrayLike& in, const OutArra
   return result;
 }
 
+// Hysteresis.forces / Hysteresis.displacements as CPython method descriptors
+// (METH_FASTCALL | METH_KEYWORDS): the interpreter calls them without nanobind's argument
+// dispatch, which is most of a small call's cost, and inspect.signature reads their
+// __text_signature__ (the first docstring line). The same along_history as the nanobind
+// methods, which the stub generator sees (asperity/__init__.py installs these).
+template <bool Inverse>
+PyObject* history_method(PyObject* self, PyObject* const* args, Py_ssize_t nargs,
+                         PyObject* kwnames) {
+  const char* name = Inverse ? "displacements" : "forces";
+  const char* first = Inverse ? "Q" : "x";
+  PyObject* history = nargs >= 1 ? args[0] : nullptr;
+  PyObject* out = Py_None;
+  if (nargs > 1) {
+    PyErr_Format(PyExc_TypeError, "%s() takes 1 positional argument (%s) but %zd were given", name,
+                 first, nargs);
+    return nullptr;
+  }
+  if (kwnames != nullptr) {
+    for (Py_ssize_t i = 0; i < PyTuple_GET_SIZE(kwnames); ++i) {
+      PyObject* key = PyTuple_GET_ITEM(kwnames, i);
+      if (PyUnicode_CompareWithASCIIString(key, "out") == 0) {
+        out = args[nargs + i];
+      } else if (PyUnicode_CompareWithASCIIString(key, first) == 0 && history == nullptr) {
+        history = args[nargs + i];
+      } else {
+        PyErr_Format(PyExc_TypeError, "%s() got an unexpected or repeated keyword argument '%U'",
+                     name, key);
+        return nullptr;
+      }
+    }
+  }
+  if (history == nullptr) {
+    PyErr_Format(PyExc_TypeError, "%s() missing required argument '%s'", name, first);
+    return nullptr;
+  }
+  if (!nb::inst_ready(self)) {
+    PyErr_Format(PyExc_TypeError, "%s(): the Hysteresis object is not initialized", name);
+    return nullptr;
+  }
+  try {
+    return along_history(*nb::inst_ptr<Hysteresis>(self), ArrayLike{nb::borrow(history)},
+                         OutArray{nb::borrow(out)}, Inverse)
+        .release()
+        .ptr();
+  } catch (...) {
+    set_python_error_from_current_exception();
+    return nullptr;
+  }
+}
+
+constexpr const char* kForcesDoc =
+    "forces($self, /, x, *, out=None)\n--\n\n"
+    "Forces along a displacement history (1-D array; a float gives a float), from the current "
+    "state; the object is not changed. out: a writable 1-D float64 array of the history's "
+    "length (any stride; it may be x itself) to write the forces into and return, instead of "
+    "a new array.";
+constexpr const char* kDisplacementsDoc =
+    "displacements($self, /, Q, *, out=None)\n--\n\n"
+    "Displacements along a force history (1-D array; a float gives a float), from the current "
+    "state; the object is not changed. out: a writable 1-D float64 array of the history's "
+    "length (any stride; it may be Q itself) to write the displacements into and return, "
+    "instead of a new array.";
+
+PyMethodDef g_history_methods[] = {
+    {"forces", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&history_method<false>)),
+     METH_FASTCALL | METH_KEYWORDS, kForcesDoc},
+    {"displacements",
+     reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)()>(&history_method<true>)),
+     METH_FASTCALL | METH_KEYWORDS, kDisplacementsDoc}};
+
 MemoryRule parse_rule(const std::string& name) {
   if (name == "masing") return MemoryRule::masing;
   if (name == "reset_at_reversal") return MemoryRule::reset_at_reversal;
@@ -303,57 +373,70 @@ void bind_hysteresis(nb::module_& m) {
       .def(nb::init<std::shared_ptr<const Backbone>, double, double>(), "inner"_a, "x_scale"_a,
            "Q_scale"_a);
 
-  nb::class_<Hysteresis>(
-      m, "Hysteresis",
-      "Masing's rules with a reversal stack and loop closing over any backbone: follows any "
-      "displacement (or force) history. memory='masing' (default) or 'reset_at_reversal' "
-      "(the thesis's Eq. 7.10).")
-      .def(
-          "__init__",
-          [](Hysteresis* self, std::shared_ptr<const Backbone> backbone,
-             const std::string& memory) {
-            new (self) Hysteresis(std::move(backbone), parse_rule(memory));
-          },
-          "backbone"_a, "memory"_a = "masing")
-      .def("update", &Hysteresis::update, "x"_a,
-           "Move to displacement x (reversals detected) and return the force.")
-      .def("update_force", &Hysteresis::update_force, "Q"_a,
-           "Move to force Q and return the displacement.")
-      .def("force", &Hysteresis::force, "x"_a,
-           "Force at x by monotone motion from the committed state (no state change).")
-      .def("commit_reversal", &Hysteresis::commit_reversal, "x"_a,
-           "Commit a reversal of the motion at x (an event).")
-      .def("reset", &Hysteresis::reset)
-      .def_prop_ro("x", &Hysteresis::x)
-      .def_prop_ro("Q", &Hysteresis::Q)
-      .def_prop_ro(
-          "reversals",
-          [](const Hysteresis& h) {
-            std::vector<std::pair<double, double>> out;
-            for (const auto& r : h.reversals()) out.emplace_back(r.x, r.Q);
-            return out;
-          },
-          "remembered reversal points (x, Q), oldest first")
-      .def(
-          "forces",
-          [](const Hysteresis& h, const ArrayLike& x, const OutArray& out) {
-            return FloatOrArray{along_history(h, x, out, false)};
-          },
-          "x"_a, nb::kw_only(), "out"_a = nb::none(),
-          "Forces along a displacement history (1-D array; a float gives a float), from the "
-          "current state; the object is not changed. out: a writable 1-D float64 array of the "
-          "history's length (any stride; it may be x itself) to write the forces into and "
-          "return, instead of a new array.")
-      .def(
-          "displacements",
-          [](const Hysteresis& h, const ArrayLike& Q, const OutArray& out) {
-            return FloatOrArray{along_history(h, Q, out, true)};
-          },
-          "Q"_a, nb::kw_only(), "out"_a = nb::none(),
-          "Displacements along a force history (1-D array; a float gives a float), from the "
-          "current state; the object is not changed. out: a writable 1-D float64 array of the "
-          "history's length (any stride; it may be Q itself) to write the displacements into "
-          "and return, instead of a new array.");
+  auto hysteresis =
+      nb::class_<Hysteresis>(
+          m, "Hysteresis",
+          "Masing's rules with a reversal stack and loop closing over any backbone: follows any "
+          "displacement (or force) history. memory='masing' (default) or 'reset_at_reversal' "
+          "(the thesis's Eq. 7.10).")
+          .def(
+              "__init__",
+              [](Hysteresis* self, std::shared_ptr<const Backbone> backbone,
+                 const std::string& memory) {
+                new (self) Hysteresis(std::move(backbone), parse_rule(memory));
+              },
+              "backbone"_a, "memory"_a = "masing")
+          .def("update", &Hysteresis::update, "x"_a,
+               "Move to displacement x (reversals detected) and return the force.")
+          .def("update_force", &Hysteresis::update_force, "Q"_a,
+               "Move to force Q and return the displacement.")
+          .def("force", &Hysteresis::force, "x"_a,
+               "Force at x by monotone motion from the committed state (no state change).")
+          .def("commit_reversal", &Hysteresis::commit_reversal, "x"_a,
+               "Commit a reversal of the motion at x (an event).")
+          .def("reset", &Hysteresis::reset)
+          .def_prop_ro("x", &Hysteresis::x)
+          .def_prop_ro("Q", &Hysteresis::Q)
+          .def_prop_ro(
+              "reversals",
+              [](const Hysteresis& h) {
+                std::vector<std::pair<double, double>> out;
+                for (const auto& r : h.reversals()) out.emplace_back(r.x, r.Q);
+                return out;
+              },
+              "remembered reversal points (x, Q), oldest first")
+          .def(
+              "forces",
+              [](const Hysteresis& h, const ArrayLike& x, const OutArray& out) {
+                return FloatOrArray{along_history(h, x, out, false)};
+              },
+              "x"_a, nb::kw_only(), "out"_a = nb::none(),
+              "Forces along a displacement history (1-D array; a float gives a float), from the "
+              "current state; the object is not changed. out: a writable 1-D float64 array of the "
+              "history's length (any stride; it may be x itself) to write the forces into and "
+              "return, instead of a new array.")
+          .def(
+              "displacements",
+              [](const Hysteresis& h, const ArrayLike& Q, const OutArray& out) {
+                return FloatOrArray{along_history(h, Q, out, true)};
+              },
+              "Q"_a, nb::kw_only(), "out"_a = nb::none(),
+              "Displacements along a force history (1-D array; a float gives a float), from the "
+              "current state; the object is not changed. out: a writable 1-D float64 array of the "
+              "history's length (any stride; it may be Q itself) to write the displacements into "
+              "and return, instead of a new array.");
+  m.def(
+      "_install_fast_history_methods",
+      [hysteresis]() {
+        auto* type = reinterpret_cast<PyTypeObject*>(hysteresis.ptr());
+        for (PyMethodDef& def : g_history_methods) {
+          nb::object descriptor = nb::steal(PyDescr_NewMethod(type, &def));
+          if (!descriptor.is_valid()) throw nb::python_error();
+          hysteresis.attr(def.ml_name) = descriptor;
+        }
+      },
+      "Replaces Hysteresis.forces and .displacements by CPython method descriptors (same "
+      "behaviour, faster small calls); asperity/__init__.py calls it.");
 }
 
 }  // namespace asperity::python

@@ -157,3 +157,48 @@ def test_an_error_inside_a_history_leaves_later_calls_right():
     after = (h.displacements(q), h.displacements(0.3), h.forces(x), h.forces(x[:5]))
     for a, b in zip(before, after):
         np.testing.assert_array_equal(a, b)
+
+
+def test_fast_entry_points_parse_arguments_as_the_signature_says():
+    # forces/displacements are CPython method descriptors (python/src/hysteresis.cpp,
+    # installed by asperity/__init__.py): their signature comes from __text_signature__,
+    # and every misuse is a TypeError naming the method, as Python's own functions do.
+    import inspect
+
+    for name, first in (("forces", "x"), ("displacements", "Q")):
+        sig = inspect.signature(getattr(asperity.Hysteresis, name))
+        assert list(sig.parameters) == ["self", first, "out"]
+        assert sig.parameters["self"].kind is inspect.Parameter.POSITIONAL_ONLY
+        assert sig.parameters[first].kind is inspect.Parameter.POSITIONAL_OR_KEYWORD
+        assert sig.parameters["out"].kind is inspect.Parameter.KEYWORD_ONLY
+        assert sig.parameters["out"].default is None
+    h = jenkins_with_reversals()
+    x = history(16)
+    ref = h.forces(x)
+    # By position, by keyword, through the class, through a subclass: the same doubles.
+    np.testing.assert_array_equal(h.forces(x=x), ref)
+    np.testing.assert_array_equal(asperity.Hysteresis.forces(h, x), ref)
+
+    class Tracked(asperity.Hysteresis):
+        pass
+
+    t = Tracked(asperity.JenkinsBackbone(2.0, 1.0))
+    for v in (1.0, -0.25, 0.1):
+        t.update(v)
+    np.testing.assert_array_equal(t.forces(x), ref)
+    assert h.displacements(Q=0.5) == h.displacements(0.5)
+    for call, message in [
+        (lambda: h.forces(), r"forces\(\) missing required argument 'x'"),
+        (lambda: h.forces(x, x), r"forces\(\) takes 1 positional argument \(x\) but 2 were given"),
+        (lambda: h.forces(x, x=x), "unexpected or repeated keyword argument 'x'"),
+        (lambda: h.displacements(0.1, Q=0.2), "unexpected or repeated keyword argument 'Q'"),
+        (lambda: h.forces(x, outt=None), "unexpected or repeated keyword argument 'outt'"),
+        (lambda: asperity.Hysteresis.forces(3, x), "doesn't apply to a 'int' object"),
+        (lambda: asperity.Hysteresis.__new__(asperity.Hysteresis).forces(0.1),
+         "not initialized"),
+    ]:
+        with pytest.raises(TypeError, match=message):
+            call()
+    # C++ errors arrive as the library's exceptions, with the library's message.
+    with pytest.raises(asperity.InvalidInput, match="static limit|limit"):
+        h.displacements(2.0)

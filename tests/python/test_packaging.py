@@ -94,15 +94,13 @@ def test_wrapped_methods_bind_and_call_as_the_compiled_ones():
     flat = asperity.RoughFlat(model="bke", beta=0.04, psi=0.5, nu=0.3, G_over_E=0.7 / 3.4)
     h = asperity.Hysteresis(flat.backbone(flat.separation_star(1e-3)))
     h.update(0.5)
-    raw = asperity.Hysteresis.forces.__wrapped__
+    raw = asperity.Hysteresis.force.__wrapped__
     # Bound method: self dropped from the signature, results equal to the compiled call by
     # position, by keyword and through the class.
-    bound = inspect.signature(h.forces).parameters
-    assert list(bound) == ["x", "out"]
-    assert bound["out"].kind is inspect.Parameter.KEYWORD_ONLY and bound["out"].default is None
-    assert h.forces(0.2) == raw(h, 0.2) == h.forces(x=0.2) == asperity.Hysteresis.forces(h, 0.2)
+    assert list(inspect.signature(h.force).parameters) == ["x"]
+    assert h.force(0.2) == raw(h, 0.2) == h.force(x=0.2) == asperity.Hysteresis.force(h, 0.2)
     with pytest.raises(TypeError, match="incompatible function arguments"):
-        h.forces()
+        h.force()
     # A static method does not bind: called through an instance it gets no self.
     pair = asperity.ContactPair.combine(asperity.Material(E=200e9, nu=0.3, H=2e9),
                                         asperity.Material(E=200e9, nu=0.3, H=2e9), 1e-3)
