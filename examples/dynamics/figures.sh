@@ -58,7 +58,7 @@ set title "Fig. 7.5: ramp response (alpha = 1), soft (k = 1e4 N/m) and hard (k =
 # per law, solid for the soft and dashed for the hard structure.
 set xlabel 'tau'; set ylabel 'u = x/A'; set xrange [0:30]; set yrange [-1:30]; set ytics 0, 5, 30
 plot 'ramp_coulomb_soft/timeseries.csv' using 'tau':'y' with lines dt 2 lc 'black' title 'base y = tau', \
-     '' using 'tau':'u' with lines lw 2 lc rgb '#009e73' title sprintf('Coulomb, k = 1e4: slips from the start (%.2f)', $(num ramp_coulomb_soft first_slip)), \
+     '' using 'tau':'u' with lines lw 2 lc rgb '#009e73' title sprintf("Coulomb, k = 1e4: creeps from the start (|u'| past 5 %% at %.2f)", $(num ramp_coulomb_soft first_slip)), \
      'ramp_dankowicz_soft/timeseries.csv' using 'tau':'u' with lines lw 2 lc rgb '#0072b2' title sprintf('Dankowicz, k = 1e4: sticks until %.1f', $(num ramp_dankowicz_soft first_slip)), \
      'ramp_physics_rough_soft/timeseries.csv' using 'tau':'u' with lines lw 2 lc rgb '#d55e00' title sprintf('EPB rough, k = 1e4: sticks until %.1f', $(num ramp_physics_rough_soft first_slip)), \
      'ramp_dankowicz_hard/timeseries.csv' using 'tau':'u' with lines lw 2 dt 2 lc rgb '#0072b2' title sprintf('Dankowicz, k = 1e5: sticks until %.2f', $(num ramp_dankowicz_hard first_slip)), \
