@@ -355,6 +355,7 @@ GnuplotRun run_gnuplot(const std::filesystem::path& script) {
     throw Error(fmt::format("cannot run gnuplot: {}", std::strerror(rc)));
   }
   run.found = true;
+  core::set_cleanup_child(pid);  // a SIGTERM meanwhile ends gnuplot too
   char buf[512];
   for (;;) {
     const ssize_t n = read(fds[0], buf, sizeof buf);
@@ -368,6 +369,7 @@ GnuplotRun run_gnuplot(const std::filesystem::path& script) {
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
+  core::set_cleanup_child(0);
   run.exited_zero = WIFEXITED(status) && WEXITSTATUS(status) == 0;
   return run;
 }

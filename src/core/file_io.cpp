@@ -5,6 +5,7 @@
 #include <pthread.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
@@ -109,8 +110,16 @@ void remove_now(const char* path, bool is_directory) noexcept {
   rmdir(path);
 }
 
+std::atomic<long> g_cleanup_child{0};
+static_assert(std::atomic<long>::is_always_lock_free);  // read in a signal handler
+
 extern "C" void asperity_cleanup_handler(int sig) {
   const int saved = errno;
+  if (const long child = g_cleanup_child.load(); child > 0) {
+    kill(static_cast<pid_t>(child), SIGKILL);  // async-signal-safe, as is waitpid
+    while (waitpid(static_cast<pid_t>(child), nullptr, 0) < 0 && errno == EINTR) {
+    }
+  }
   remove_registered_temporaries();
   struct sigaction dfl {};
   dfl.sa_handler = SIG_DFL;
@@ -310,6 +319,10 @@ void remove_registered_temporaries() noexcept {
   for (auto& s : g_slots) {
     if (s.state.load(std::memory_order_acquire) == 2) remove_now(s.path.data(), s.is_directory);
   }
+}
+
+void set_cleanup_child(long pid) noexcept {
+  g_cleanup_child.store(pid);
 }
 
 void install_cleanup_signal_handlers() {

@@ -308,10 +308,13 @@ def predict_sigterm_writing(exe, src, tmp, plots):
             else:
                 time.sleep(0.001)
         rc = p.wait(timeout=60)
-        try:  # gnuplot, started by the killed process, in its new session
+        # gnuplot, started by the killed process in its new session, must be gone with it
+        # (the cleanup handler kills and reaps it); a survivor is killed here and fails.
+        try:
             os.killpg(p.pid, signal.SIGKILL)
+            survivor = True
         except ProcessLookupError:
-            pass
+            survivor = False
         stderr = p.stderr.read().decode()
         p.stderr.close()
         now = tree(os.path.join(tmp, "out"))
@@ -321,6 +324,7 @@ def predict_sigterm_writing(exe, src, tmp, plots):
             old = now
             continue
         check(rc == -signal.SIGTERM, f"exit {rc}, expected death by SIGTERM: {stderr}")
+        check(not survivor, "a process of the killed predict (gnuplot) outlived it")
         check(not leftovers(tmp), f"temporaries left after SIGTERM: {leftovers(tmp)}")
         check(not os.listdir(plot_tmp), f"gnuplot's temporaries left: {os.listdir(plot_tmp)}")
         if now == old:

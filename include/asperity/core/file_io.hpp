@@ -122,9 +122,15 @@ void unregister_temporary(int slot) noexcept;
 /// Removes every registered temporary (directories with their contents).
 /// Async-signal-safe: only open, getdents64, unlinkat and close.
 void remove_registered_temporaries() noexcept;
-/// Installs handlers for SIGINT, SIGTERM and SIGHUP that remove the registered
-/// temporaries and then end the process by the same signal (exit status 128 + N), and
-/// ignores SIGXFSZ (a write past `ulimit -f` then fails with "File too large").
+/// The child process (gnuplot) that writes into a registered temporary, or 0 for none:
+/// the cleanup handler ends it (SIGKILL, then waits for it) before removing the
+/// temporaries, so that it neither outlives the process nor writes into a removed
+/// directory. One at a time.
+void set_cleanup_child(long pid) noexcept;
+/// Installs handlers for SIGINT, SIGTERM and SIGHUP that end the cleanup child, remove
+/// the registered temporaries and then end the process by the same signal (exit status
+/// 128 + N), and ignores SIGXFSZ (a write past `ulimit -f` then fails with "File too
+/// large").
 void install_cleanup_signal_handlers();
 /// Blocks SIGINT, SIGTERM and SIGHUP in this thread while it lives (pthread_sigmask), so
 /// that a sequence of renames that commits outputs is not cut in the middle; a signal
