@@ -241,6 +241,15 @@ void require_regular_input(const std::string& path, std::size_t max_bytes, std::
   }
 }
 
+CaseFileText read_case_file_text(const std::string& path) {
+  CaseFileText f;
+  f.text = read_input_file(path, kMaxCaseFileBytes, "the case file");
+  require_utf8(f.text, path, "the case file");
+  const auto dir = fs::path(path).parent_path();
+  f.base_dir = dir.empty() ? "." : dir.string();
+  return f;
+}
+
 void require_utf8(std::string_view text, std::string_view path, std::string_view what,
                   std::size_t first_line) {
   std::size_t line = first_line, line_start = 0;

@@ -557,11 +557,8 @@ DynamicsCase parse_case_text(const std::string& file_text, const std::string& pa
 }
 
 DynamicsCase read_case_file(const std::string& path) {
-  const std::string file_text =
-      core::read_input_file(path, core::kMaxCaseFileBytes, "the case file");
-  core::require_utf8(file_text, path, "the case file");
-  const auto dir = std::filesystem::path(path).parent_path();
-  return parse_case_text(file_text, path, dir.empty() ? "." : dir.string());
+  const core::CaseFileText f = core::read_case_file_text(path);
+  return parse_case_text(f.text, path, f.base_dir);
 }
 
 CaseResult run_case(const DynamicsCase& c, const RunOptions& options) {

@@ -823,10 +823,8 @@ JointCase parse_case(std::string_view text, const std::string& source,
 }
 
 JointCase read_case_file(const std::string& path) {
-  const std::string text = core::read_input_file(path, core::kMaxCaseFileBytes, "the case file");
-  core::require_utf8(text, path, "the case file");
-  const auto dir = std::filesystem::path(path).parent_path();
-  return parse_case(text, path, dir.empty() ? "." : dir.string());
+  const core::CaseFileText f = core::read_case_file_text(path);
+  return parse_case(f.text, path, f.base_dir);
 }
 
 }  // namespace asperity::joint

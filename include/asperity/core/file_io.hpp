@@ -52,6 +52,15 @@ inline constexpr std::size_t kMaxProfileFileBytes = std::size_t{1} << 30;
 void require_utf8(std::string_view text, std::string_view path, std::string_view what,
                   std::size_t first_line = 1);
 
+/// A case file read for its parser: the text (read_input_file with kMaxCaseFileBytes,
+/// then require_utf8) and the directory its relative paths are taken from ("." for a
+/// file named without a directory).
+struct CaseFileText {
+  std::string text;
+  std::string base_dir;
+};
+[[nodiscard]] CaseFileText read_case_file_text(const std::string& path);
+
 /// Throws InvalidInput as read_input_file does, without reading: for readers that stream
 /// the file themselves (and stop at the cap).
 void require_regular_input(const std::string& path, std::size_t max_bytes, std::string_view what);
