@@ -29,6 +29,8 @@ PyObject* new_exception(const char* name, const char* doc, PyObject* bases) {
 }  // namespace
 
 void set_python_error_from_current_exception() {
+  // The library's errors as the translator registered in bind_core sets them; the
+  // standard exceptions as nanobind's built-in translation does.
   try {
     throw;
   } catch (nb::python_error& e) {
@@ -41,6 +43,18 @@ void set_python_error_from_current_exception() {
     PyErr_SetString(g_error, e.what());
   } catch (const std::bad_alloc&) {
     PyErr_NoMemory();
+  } catch (const std::out_of_range& e) {
+    PyErr_SetString(PyExc_IndexError, e.what());
+  } catch (const std::overflow_error& e) {
+    PyErr_SetString(PyExc_OverflowError, e.what());
+  } catch (const std::invalid_argument& e) {
+    PyErr_SetString(PyExc_ValueError, e.what());
+  } catch (const std::domain_error& e) {
+    PyErr_SetString(PyExc_ValueError, e.what());
+  } catch (const std::length_error& e) {
+    PyErr_SetString(PyExc_ValueError, e.what());
+  } catch (const std::range_error& e) {
+    PyErr_SetString(PyExc_ValueError, e.what());
   } catch (const std::exception& e) {
     PyErr_SetString(PyExc_RuntimeError, e.what());
   } catch (...) {
@@ -102,12 +116,8 @@ void bind_core(nb::module_& m) {
   nb::register_exception_translator([](const std::exception_ptr& p, void*) {
     try {
       std::rethrow_exception(p);
-    } catch (const InvalidInput& e) {
-      PyErr_SetString(g_invalid_input, e.what());
-    } catch (const NumericalError& e) {
-      PyErr_SetString(g_numerical_error, e.what());
-    } catch (const Error& e) {
-      PyErr_SetString(g_error, e.what());
+    } catch (const Error&) {
+      set_python_error_from_current_exception();  // one mapping for both entry points
     }
   });
 

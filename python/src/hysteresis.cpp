@@ -280,6 +280,11 @@ PyObject* history_method(PyObject* self, PyObject* const* args, Py_ssize_t nargs
     PyErr_Format(PyExc_TypeError, "%s() missing required argument '%s'", name, first);
     return nullptr;
   }
+  if (history == Py_None) {  // as the nanobind method (its argument caster refuses None)
+    PyErr_Format(PyExc_TypeError, "%s(): %s must be a float or a 1-D array of floats, not None",
+                 name, first);
+    return nullptr;
+  }
   if (!nb::inst_ready(self)) {
     PyErr_Format(PyExc_TypeError, "%s(): the Hysteresis object is not initialized", name);
     return nullptr;

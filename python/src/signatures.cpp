@@ -30,6 +30,10 @@ struct SignedCallable {
 PyObject* signed_vectorcall(PyObject* self, PyObject* const* args, std::size_t nargsf,
                             PyObject* kwnames) {
   auto* s = reinterpret_cast<SignedCallable*>(self);
+  if (s->target == nullptr) {  // cleared by the garbage collector (a finalizer's call)
+    PyErr_SetString(PyExc_ReferenceError, "the compiled callable was cleared");
+    return nullptr;
+  }
   return s->target_vectorcall != nullptr ? s->target_vectorcall(s->target, args, nargsf, kwnames)
                                          : PyObject_Vectorcall(s->target, args, nargsf, kwnames);
 }
@@ -60,10 +64,32 @@ void signed_dealloc(PyObject* self) {
 PyObject* signed_repr(PyObject* self) {
   auto* s = reinterpret_cast<SignedCallable*>(self);
   PyObject* name = s->dict != nullptr ? PyDict_GetItemString(s->dict, "__qualname__") : nullptr;
-  if (name == nullptr) return PyObject_Repr(s->target);
+  if (name == nullptr || !PyUnicode_Check(name)) {
+    return s->target != nullptr ? PyObject_Repr(s->target) : PyUnicode_FromString("<cleared>");
+  }
   return PyUnicode_FromFormat("<compiled %s %U>",
                               Py_TYPE(self) == g_method_type ? "method" : "function", name);
 }
+
+// Pickled and copied by reference, as Python's own functions are: the qualified name,
+// found again as __module__.__qualname__ (asperity.bolt_preload, asperity.Hysteresis.update).
+PyObject* signed_reduce(PyObject* self, PyObject*) {
+  auto* s = reinterpret_cast<SignedCallable*>(self);
+  PyObject* name = s->dict != nullptr ? PyDict_GetItemString(s->dict, "__qualname__") : nullptr;
+  if (name == nullptr || !PyUnicode_Check(name)) {
+    PyErr_SetString(PyExc_TypeError, "cannot pickle a compiled callable without __qualname__");
+    return nullptr;
+  }
+  return Py_NewRef(name);
+}
+
+PyMethodDef signed_methods[] = {
+    {"__reduce__", signed_reduce, METH_NOARGS, "pickled by reference (its qualified name)"},
+    {nullptr, nullptr, 0, nullptr}};
+
+PyGetSetDef signed_getset[] = {
+    {"__dict__", PyObject_GenericGetDict, PyObject_GenericSetDict, nullptr, nullptr},
+    {nullptr, nullptr, nullptr, nullptr, nullptr}};
 
 // Looked up on the class (obj == NULL or None): the wrapper itself, so that
 // inspect.signature(Class.method) finds its __signature__; on an instance: a bound method.
@@ -84,6 +110,8 @@ PyType_Slot function_slots[] = {{Py_tp_dealloc, reinterpret_cast<void*>(signed_d
                                 {Py_tp_clear, reinterpret_cast<void*>(signed_clear)},
                                 {Py_tp_call, reinterpret_cast<void*>(PyVectorcall_Call)},
                                 {Py_tp_repr, reinterpret_cast<void*>(signed_repr)},
+                                {Py_tp_methods, signed_methods},
+                                {Py_tp_getset, signed_getset},
                                 {Py_tp_members, signed_members},
                                 {0, nullptr}};
 
@@ -92,12 +120,15 @@ PyType_Slot method_slots[] = {{Py_tp_dealloc, reinterpret_cast<void*>(signed_dea
                               {Py_tp_clear, reinterpret_cast<void*>(signed_clear)},
                               {Py_tp_call, reinterpret_cast<void*>(PyVectorcall_Call)},
                               {Py_tp_repr, reinterpret_cast<void*>(signed_repr)},
+                              {Py_tp_methods, signed_methods},
+                              {Py_tp_getset, signed_getset},
                               {Py_tp_descr_get, reinterpret_cast<void*>(signed_method_get)},
                               {Py_tp_members, signed_members},
                               {0, nullptr}};
 
 constexpr unsigned long kFlags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_HAVE_GC |
-                                 Py_TPFLAGS_HAVE_VECTORCALL | Py_TPFLAGS_DISALLOW_INSTANTIATION;
+                                 Py_TPFLAGS_HAVE_VECTORCALL | Py_TPFLAGS_DISALLOW_INSTANTIATION |
+                                 Py_TPFLAGS_IMMUTABLETYPE;
 
 PyType_Spec function_spec = {"asperity._core.signed_function",
                              static_cast<int>(sizeof(SignedCallable)), 0, kFlags, function_slots};

@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 #include <spawn.h>
 #include <sys/wait.h>
+
 #include <unistd.h>
+#include <csignal>
 
 #include <cerrno>
 #include <charconv>
@@ -345,7 +347,21 @@ GnuplotRun run_gnuplot(const std::filesystem::path& script) {
   std::string script_arg = script.string();
   char* argv[] = {program.data(), script_arg.data(), nullptr};
   pid_t pid = 0;
-  const int rc = posix_spawnp(&pid, program.c_str(), &actions, nullptr, argv, environ);
+  int rc = 0;
+  {
+    // Spawned and registered with signals blocked, so that a SIGTERM cannot fall between
+    // the two; the child starts with no signal blocked.
+    const core::SignalBlock block;
+    posix_spawnattr_t attr;
+    posix_spawnattr_init(&attr);
+    sigset_t none;
+    sigemptyset(&none);
+    posix_spawnattr_setsigmask(&attr, &none);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK);
+    rc = posix_spawnp(&pid, program.c_str(), &actions, &attr, argv, environ);
+    posix_spawnattr_destroy(&attr);
+    if (rc == 0) core::set_cleanup_child(pid);  // a SIGTERM meanwhile ends gnuplot too
+  }
   posix_spawn_file_actions_destroy(&actions);
   close(fds[1]);
   GnuplotRun run;
@@ -355,7 +371,6 @@ GnuplotRun run_gnuplot(const std::filesystem::path& script) {
     throw Error(fmt::format("cannot run gnuplot: {}", std::strerror(rc)));
   }
   run.found = true;
-  core::set_cleanup_child(pid);  // a SIGTERM meanwhile ends gnuplot too
   char buf[512];
   for (;;) {
     const ssize_t n = read(fds[0], buf, sizeof buf);
@@ -366,10 +381,15 @@ GnuplotRun run_gnuplot(const std::filesystem::path& script) {
     }
   }
   close(fds[0]);
+  // Waited for without reaping first: until waitpid the pid cannot belong to another
+  // process, so the cleanup handler never kills a stranger.
+  siginfo_t info{};
+  while (waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
+  }
+  core::set_cleanup_child(0);
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
-  core::set_cleanup_child(0);
   run.exited_zero = WIFEXITED(status) && WEXITSTATUS(status) == 0;
   return run;
 }

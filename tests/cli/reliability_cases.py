@@ -344,6 +344,48 @@ def case_predict_sigterm_plotting(exe, src, tmp):
     predict_sigterm_writing(exe, src, tmp, plots=True)
 
 
+def case_predict_sigterm_kills_gnuplot(exe, src, tmp):
+    """SIGTERM while gnuplot draws: the cleanup handler ends the gnuplot it started
+    (SIGKILL, reaped) before removing the temporaries, so nothing outlives the command.
+    A stand-in `gnuplot` first on PATH writes its pid and sleeps, so the signal always
+    comes while it runs (and the test needs no real gnuplot)."""
+    fake_bin = os.path.join(tmp, "fake-bin")
+    os.mkdir(fake_bin)
+    pid_file = os.path.join(tmp, "gnuplot.pid")
+    with open(os.path.join(fake_bin, "gnuplot"), "w") as f:
+        f.write(f'#!/bin/sh\necho $$ > "{pid_file}.part" && mv "{pid_file}.part" "{pid_file}"\n'
+                "exec sleep 60\n")
+    os.chmod(os.path.join(fake_bin, "gnuplot"), 0o755)
+    plot_tmp = os.path.join(tmp, "plot-tmp")
+    os.mkdir(plot_tmp)
+    env = dict(os.environ, PATH=fake_bin + os.pathsep + os.environ.get("PATH", ""),
+               TMPDIR=plot_tmp)
+    case = os.path.join(src, "examples/joints/steel_smooth.toml")
+    p = subprocess.Popen([exe, "predict", case, "--out", "out"], cwd=tmp, env=env,
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 60
+    while not os.path.exists(pid_file) and p.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.005)
+    check(os.path.exists(pid_file), f"the stand-in gnuplot never ran (exit {p.poll()})")
+    with open(pid_file) as f:
+        gnuplot = int(f.read())
+    p.send_signal(signal.SIGTERM)
+    rc = p.wait(timeout=60)
+    stderr = p.stderr.read().decode()
+    p.stderr.close()
+    try:
+        os.kill(gnuplot, 0)
+        alive = True
+        os.kill(gnuplot, signal.SIGKILL)
+    except ProcessLookupError:
+        alive = False
+    check(rc == -signal.SIGTERM, f"exit {rc}, expected death by SIGTERM: {stderr}")
+    check(not alive, f"gnuplot (pid {gnuplot}) outlived the killed predict")
+    check(not leftovers(tmp), f"temporaries left after SIGTERM: {leftovers(tmp)}")
+    check(not os.listdir(plot_tmp), f"gnuplot's temporaries left: {os.listdir(plot_tmp)}")
+    check(not os.path.exists(os.path.join(tmp, "out")), "a half-written output was committed")
+
+
 def case_stale_temporaries_removed(exe, src, tmp):
     write_history(os.path.join(tmp, "h.csv"), 100)
     dead = dead_pid()

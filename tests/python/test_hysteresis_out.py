@@ -202,3 +202,55 @@ def test_fast_entry_points_parse_arguments_as_the_signature_says():
     # C++ errors arrive as the library's exceptions, with the library's message.
     with pytest.raises(asperity.InvalidInput, match="static limit|limit"):
         h.displacements(2.0)
+
+
+def test_fast_entry_points_keep_references_and_refuse_none():
+    import sys
+
+    h = jenkins_with_reversals()
+    x = history(8)
+    out = np.empty(8)
+    before = (sys.getrefcount(h), sys.getrefcount(x), sys.getrefcount(out))
+    for _ in range(10000):
+        assert h.forces(x, out=out) is out
+        h.forces(x)
+        with pytest.raises(asperity.InvalidInput):
+            h.forces(x, out=np.empty(3))
+    assert (sys.getrefcount(h), sys.getrefcount(x), sys.getrefcount(out)) == before
+    for call in (lambda: h.forces(None), lambda: h.displacements(None)):
+        with pytest.raises(TypeError, match="not None"):
+            call()
+
+
+def test_nanobind_methods_equal_the_fast_entry_points():
+    # With ASPERITY_RAW_BINDINGS=1 (what the stub generator sees) forces/displacements are
+    # nanobind's own methods: same along_history, so the same doubles and the same errors.
+    import json
+    import os
+    import subprocess
+    import sys
+
+    script = (
+        "import json, numpy as np, asperity\n"
+        "h = asperity.Hysteresis(asperity.JenkinsBackbone(2.0, 1.0))\n"
+        "[h.update(v) for v in (1.0, -0.25, 0.1)]\n"
+        "x = np.cumsum(np.random.default_rng(3).normal(0.0, 0.15, 64)) % 1.2 - 0.6\n"
+        "o = np.empty(64)\n"
+        "r = {'kind': type(asperity.Hysteresis.__dict__['forces']).__name__,\n"
+        "     'f': h.forces(x).tolist(), 'o': h.forces(x, out=o).tolist(),\n"
+        "     'd': h.displacements(np.array([0.1, -0.3, 0.2])).tolist(), 's': h.forces(0.2)}\n"
+        "try:\n"
+        "    h.forces(x, out=np.empty(3))\n"
+        "except asperity.InvalidInput as e:\n"
+        "    r['e'] = str(e)\n"
+        "print(json.dumps(r))\n")
+    runs = {}
+    for raw in ("1", ""):
+        env = dict(os.environ, ASPERITY_RAW_BINDINGS=raw)
+        p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                           env=env, timeout=120)
+        assert p.returncode == 0, p.stderr
+        runs[raw] = json.loads(p.stdout)
+    assert runs["1"].pop("kind") == "nb_method"
+    assert runs[""].pop("kind") == "method_descriptor"
+    assert runs["1"] == runs[""]

@@ -184,3 +184,45 @@ def test_the_command_comes_with_the_package():
     info = asperity.version_info()
     assert r.stdout.strip() == (f"asperity {info['version']} (git {info['git_revision']}, "
                                 f"{info['build_type']})")
+
+
+def test_wrapped_callables_pickle_copy_and_show_as_python_functions_do():
+    import copy
+    import pickle
+
+    for fn in (asperity.bolt_preload, asperity.mindlin.loading_force_tilde,
+               asperity.Hysteresis.force, asperity.ContactPair.combine):
+        assert type(fn).__name__ in ("signed_function", "signed_method"), fn
+        # By reference, as Python pickles its own functions: the same object comes back.
+        assert pickle.loads(pickle.dumps(fn)) is fn
+        assert copy.copy(fn) is fn and copy.deepcopy(fn) is fn
+        assert vars(fn)["__signature__"] == inspect.signature(fn)
+    assert repr(asperity.bolt_preload) == "<compiled function bolt_preload>"
+    assert repr(asperity.Hysteresis.force) == "<compiled method Hysteresis.force>"
+    # A bad __qualname__ written by a user is not read as text (falls back to the target).
+    f = asperity.hardness_factor
+    saved = f.__qualname__
+    try:
+        f.__qualname__ = 5
+        assert repr(f) == repr(f.__wrapped__)
+        with pytest.raises(TypeError, match="__qualname__"):
+            pickle.dumps(f)
+    finally:
+        f.__qualname__ = saved
+    # The forwarders are not constructible from Python.
+    with pytest.raises(TypeError):
+        type(f)()
+
+
+def test_forwarders_leak_no_references():
+    import sys
+
+    h = asperity.Hysteresis(asperity.JenkinsBackbone(2.0, 1.0))
+    x = 0.25
+    before = (sys.getrefcount(h), sys.getrefcount(x), sys.getrefcount(asperity.Hysteresis.force))
+    for _ in range(10000):
+        h.force(x)
+        asperity.Hysteresis.force(h, x)
+        asperity.hardness_factor(0.3)
+    after = (sys.getrefcount(h), sys.getrefcount(x), sys.getrefcount(asperity.Hysteresis.force))
+    assert after == before

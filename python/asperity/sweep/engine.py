@@ -16,6 +16,7 @@ import shutil
 import sys
 import time
 import traceback
+from typing import Optional
 
 import numpy as np
 
@@ -28,7 +29,10 @@ MARKER = ".asperity-output"  # as the C++ commands' output directories (output_d
 
 # --------------------------------------------------------------------------- worker side
 
-def _in_dask_worker() -> bool:
+def _in_dask_worker_process(client_pid: Optional[int]) -> bool:
+    """True in a Dask worker that runs in a process of its own (not the caller's)."""
+    if client_pid is None or os.getpid() == client_pid:
+        return False
     try:
         from distributed import get_worker
 
@@ -38,15 +42,19 @@ def _in_dask_worker() -> bool:
         return False
 
 
-def run_batch(kind: str, base_dir: str, case: dict, items: list) -> list:
+def run_batch(kind: str, base_dir: str, case: dict, items: list,
+              client_pid: Optional[int] = None) -> list:
     """Runs ``[(sample, assignments)]`` (each sample's values written into the base
     ``case``, :func:`spec.apply_assignments`); returns ``[(sample, outputs or None,
     error or "")]``. A sample that fails (asperity.Error: bad input drawn, numerical
-    failure; or any other exception) is returned with its error, never dropped."""
+    failure; or any other exception) is returned with its error, never dropped.
+    ``client_pid``: the process that submitted the batch; a worker in another process
+    runs each sample on one library thread."""
     runner = runner_for(kind)
-    if _in_dask_worker():
+    if _in_dask_worker_process(client_pid):
         # One library thread per sample: the samples are spread over the workers' cores
         # already, and a second team of threads per core would only compete with them.
+        # (A worker inside the caller's own process leaves the caller's setting alone.)
         _core.set_thread_count(1)
     out = []
     for s, assignments in items:
@@ -377,7 +385,7 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
                     inputs, items = make(sent)
                     pending[sent] = inputs
                     f = client.submit(run_batch, sweep.kind, sweep.base_dir, sweep.case, items,
-                                      pure=False)
+                                      os.getpid(), pure=False)
                     futures[f.key] = sent
                     ac.add(f)
                     sent += 1
