@@ -148,6 +148,7 @@ class Hysteresis {
     return backbone_->force(x);
   }
 
+  // Members: assign_borrowing() copies each one by name; a new member goes there too.
   std::shared_ptr<const Backbone> backbone_;
   MemoryRule rule_;
   const TabulatedBackbone* table_ = nullptr;  // backbone_ (or its inner one) when tabulated
