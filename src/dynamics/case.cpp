@@ -152,21 +152,9 @@ std::unique_ptr<FrictionModel> joint_friction(DynamicsCase& c, const std::string
   // [load] is there unless an [interface] map gives the load (joint::parse_case checks).
   const auto load_line = root.get("load") ? root.get("load")->source().begin.line
                                           : root.get("interface")->source().begin.line;
-  if (jc.preloads.size() != 1) {
-    throw InvalidInput(
-        fmt::format("{}:{}: load: `asperity dynamics` runs one preload; the [load] table gives {} "
-                    "(a sweep): keep one",
-                    path, load_line, jc.preloads.size()));
-  }
+  const joint::LoadPrediction lp = joint::predict_single_load(
+      jc, fmt::format("{}:{}: load: ", path, load_line), "`asperity dynamics` runs");
   const double P = jc.preloads.front();
-  const joint::LoadPrediction lp = [&] {
-    try {
-      // Uniform, or the patches of an [interface] summed (joint/interface.hpp).
-      return joint::predict_case_load(jc, P);
-    } catch (const InvalidInput& e) {
-      throw InvalidInput(fmt::format("{}:{}: load: {}", path, load_line, e.what()));
-    }
-  }();
   const double kA = *s.k * *s.A;
   c.joint = SummaryObject{{"name", jc.name},
                           {"model", std::string(contact::to_string(jc.model))},

@@ -212,6 +212,21 @@ std::vector<InterfacePatch> case_patches(const JointCase& c, double preload) {
   return interface_patches(c.interface, c.area, preload, kMinAsperitiesPerPatch / eta);
 }
 
+LoadPrediction predict_single_load(const JointCase& c, const std::string& where,
+                                   const std::string& consumer) {
+  if (c.preloads.size() != 1) {
+    throw InvalidInput(
+        fmt::format("{}{} one preload; the [load] table gives {} (a sweep): keep one", where,
+                    consumer, c.preloads.size()));
+  }
+  try {
+    // Uniform, or the summed backbone of an [interface]'s patches (joint/interface.hpp).
+    return predict_case_load(c, c.preloads.front());
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format("{}{}", where, e.what()));
+  }
+}
+
 LoadPrediction predict_case_load(const JointCase& c, double preload,
                                  const std::vector<double>& amplitudes,
                                  const std::vector<double>& imposed) {

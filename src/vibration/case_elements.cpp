@@ -179,21 +179,9 @@ JointBackbone joint_backbone(const std::string& path, const std::string& base_di
   const auto load_line = root.get("load")        ? root.get("load")->source().begin.line
                          : root.get("interface") ? root.get("interface")->source().begin.line
                                                  : 0;
-  if (jc.preloads.size() != 1) {
-    throw InvalidInput(fmt::format(
-        "{}:{}: load: a rough_flat element takes one preload; the [load] table gives {} (a "
-        "sweep): keep one",
-        path, load_line, jc.preloads.size()));
-  }
+  const joint::LoadPrediction lp = joint::predict_single_load(
+      jc, fmt::format("{}:{}: load: ", path, load_line), "a rough_flat element takes");
   const double P = jc.preloads.front();
-  const joint::LoadPrediction lp = [&] {
-    try {
-      // Uniform, or the summed backbone of an [interface]'s patches (joint/interface.hpp).
-      return joint::predict_case_load(jc, P);
-    } catch (const InvalidInput& e) {
-      throw InvalidInput(fmt::format("{}:{}: load: {}", path, load_line, e.what()));
-    }
-  }();
   JointBackbone j;
   j.backbone = lp.backbone;
   j.summary = SummaryObject{{"name", jc.name},

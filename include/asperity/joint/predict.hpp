@@ -123,6 +123,13 @@ struct JointPrediction {
                                                const std::vector<double>& amplitudes = {},
                                                const std::vector<double>& imposed = {});
 
+/// predict_case_load at the one preload of a case that must give exactly one (a joint
+/// inside a dynamics or vibration case). InvalidInput messages start with `where` (the
+/// case file and line, "path:12: load: "): a sweep of preloads names `consumer` ("`asperity
+/// dynamics` runs"), and predict_case_load's own errors are passed on after it.
+[[nodiscard]] LoadPrediction predict_single_load(const JointCase& c, const std::string& where,
+                                                 const std::string& consumer);
+
 /// The joint amplitude of a steady symmetric cycle imposed through a linear apparatus
 /// (Fig. 5.7): the root of delta + c Q_l(delta) = imposed on the SI backbone (Masing: the
 /// peak force of a symmetric loop is the backbone's).
