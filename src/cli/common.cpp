@@ -23,6 +23,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
 #include "asperity/core/version.hpp"
+#include "asperity/joint/output_dir.hpp"
 
 extern char** environ;  // POSIX: the environment, for posix_spawnp
 
@@ -243,6 +244,16 @@ void require_one_stdout(
     }
     first = flag;
   }
+}
+
+void require_case_output_directory(const std::string& out_dir, const std::string& case_file) {
+  const auto name = std::filesystem::path(out_dir).lexically_normal().filename().string();
+  if (out_dir.empty() || name == "." || name == ".." || name.empty()) {
+    throw InvalidInput(fmt::format(
+        "--out \"{}\": name a directory to create (or replace whole), not . or ..", out_dir));
+  }
+  joint::require_output_apart_from_inputs(out_dir, {{"the case file", case_file}});
+  joint::require_replaceable_output(out_dir, out_dir);
 }
 
 void require_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs) {

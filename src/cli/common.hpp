@@ -118,6 +118,9 @@ void require_one_stdout(
 /// Throws InvalidInput when two output flags name the same file (after resolving
 /// ".", ".." and symbolic links). Each pair is (flag, path); empty paths are skipped.
 void require_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs);
+/// Checks --out DIR of a command reading one case file, before any work: a name (not .
+/// or ..), apart from the case file, and absent or a directory asperity wrote.
+void require_case_output_directory(const std::string& out_dir, const std::string& case_file);
 
 /// `s` as a gnuplot single-quoted string literal: no command substitution or escape
 /// is expanded inside; quotes are doubled, control characters become spaces. Use it

@@ -64,13 +64,7 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
     require_distinct_outputs({{"the case file", o.case_file}, {"--out", *o.out_dir}});
   }
   if (files) {
-    const auto name = std::filesystem::path(*o.out_dir).lexically_normal().filename().string();
-    if (o.out_dir->empty() || name == "." || name == ".." || name.empty()) {
-      throw InvalidInput(fmt::format(
-          "--out \"{}\": name a directory to create (or replace whole), not . or ..", *o.out_dir));
-    }
-    joint::require_output_apart_from_inputs(*o.out_dir, {{"the case file", o.case_file}});
-    joint::require_replaceable_output(*o.out_dir, *o.out_dir);
+    require_case_output_directory(*o.out_dir, o.case_file);
   }
   const DynamicsCase c = read_case_file(o.case_file);
   // Only what is asked for is kept: the summary's samples (run_case summary_only), the

@@ -250,13 +250,7 @@ std::string text_summary(const VibrationCase& c, const VibrationResult& r) {
 void run_vibration(const VibrationOptions& o, std::string& out) {
   const bool files = o.out_dir.has_value();
   if (files) {
-    const auto name = std::filesystem::path(*o.out_dir).lexically_normal().filename().string();
-    if (o.out_dir->empty() || name == "." || name == ".." || name.empty()) {
-      throw InvalidInput(fmt::format(
-          "--out \"{}\": name a directory to create (or replace whole), not . or ..", *o.out_dir));
-    }
-    joint::require_output_apart_from_inputs(*o.out_dir, {{"the case file", o.case_file}});
-    joint::require_replaceable_output(*o.out_dir, *o.out_dir);
+    require_case_output_directory(*o.out_dir, o.case_file);
   }
   const VibrationCase c = read_case_file(o.case_file);
   const bool bar = isatty(STDERR_FILENO) != 0;
