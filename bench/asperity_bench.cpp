@@ -154,10 +154,7 @@ int main(int argc, char** argv) {
   asperity::bench::RatioReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   const auto t = reporter.seconds();
-  auto get = [&](const char* name) {
-    const auto it = t.find(name);
-    return it == t.end() ? 0.0 : it->second;
-  };
+  auto get = [&](const char* name) { return reporter.seconds_of(name); };
   const double table = get("BM_RoughFlatForce");
   const double quad = get("BM_RoughFlatForceQuadrature");
   const double tanh = get("BM_TanhCoulombForce");

@@ -48,6 +48,13 @@ class RatioReporter : public benchmark::ConsoleReporter {
     return out;
   }
 
+  /// seconds() of one benchmark, 0 when it did not run (filtered out).
+  [[nodiscard]] double seconds_of(const std::string& name) const {
+    const auto t = seconds();
+    const auto it = t.find(name);
+    return it == t.end() ? 0.0 : it->second;
+  }
+
   /// Repetitions per benchmark (--benchmark_repetitions; 1 by default).
   [[nodiscard]] std::int64_t repetitions() const { return repetitions_; }
 

@@ -156,11 +156,7 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   asperity::bench::RatioReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
-  const auto& t = reporter.seconds();
-  auto get = [&](const char* name) {
-    const auto it = t.find(name);
-    return it == t.end() ? 0.0 : it->second;
-  };
+  auto get = [&](const char* name) { return reporter.seconds_of(name); };
   const double aft = get("BM_AftJenkinsResidualJacobian");
   const double element = get("BM_JenkinsElementTwoPasses");
   const double epmc = get("BM_EpmcJenkinsSdof");
