@@ -1,6 +1,7 @@
 // Performance targets of the friction law (issue: "Coulomb-fast evaluation"), measured
 // as ratios against references computed in the same run:
 //   BM_RoughFlatForce            tabulated backbone through the Masing engine
+//   BM_RoughFlatForceStrided     the same history in one Hysteresis::update_strided call
 //   BM_RoughFlatForceQuadrature  the same forces with the backbone by direct quadrature
 //   BM_TanhCoulombForce          regularized Coulomb F tanh(k v) (Eq. 7.2), k = 1e3: 73 % of
 //                                its arguments are beyond |k v| = 22, where glibc's tanh
@@ -18,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <random>
 #include <string>
@@ -99,6 +101,23 @@ void BM_RoughFlatForce(benchmark::State& state) {
 }
 BENCHMARK(BM_RoughFlatForce);
 
+// The same history through Hysteresis::update_strided, the batch path of Hysteresis::forces
+// and the Python package's forces/displacements: one whole pass (65536 samples) per
+// iteration; the ratio below is per sample.
+void BM_RoughFlatForceStrided(benchmark::State& state) {
+  hysteresis::Hysteresis h(flat().backbone(separation()));
+  const auto& xs = history();
+  std::vector<double> out(xs.size());
+  for (auto _ : state) {
+    h.update_strided(reinterpret_cast<const char*>(xs.data()), sizeof(double),
+                     reinterpret_cast<char*>(out.data()), sizeof(double), xs.size());
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(xs.size()));
+}
+BENCHMARK(BM_RoughFlatForceStrided);
+
 void BM_RoughFlatForceQuadrature(benchmark::State& state) {
   run_history(state, std::make_shared<QuadratureBackbone>(flat(), separation()));
 }
@@ -169,6 +188,13 @@ int main(int argc, char** argv) {
   if (table > 0 && tanh_unsat > 0) {
     std::printf("  RoughFlatForce / TanhCoulombForceUnsaturated = %6.2f   (target <= 2)\n",
                 table / tanh_unsat);
+  }
+  const double strided = get("BM_RoughFlatForceStrided") / static_cast<double>(history().size());
+  if (table > 0 && strided > 0) {
+    std::printf(
+        "  RoughFlatForceStrided / RoughFlatForce  = %6.2f   (per sample: the batch path "
+        "against update() one at a time)\n",
+        strided / table);
   }
   if (table > 0 && quad > 0) {
     std::printf("  RoughFlatForceQuadrature / RoughFlatForce = %8.0f (target >= 300)\n",

@@ -84,37 +84,37 @@ std::pair<const char*, const char*> byte_range(const char* data, npy_intp n, npy
 class StateCopy {
  public:
   explicit StateCopy(const Hysteresis& h) {
-    if (in_use()) {
+    Scratch& s = scratch();  // one thread-local look-up (a call into the loader)
+    if (s.in_use) {
       own_.emplace(h);
       state_ = &*own_;
       return;
     }
-    std::optional<Hysteresis>& s = scratch();
-    if (!s) s.emplace(h);
-    s->assign_borrowing(h);
-    in_use() = true;
-    leased_ = true;
-    state_ = &*s;
+    if (!s.state) s.state.emplace(h);
+    s.state->assign_borrowing(h);
+    s.in_use = true;
+    lease_ = &s;
+    state_ = &*s.state;
   }
   StateCopy(const StateCopy&) = delete;
   StateCopy& operator=(const StateCopy&) = delete;
   ~StateCopy() {
-    if (leased_) in_use() = false;
+    if (lease_ != nullptr) lease_->in_use = false;
   }
   Hysteresis& operator*() { return *state_; }
 
  private:
-  static std::optional<Hysteresis>& scratch() {
-    thread_local std::optional<Hysteresis> s;
+  struct Scratch {
+    std::optional<Hysteresis> state;
+    bool in_use = false;
+  };
+  static Scratch& scratch() {
+    thread_local Scratch s;
     return s;
-  }
-  static bool& in_use() {
-    thread_local bool b = false;
-    return b;
   }
   std::optional<Hysteresis> own_;
   Hysteresis* state_ = nullptr;
-  bool leased_ = false;
+  Scratch* lease_ = nullptr;
 };
 
 // Below this many points the loop runs with the GIL held: releasing and taking it back
@@ -129,12 +129,13 @@ constexpr npy_intp kReleaseGilFrom = 1024;
 // length, any stride, returned); anything else goes through numpy.asarray first. An
 // `out` overlapping the history other than element for element (the same data and
 // stride: in place) makes a copy of the history first.
-nb::object along_history(const Hysteresis& h, const ArrayLike& in, const OutArray& out_arg,
-                         bool inverse) {
+// `in` and `out_arg` are borrowed (None for no `out`).
+nb::object along_history(const Hysteresis& h, nb::handle in, nb::handle out_arg, bool inverse) {
   const char* what = inverse ? "the force history" : "the displacement history";
-  const bool has_out = !out_arg.obj.is_none();
+  const bool has_out = !out_arg.is_none();
   double v = 0.0;
-  if (detail::python_number(in.obj, v)) {
+  import_numpy();
+  if (!PyArray_CheckExact(in.ptr()) && detail::python_number(in, v)) {
     if (has_out) {
       throw InvalidInput(fmt::format(
           "out is for a 1-D history, but {} is a float ({}), which gives a float: allowed "
@@ -145,8 +146,8 @@ nb::object along_history(const Hysteresis& h, const ArrayLike& in, const OutArra
     StateCopy c(h);
     return nb::float_((*c).update_force(v));
   }
-  import_numpy();
-  nb::object source = in.obj;
+  nb::handle source = in;
+  nb::object converted;  // owns source when it had to be converted
   auto usable = [](PyObject* o) {
     if (!PyArray_Check(o)) return false;
     auto* a = reinterpret_cast<PyArrayObject*>(o);
@@ -154,7 +155,8 @@ nb::object along_history(const Hysteresis& h, const ArrayLike& in, const OutArra
   };
   if (!usable(source.ptr())) {
     nb::module_ np = nb::module_::import_("numpy");
-    source = np.attr("ascontiguousarray")(np.attr("asarray")(in.obj, nb::arg("dtype") = "float64"));
+    converted = np.attr("ascontiguousarray")(np.attr("asarray")(in, nb::arg("dtype") = "float64"));
+    source = converted;
     if (!usable(source.ptr())) {
       throw InvalidInput(fmt::format(
           "{} must be a 1-D sequence, got an array with {} dimensions", what,
@@ -170,7 +172,7 @@ nb::object along_history(const Hysteresis& h, const ArrayLike& in, const OutArra
   char* out = nullptr;
   npy_intp out_stride = sizeof(double);
   if (has_out) {
-    PyObject* o = out_arg.obj.ptr();
+    PyObject* o = out_arg.ptr();
     auto* oa = PyArray_Check(o) ? reinterpret_cast<PyArrayObject*>(o) : nullptr;
     if (!oa || PyArray_NDIM(oa) != 1 || PyArray_TYPE(oa) != NPY_DOUBLE || !PyArray_ISBEHAVED(oa) ||
         PyArray_DIM(oa, 0) != n) {
@@ -197,14 +199,15 @@ nb::object along_history(const Hysteresis& h, const ArrayLike& in, const OutArra
       const auto [o_first, o_last] = byte_range(out, n, out_stride);
       if (x_first < o_last && o_first < x_last) {
         // Writing out[k] would overwrite a point not read yet: read from a copy.
-        source = nb::steal(PyArray_NewCopy(a, NPY_CORDER));
-        if (!source.is_valid()) throw nb::python_error();
+        converted = nb::steal(PyArray_NewCopy(a, NPY_CORDER));
+        if (!converted.is_valid()) throw nb::python_error();
+        source = converted;
         a = reinterpret_cast<PyArrayObject*>(source.ptr());
         stride = PyArray_STRIDE(a, 0);
         x = static_cast<const char*>(PyArray_DATA(a));
       }
     }
-    result = out_arg.obj;
+    result = nb::borrow(out_arg);
   } else {
     result = nb::steal(PyArray_SimpleNew(1, &n, NPY_DOUBLE));
     if (!result.is_valid()) throw nb::python_error();
@@ -222,11 +225,28 @@ nb::object along_history(const Hysteresis& h, const ArrayLike& in, const OutArra
     store(0, h.peek(point(0)));
     return result;
   }
+  npy_intp start = 0;
+  if (!inverse && n < kReleaseGilFrom && out != x) {
+    // The leading points that continue the current branch need no copy of the state;
+    // the copy then restarts from the last of them (the same state update() leaves there;
+    // not in place, where that point is overwritten by then).
+    const auto m = static_cast<npy_intp>(
+        h.peek_strided(x, stride, out, out_stride, static_cast<std::size_t>(n)));
+    if (m == n) return result;
+    start = m > 0 ? m - 1 : 0;
+  }
   StateCopy copy(h);
   Hysteresis& c = *copy;
+  auto run = [&](npy_intp k0, npy_intp k1) {
+    if (inverse) {
+      for (npy_intp k = k0; k < k1; ++k) store(k, c.update_force(point(k)));
+    } else {
+      c.update_strided(x + k0 * stride, stride, out + k0 * out_stride, out_stride,
+                       static_cast<std::size_t>(k1 - k0));
+    }
+  };
   if (n < kReleaseGilFrom) {
-    for (npy_intp k = 0; k < n; ++k)
-      store(k, inverse ? c.update_force(point(k)) : c.update(point(k)));
+    run(start, n);
     return result;
   }
   // Without the GIL (other Python threads run meanwhile) in chunks of 65536 points;
@@ -236,9 +256,7 @@ nb::object along_history(const Hysteresis& h, const ArrayLike& in, const OutArra
     const npy_intp k1 = std::min(n, k0 + kChunk);
     {
       nb::gil_scoped_release release;
-      for (npy_intp k = k0; k < k1; ++k) {
-        store(k, inverse ? c.update_force(point(k)) : c.update(point(k)));
-      }
+      run(k0, k1);
     }
     if (PyErr_CheckSignals() != 0) throw nb::python_error();
   }
@@ -263,11 +281,18 @@ PyObject* history_method(PyObject* self, PyObject* const* args, Py_ssize_t nargs
     return nullptr;
   }
   if (kwnames != nullptr) {
+    // Keyword names in a call are interned by the compiler: compared by identity first
+    // (a string comparison cost about a tenth of a small call, measured).
+    static PyObject* const out_name = PyUnicode_InternFromString("out");
+    static PyObject* const first_name = PyUnicode_InternFromString(first);
     for (Py_ssize_t i = 0; i < PyTuple_GET_SIZE(kwnames); ++i) {
       PyObject* key = PyTuple_GET_ITEM(kwnames, i);
-      if (PyUnicode_CompareWithASCIIString(key, "out") == 0) {
+      const bool is_out = key == out_name ||
+                          (key != first_name && PyUnicode_CompareWithASCIIString(key, "out") == 0);
+      if (is_out) {
         out = args[nargs + i];
-      } else if (PyUnicode_CompareWithASCIIString(key, first) == 0 && history == nullptr) {
+      } else if ((key == first_name || PyUnicode_CompareWithASCIIString(key, first) == 0) &&
+                 history == nullptr) {
         history = args[nargs + i];
       } else {
         PyErr_Format(PyExc_TypeError, "%s() got an unexpected or repeated keyword argument '%U'",
@@ -290,10 +315,7 @@ PyObject* history_method(PyObject* self, PyObject* const* args, Py_ssize_t nargs
     return nullptr;
   }
   try {
-    return along_history(*nb::inst_ptr<Hysteresis>(self), ArrayLike{nb::borrow(history)},
-                         OutArray{nb::borrow(out)}, Inverse)
-        .release()
-        .ptr();
+    return along_history(*nb::inst_ptr<Hysteresis>(self), history, out, Inverse).release().ptr();
   } catch (...) {
     set_python_error_from_current_exception();
     return nullptr;
@@ -413,7 +435,7 @@ void bind_hysteresis(nb::module_& m) {
           .def(
               "forces",
               [](const Hysteresis& h, const ArrayLike& x, const OutArray& out) {
-                return FloatOrArray{along_history(h, x, out, false)};
+                return FloatOrArray{along_history(h, x.obj, out.obj, false)};
               },
               "x"_a, nb::kw_only(), "out"_a = nb::none(),
               "Forces along a displacement history (1-D array; a float gives a float), from the "
@@ -423,7 +445,7 @@ void bind_hysteresis(nb::module_& m) {
           .def(
               "displacements",
               [](const Hysteresis& h, const ArrayLike& Q, const OutArray& out) {
-                return FloatOrArray{along_history(h, Q, out, true)};
+                return FloatOrArray{along_history(h, Q.obj, out.obj, true)};
               },
               "Q"_a, nb::kw_only(), "out"_a = nb::none(),
               "Displacements along a force history (1-D array; a float gives a float), from the "

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "asperity/core/error.hpp"
@@ -321,13 +323,60 @@ double Hysteresis::update_force(double Q) {
   return x;
 }
 
+void Hysteresis::update_strided(const char* x, std::ptrdiff_t x_stride, char* Q,
+                                std::ptrdiff_t Q_stride, std::size_t n) {
+  // update()'s inline fast path on local copies of x_, direction_ and top_ (stores through
+  // char* may alias any member, which would force a reload per point); the members are
+  // written back before every slow step and at the end.
+  double x_now = x_;
+  double Q_now = Q_;
+  double direction = direction_;
+  ReversalPoint top = top_;
+  for (std::size_t k = 0; k < n; ++k) {
+    double xk = 0.0;
+    std::memcpy(&xk, x + static_cast<std::ptrdiff_t>(k) * x_stride, sizeof xk);
+    if ((xk - x_now) * direction > 0.0 && (xk - top.closes_at) * top.direction < 0.0) {
+      Q_now = top.Q + top.direction * 2.0 * backbone_force(std::abs(xk - top.x) * 0.5);
+      x_now = xk;
+    } else {
+      x_ = x_now;
+      Q_ = Q_now;
+      Q_now = update_slow(xk);
+      x_now = x_;
+      direction = direction_;
+      top = top_;
+    }
+    std::memcpy(Q + static_cast<std::ptrdiff_t>(k) * Q_stride, &Q_now, sizeof Q_now);
+  }
+  x_ = x_now;
+  Q_ = Q_now;
+}
+
+std::size_t Hysteresis::peek_strided(const char* x, std::ptrdiff_t x_stride, char* Q,
+                                     std::ptrdiff_t Q_stride, std::size_t n) const {
+  double x_now = x_;
+  for (std::size_t k = 0; k < n; ++k) {
+    double xk = 0.0;
+    std::memcpy(&xk, x + static_cast<std::ptrdiff_t>(k) * x_stride, sizeof xk);
+    if (!((xk - x_now) * direction_ > 0.0 && (xk - top_.closes_at) * top_.direction < 0.0)) {
+      return k;
+    }
+    const double Qk = top_.Q + top_.direction * 2.0 * backbone_force(std::abs(xk - top_.x) * 0.5);
+    std::memcpy(Q + static_cast<std::ptrdiff_t>(k) * Q_stride, &Qk, sizeof Qk);
+    x_now = xk;
+  }
+  return n;
+}
+
 std::vector<double> Hysteresis::forces(std::span<const double> x_history) const {
   Hysteresis h = *this;
-  std::vector<double> out;
-  out.reserve(x_history.size());
-  for (std::size_t i = 0; i < x_history.size(); ++i) {
-    if ((i & 0xFFF) == 0) core::check_interrupt();
-    out.push_back(h.update(x_history[i]));
+  std::vector<double> out(x_history.size());
+  constexpr std::size_t kBlock = 0x1000;  // a pending interrupt is seen every 4096 points
+  for (std::size_t i = 0; i < x_history.size(); i += kBlock) {
+    core::check_interrupt();
+    const std::size_t m = std::min(kBlock, x_history.size() - i);
+    h.update_strided(reinterpret_cast<const char*>(x_history.data() + i), sizeof(double),
+                     reinterpret_cast<char*>(out.data() + i), sizeof(double), m);
   }
   return out;
 }

@@ -5,6 +5,7 @@
 #include "../support.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <random>
@@ -214,6 +215,129 @@ INSTANTIATE_TEST_SUITE_P(Backbones, PeekExactness,
                                             ::testing::Values(MemoryRule::masing,
                                                               MemoryRule::reset_at_reversal)),
                          peek_case_name);
+
+// update_strided is update() in a loop with the fast path's state in registers: the same
+// doubles, bit for bit (EXPECT_EQ), for the three force paths and both memory rules, over
+// a random history with reversals, loop closings and exactly repeated points, read and
+// written with unit, wide, negative and unaligned byte strides; the final state equals
+// the loop's too. A non-finite point throws after the points before it were written, and
+// leaves the state where update() leaves it.
+class StridedExactness : public ::testing::TestWithParam<std::tuple<int, MemoryRule>> {};
+
+TEST_P(StridedExactness, EqualsAnUpdateLoop) {
+  const auto [which, rule] = GetParam();
+  std::shared_ptr<const Backbone> bb;
+  if (which == 0) bb = mindlin_backbone();
+  if (which == 1) bb = tabulated_mindlin();
+  if (which == 2) bb = std::make_shared<ScaledBackbone>(tabulated_mindlin(), 1e-3 / 3e-6, 5e2);
+  const double scale = 3.0 * bb->limit() / bb->initial_stiffness();
+  std::mt19937_64 rng(77 + static_cast<unsigned>(which));
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  std::vector<double> history;
+  double x = 0.0;
+  while (history.size() < 4000) {
+    const double target = scale * uni(rng);
+    const int steps = 1 + static_cast<int>(history.size() % 7);
+    for (int k = 1; k <= steps; ++k) history.push_back(x + (target - x) * k / steps);
+    if (history.size() % 5 == 0) history.push_back(history.back());  // no motion
+    x = target;
+  }
+  const std::size_t n = history.size();
+  Hysteresis start(bb, rule);
+  for (double p : {0.4 * scale, -0.3 * scale, 0.1 * scale}) start.update(p);
+  Hysteresis loop = start;
+  std::vector<double> expected(n);
+  for (std::size_t k = 0; k < n; ++k) expected[k] = loop.update(history[k]);
+  // Byte strides: contiguous, every third double, reversed, and 1 byte off alignment.
+  for (const std::ptrdiff_t step : {std::ptrdiff_t{1}, std::ptrdiff_t{3}, std::ptrdiff_t{-2}}) {
+    for (const std::ptrdiff_t offset : {std::ptrdiff_t{0}, std::ptrdiff_t{1}}) {
+      const std::size_t span = n * static_cast<std::size_t>(std::abs(step)) + 2;
+      std::vector<char> in_bytes(span * sizeof(double)), out_bytes(span * sizeof(double));
+      const std::ptrdiff_t stride = step * static_cast<std::ptrdiff_t>(sizeof(double));
+      const std::ptrdiff_t first =
+          offset + (step < 0 ? static_cast<std::ptrdiff_t>(n - 1) * -stride : 0);
+      for (std::size_t k = 0; k < n; ++k) {
+        std::memcpy(in_bytes.data() + first + static_cast<std::ptrdiff_t>(k) * stride, &history[k],
+                    sizeof(double));
+      }
+      Hysteresis h = start;
+      h.update_strided(in_bytes.data() + first, stride, out_bytes.data() + first, stride, n);
+      for (std::size_t k = 0; k < n; ++k) {
+        double q = 0.0;
+        std::memcpy(&q, out_bytes.data() + first + static_cast<std::ptrdiff_t>(k) * stride,
+                    sizeof q);
+        ASSERT_EQ(q, expected[k]) << "point " << k << ", stride " << stride;
+      }
+      EXPECT_EQ(h.x(), loop.x());
+      EXPECT_EQ(h.Q(), loop.Q());
+      ASSERT_EQ(h.reversals().size(), loop.reversals().size());
+      for (std::size_t i = 0; i < h.reversals().size(); ++i) {
+        EXPECT_EQ(h.reversals()[i].x, loop.reversals()[i].x);
+        EXPECT_EQ(h.reversals()[i].Q, loop.reversals()[i].Q);
+      }
+    }
+  }
+  // peek_strided from states along the history: its leading run equals update() on a
+  // copy, the state is unchanged, and a copy restarted at the run's last point gives the
+  // rest (the Python package's forces() composes the two that way).
+  Hysteresis walker = start;
+  std::size_t runs = 0, longest = 0;
+  for (std::size_t i = 0; i + 20 < n; ++i) {
+    if (i % 13 == 0) {
+      Hysteresis reference = walker;
+      std::vector<double> want(20), got(20, -1.0);
+      for (std::size_t k = 0; k < 20; ++k) want[k] = reference.update(history[i + k]);
+      const double x_before = walker.x(), q_before = walker.Q();
+      const std::size_t stack_before = walker.reversals().size();
+      const std::size_t m =
+          walker.peek_strided(reinterpret_cast<const char*>(&history[i]), sizeof(double),
+                              reinterpret_cast<char*>(got.data()), sizeof(double), 20);
+      ASSERT_LE(m, 20u);
+      ASSERT_EQ(walker.x(), x_before);
+      ASSERT_EQ(walker.Q(), q_before);
+      ASSERT_EQ(walker.reversals().size(), stack_before);
+      for (std::size_t k = 0; k < m; ++k) ASSERT_EQ(got[k], want[k]) << "point " << i + k;
+      if (m < 20) {
+        ASSERT_EQ(got[m], -1.0);  // nothing written past the run
+        Hysteresis rest = walker;
+        const std::size_t from = m > 0 ? m - 1 : 0;
+        rest.update_strided(reinterpret_cast<const char*>(&history[i + from]), sizeof(double),
+                            reinterpret_cast<char*>(got.data() + from), sizeof(double), 20 - from);
+        for (std::size_t k = 0; k < 20; ++k) ASSERT_EQ(got[k], want[k]) << "point " << i + k;
+      }
+      runs += m > 0 ? 1 : 0;
+      longest = std::max(longest, m);
+    }
+    (void)walker.update(history[i]);
+  }
+  EXPECT_GT(runs, 50u);  // many states where the history continues the branch
+  EXPECT_GE(longest, 5u);
+  // A NaN in the middle: the points before it written, the state that of update() there.
+  std::vector<double> with_nan(history.begin(), history.begin() + 100);
+  with_nan[60] = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> out(with_nan.size(), -1.0);
+  Hysteresis h = start;
+  Hysteresis reference = start;
+  for (std::size_t k = 0; k < 60; ++k) (void)reference.update(with_nan[k]);
+  EXPECT_THROW(
+      h.update_strided(reinterpret_cast<const char*>(with_nan.data()), sizeof(double),
+                       reinterpret_cast<char*>(out.data()), sizeof(double), with_nan.size()),
+      InvalidInput);
+  for (std::size_t k = 0; k < 60; ++k) EXPECT_EQ(out[k], expected[k]);
+  EXPECT_EQ(out[60], -1.0);
+  EXPECT_EQ(h.x(), reference.x());
+  EXPECT_EQ(h.Q(), reference.Q());
+  EXPECT_EQ(h.reversals().size(), reference.reversals().size());
+}
+
+INSTANTIATE_TEST_SUITE_P(Backbones, StridedExactness,
+                         ::testing::Combine(::testing::Range(0, 3),
+                                            ::testing::Values(MemoryRule::masing,
+                                                              MemoryRule::reset_at_reversal)),
+                         [](const ::testing::TestParamInfo<StridedExactness::ParamType>& param) {
+                           return peek_case_name(::testing::TestParamInfo<PeekExactness::ParamType>(
+                               param.param, param.index));
+                         });
 
 TEST(Masing, BorrowingCopyEqualsACopyAndOwnsNothing) {
   // A scratch reused over many states (each assigned from a different point of a random

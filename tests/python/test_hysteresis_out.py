@@ -6,6 +6,8 @@ is an InvalidInput naming `out`, what it got and what is allowed.
 References: the allocating call on the same state (itself tested against closed forms in
 test_rough_flat.py); the Jenkins element (k = 2, F = 1) and the Fig. 4.4 rough flat
 (beta = 0.04, psi = 0.5, nu = 0.3, P* = 1e-3) as backbones."""
+import sys
+
 import numpy as np
 import pytest
 
@@ -48,6 +50,10 @@ def test_out_equals_the_allocating_call(make, n):
     before = snapshot(h)
     x = history(n)
     expected = h.forces(x)
+    # The reference: update() one point at a time on a replay of the same state (forces
+    # runs Hysteresis::update_strided; the same doubles, bit for bit).
+    replay = make()
+    np.testing.assert_array_equal(expected, np.array([replay.update(v) for v in x]))
     out = np.full(n, np.nan)
     assert h.forces(x, out=out) is out
     np.testing.assert_array_equal(out, expected)
@@ -67,6 +73,34 @@ def test_out_equals_the_allocating_call(make, n):
     into = np.full(n, np.nan)
     assert h.displacements(q, out=into) is into
     np.testing.assert_array_equal(into, back)
+    assert snapshot(h) == before
+
+
+# forces() evaluates the leading points that continue the current branch on the state
+# itself (Hysteresis::peek_strided) and the rest on a copy restarted at the last of them:
+# histories that continue for 0, 1, 2 or 5 points, then turn (and turn again), into a new
+# array, into out and in place (where the restart point is overwritten, so the copy takes
+# every point), against update() one point at a time on a replay.
+@pytest.mark.parametrize("lead", [0, 1, 2, 5])
+@pytest.mark.parametrize("make, direction", [(jenkins_with_reversals, 1.0),
+                                             (rough_flat_with_reversals, -1.0)])
+def test_a_history_continuing_the_branch_then_turning(make, direction, lead):
+    h = make()
+    x0 = h.x
+    up = [x0 + direction * 0.01 * (i + 1) for i in range(lead)]
+    top = up[-1] if up else x0
+    back = [top - direction * 0.05 * j for j in range(1, 5)]
+    x = np.array(up + back + [back[-1] + direction * 0.02 * j for j in range(1, 4)])
+    replay = make()
+    expected = np.array([replay.update(v) for v in x])
+    before = snapshot(h)
+    np.testing.assert_array_equal(h.forces(x), expected)
+    np.testing.assert_array_equal(h.forces(x, out=np.empty(len(x))), expected)
+    y = x.copy()
+    np.testing.assert_array_equal(h.forces(y, out=y), expected)
+    # Only continuing points: no copy at all.
+    if lead:
+        np.testing.assert_array_equal(h.forces(np.array(up)), expected[:lead])
     assert snapshot(h) == before
 
 
@@ -186,6 +220,13 @@ def test_fast_entry_points_parse_arguments_as_the_signature_says():
     for v in (1.0, -0.25, 0.1):
         t.update(v)
     np.testing.assert_array_equal(t.forces(x), ref)
+    # A keyword name built at run time is not the interned one (compared by identity
+    # first): matched by value all the same.
+    out_key = "".join(["o", "ut"])
+    assert out_key is not sys.intern("out")
+    buf = np.empty(16)
+    assert h.forces(x, **{out_key: buf}) is buf
+    np.testing.assert_array_equal(buf, ref)
     assert h.displacements(Q=0.5) == h.displacements(0.5)
     for call, message in [
         (lambda: h.forces(), r"forces\(\) missing required argument 'x'"),

@@ -73,6 +73,17 @@ class Hysteresis {
     }
     return update_slow(x);
   }
+  /// update() along a history: Q[k] = update(x[k]) for k < n, bit for bit, with byte
+  /// strides (any sign; the arrays need no alignment). The fast path's state stays in
+  /// registers between points instead of being reloaded after every store.
+  void update_strided(const char* x, std::ptrdiff_t x_stride, char* Q, std::ptrdiff_t Q_stride,
+                      std::size_t n);
+  /// update_strided's leading run on the current branch, without changing the state:
+  /// writes Q[k] for the points k < m that continue the newest branch short of its
+  /// closing point (update()'s inline fast path, the same doubles) and returns m. The
+  /// state after them is update(x[m-1]) from this one (monotone motion along one branch).
+  [[nodiscard]] std::size_t peek_strided(const char* x, std::ptrdiff_t x_stride, char* Q,
+                                         std::ptrdiff_t Q_stride, std::size_t n) const;
   /// Force-driven step: moves to force Q, returns the displacement. Throws
   /// InvalidInput if a branch would need |Q| beyond the static limit (gross slip
   /// under force control has no finite displacement).
