@@ -138,6 +138,14 @@ std::shared_ptr<const TabulatedBackbone> tabulated_mindlin() {
   return std::make_shared<TabulatedBackbone>(in);
 }
 
+// The three force paths of Hysteresis::backbone_force: 0 an analytic backbone (virtual
+// call), 1 a table (inline look-up), 2 a table scaled to SI.
+std::shared_ptr<const Backbone> force_path_backbone(int which) {
+  if (which == 0) return mindlin_backbone();
+  if (which == 1) return tabulated_mindlin();
+  return std::make_shared<ScaledBackbone>(tabulated_mindlin(), 1e-3 / 3e-6, 5e2);
+}
+
 // peek(x) against update(x) on a copy, bit for bit (EXPECT_EQ: peek computes the same
 // operations on the same doubles, it is not an approximation), for both memory rules on
 // an analytic backbone, a table and a table scaled to SI (the three force paths), over
@@ -148,10 +156,7 @@ class PeekExactness : public ::testing::TestWithParam<std::tuple<int, MemoryRule
 
 TEST_P(PeekExactness, EqualsUpdateOnACopyOverRandomHistories) {
   const auto [which, rule] = GetParam();
-  std::shared_ptr<const Backbone> bb;
-  if (which == 0) bb = mindlin_backbone();
-  if (which == 1) bb = tabulated_mindlin();
-  if (which == 2) bb = std::make_shared<ScaledBackbone>(tabulated_mindlin(), 1e-3 / 3e-6, 5e2);
+  const std::shared_ptr<const Backbone> bb = force_path_backbone(which);
   const double scale = 3.0 * bb->limit() / bb->initial_stiffness();
   std::mt19937_64 rng(4321 + static_cast<unsigned>(which) + (rule == MemoryRule::masing ? 0 : 7));
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
@@ -226,10 +231,7 @@ class StridedExactness : public ::testing::TestWithParam<std::tuple<int, MemoryR
 
 TEST_P(StridedExactness, EqualsAnUpdateLoop) {
   const auto [which, rule] = GetParam();
-  std::shared_ptr<const Backbone> bb;
-  if (which == 0) bb = mindlin_backbone();
-  if (which == 1) bb = tabulated_mindlin();
-  if (which == 2) bb = std::make_shared<ScaledBackbone>(tabulated_mindlin(), 1e-3 / 3e-6, 5e2);
+  const std::shared_ptr<const Backbone> bb = force_path_backbone(which);
   const double scale = 3.0 * bb->limit() / bb->initial_stiffness();
   std::mt19937_64 rng(77 + static_cast<unsigned>(which));
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
