@@ -6,6 +6,7 @@ is an InvalidInput naming `out`, what it got and what is allowed.
 References: the allocating call on the same state (itself tested against closed forms in
 test_rough_flat.py); the Jenkins element (k = 2, F = 1) and the Fig. 4.4 rough flat
 (beta = 0.04, psi = 0.5, nu = 0.3, P* = 1e-3) as backbones."""
+import signal
 import sys
 
 import numpy as np
@@ -295,3 +296,45 @@ def test_nanobind_methods_equal_the_fast_entry_points():
     assert runs["1"].pop("kind") == "nb_method"
     assert runs[""].pop("kind") == "method_descriptor"
     assert runs["1"] == runs[""]
+
+
+def test_a_signal_handler_calling_forces_during_a_long_forces_call():
+    # A long history runs on this thread's scratch state, with the GIL released in chunks
+    # of 65536 points and Python's signal handlers run between them. A handler that calls
+    # forces itself (a history turning at once, so it needs a state of its own) must get
+    # a plain copy, not the scratch the long call is still using: both results equal
+    # update() loops on replays. The timer fires every millisecond of wall time; the long
+    # call is repeated until a handler ran inside it (each call takes tens of ms).
+    h = rough_flat_with_reversals()
+    long_x = np.tile(history(4096, seed=5), 600)  # 2.46e6 points
+    short_x = np.array([h.x + 0.05, h.x - 0.1, h.x + 0.02, h.x - 0.3])  # turns at once
+    replay = rough_flat_with_reversals()
+    short_expected = np.array([replay.update(v) for v in short_x])
+    nested = []
+    in_long_call = [False]
+
+    def handler(signum, frame):
+        if in_long_call[0]:
+            nested.append(h.forces(short_x))
+
+    previous = signal.signal(signal.SIGALRM, handler)
+    try:
+        signal.setitimer(signal.ITIMER_REAL, 1e-3, 1e-3)
+        for _ in range(20):
+            in_long_call[0] = True
+            long_q = h.forces(long_x)
+            in_long_call[0] = False
+            if nested:
+                break
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0.0, 0.0)
+        signal.signal(signal.SIGALRM, previous)
+    assert nested, "no handler ran during a long call in 20 tries"
+    for q in nested:
+        np.testing.assert_array_equal(q, short_expected)
+    # The long call against the same call without the timer, and its first 50000 points
+    # against a replay (a Python loop over all 2.46e6 would take seconds).
+    np.testing.assert_array_equal(long_q, h.forces(long_x))
+    replay = rough_flat_with_reversals()
+    np.testing.assert_array_equal(long_q[:50000],
+                                  np.array([replay.update(v) for v in long_x[:50000]]))
