@@ -3,8 +3,9 @@
 # the C++ suite
 # (GoogleTest, CLI checks, examples, the downstream find_package checks of the static and the
 # shared library, tests/package) with warnings as
-# errors, the GoogleTest suite and the C++ example again under AddressSanitizer and
-# UndefinedBehaviorSanitizer (the `debug` preset), a short libFuzzer smoke run of the
+# errors, the GoogleTest suite, the C++ example and the pytest suite (against the compiled
+# module of that build) again under AddressSanitizer and UndefinedBehaviorSanitizer (the
+# `debug` preset), a short libFuzzer smoke run of the
 # profile readers, then the Python package installed with pip into .venv (with the `asperity`
 # command) and its pytest suite, which also runs every code block of README.md and docs/*.md
 # through that command and package (tests/python/test_docs.py). Every Python step runs
@@ -29,9 +30,22 @@ ctest --preset ci -j 2
 stage "C++ under ASan + UBSan (debug preset): GoogleTest suite and the C++ example"
 # The CLI-script tests are left out here: the same code paths run in the GoogleTest
 # suite, and the Python drivers under ASan would only add time.
-cmake --preset debug -DPython3_EXECUTABLE="$py"
+cmake --preset debug -DPython3_EXECUTABLE="$py" -DASPERITY_BUILD_PYTHON=ON
 cmake --build --preset debug -j 2 --target asperity_tests sphere_example rough_flat_hysteresis
 ctest --preset debug -j 2 -L 'unit|example'
+
+stage "Python bindings under ASan + UBSan: the pytest suite against the debug preset's module"
+# The bindings' own code (numpy arrays read and written in place, the method forwarders)
+# checked like the library. The sanitizer runtime must come first in the process, and the
+# C++ runtime with it (ASan intercepts __cxa_throw; Python does not link libstdc++).
+# Leak checking is off: the interpreter keeps its objects until exit by design. The
+# command line the tests call is the same build's, sanitized too.
+cmake --build --preset debug -j 2 --target _core asperity_core_stub asperity_cli
+LD_PRELOAD="$(g++ -print-file-name=libasan.so) $(g++ -print-file-name=libstdc++.so.6)" \
+  ASAN_OPTIONS=detect_leaks=0 \
+  UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$PWD/tests/python/ubsan.supp" \
+  PYTHONPATH="$PWD/build/debug/python" ASPERITY_CLI="$PWD/build/debug/src/cli/asperity" \
+  MPLBACKEND=Agg "$py" -m pytest tests/python -q -p no:cacheprovider
 
 stage "Fuzz smoke run of the profile readers (libFuzzer, clang, ASan + UBSan)"
 cmake -S . -B build/fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DASPERITY_BUILD_FUZZ=ON \
