@@ -105,35 +105,34 @@ PyMemberDef signed_members[] = {
      "the nanobind function or method called"},
     {nullptr, 0, 0, 0, nullptr}};
 
-PyType_Slot function_slots[] = {{Py_tp_dealloc, reinterpret_cast<void*>(signed_dealloc)},
-                                {Py_tp_traverse, reinterpret_cast<void*>(signed_traverse)},
-                                {Py_tp_clear, reinterpret_cast<void*>(signed_clear)},
-                                {Py_tp_call, reinterpret_cast<void*>(PyVectorcall_Call)},
-                                {Py_tp_repr, reinterpret_cast<void*>(signed_repr)},
-                                {Py_tp_methods, signed_methods},
-                                {Py_tp_getset, signed_getset},
-                                {Py_tp_members, signed_members},
-                                {0, nullptr}};
-
-PyType_Slot method_slots[] = {{Py_tp_dealloc, reinterpret_cast<void*>(signed_dealloc)},
-                              {Py_tp_traverse, reinterpret_cast<void*>(signed_traverse)},
-                              {Py_tp_clear, reinterpret_cast<void*>(signed_clear)},
-                              {Py_tp_call, reinterpret_cast<void*>(PyVectorcall_Call)},
-                              {Py_tp_repr, reinterpret_cast<void*>(signed_repr)},
-                              {Py_tp_methods, signed_methods},
-                              {Py_tp_getset, signed_getset},
-                              {Py_tp_descr_get, reinterpret_cast<void*>(signed_method_get)},
-                              {Py_tp_members, signed_members},
-                              {0, nullptr}};
+// The slots of both forwarder types; a method's type also binds to an instance like a
+// method descriptor (tp_descr_get). The function type's list ends one entry early.
+template <bool Method>
+PyType_Slot* forwarder_slots() {
+  static PyType_Slot slots[] = {
+      {Py_tp_dealloc, reinterpret_cast<void*>(signed_dealloc)},
+      {Py_tp_traverse, reinterpret_cast<void*>(signed_traverse)},
+      {Py_tp_clear, reinterpret_cast<void*>(signed_clear)},
+      {Py_tp_call, reinterpret_cast<void*>(PyVectorcall_Call)},
+      {Py_tp_repr, reinterpret_cast<void*>(signed_repr)},
+      {Py_tp_methods, signed_methods},
+      {Py_tp_getset, signed_getset},
+      {Py_tp_members, signed_members},
+      Method ? PyType_Slot{Py_tp_descr_get, reinterpret_cast<void*>(signed_method_get)}
+             : PyType_Slot{0, nullptr},
+      {0, nullptr}};
+  return slots;
+}
 
 constexpr unsigned long kFlags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_HAVE_GC |
                                  Py_TPFLAGS_HAVE_VECTORCALL | Py_TPFLAGS_DISALLOW_INSTANTIATION |
                                  Py_TPFLAGS_IMMUTABLETYPE;
 
 PyType_Spec function_spec = {"asperity._core.signed_function",
-                             static_cast<int>(sizeof(SignedCallable)), 0, kFlags, function_slots};
+                             static_cast<int>(sizeof(SignedCallable)), 0, kFlags,
+                             forwarder_slots<false>()};
 PyType_Spec method_spec = {"asperity._core.signed_method", static_cast<int>(sizeof(SignedCallable)),
-                           0, kFlags | Py_TPFLAGS_METHOD_DESCRIPTOR, method_slots};
+                           0, kFlags | Py_TPFLAGS_METHOD_DESCRIPTOR, forwarder_slots<true>()};
 
 nb::object make_signed(nb::handle target, bool method) {
   PyTypeObject* type = method ? g_method_type : g_function_type;
