@@ -20,6 +20,9 @@ apt_packages=(
   libzip-dev libpugixml-dev   # ISO 5436-2 X3P profiles
   zipcmp zipmerge ziptool     # Debian's libzip CMake config checks these tools exist
   gnuplot-nox                 # CLI plots
+  gmsh                        # meshes of `asperity structure` (GPL: run as a separate program)
+  libspectra-dev              # sparse shift-invert eigenvalues (finite elements)
+  libmatio-dev                # MATLAB .mat reduced models (BSD-2-Clause)
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   clang-format
   clang libclang-rt-14-dev    # libFuzzer targets under fuzz/ (ASPERITY_BUILD_FUZZ)
