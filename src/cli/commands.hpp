@@ -13,6 +13,7 @@ void add_flat_command(CLI::App& app, std::function<int()>& action);
 void add_roughness_command(CLI::App& app, std::function<int()>& action);
 void add_dynamics_command(CLI::App& app, std::function<int()>& action);
 void add_vibration_command(CLI::App& app, std::function<int()>& action);
+void add_structure_command(CLI::App& app, std::function<int()>& action);
 void add_predict_command(CLI::App& app, std::function<int()>& action);
 void add_analyze_command(CLI::App& app, std::function<int()>& action);
 void add_synthesize_command(CLI::App& app, std::function<int()>& action);

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   asperity::cli::add_roughness_command(app, action);
   asperity::cli::add_dynamics_command(app, action);
   asperity::cli::add_vibration_command(app, action);
+  asperity::cli::add_structure_command(app, action);
   asperity::cli::add_predict_command(app, action);
   asperity::cli::add_analyze_command(app, action);
   asperity::cli::add_synthesize_command(app, action);

@@ -1,0 +1,262 @@
+// asperity structure: a bolted structure of finite elements from a case file (geometry
+// meshed by gmsh, or a mesh file) to a reduced model with zero-thickness interface
+// elements and its linear modes at the bolt preload (format: docs/structures.md).
+#include <fmt/format.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <optional>
+
+#include "asperity/core/error.hpp"
+#include "asperity/fem/mesh_io.hpp"
+#include "asperity/fem/structure.hpp"
+#include "asperity/joint/output_dir.hpp"
+#include "commands.hpp"
+#include "common.hpp"
+
+namespace asperity::cli {
+namespace {
+
+using namespace asperity::fem;
+
+struct StructureOptionsCli {
+  std::string case_file;
+  std::optional<std::string> out_dir;
+  bool json = false;
+  bool no_plots = false;
+  std::string gmsh = "gmsh";
+};
+
+Json vec_json(const Eigen::VectorXd& v) {
+  Json a = Json::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(v[i]);
+  return a;
+}
+
+Json summary(const StructureCase& c, const StructureResult& r) {
+  Json j;
+  j["case"] = c.path;
+  j["name"] = c.name;
+  j["mesh"] = {{"nodes", r.mesh.node_count()},
+               {"elements", r.mesh.element_count()},
+               {"bodies", r.mesh.bodies},
+               {"shared_nodes_split", r.shared_nodes_split},
+               {"mass_kg", r.total_mass}};
+  Json itfs = Json::array();
+  for (std::size_t i = 0; i < r.interfaces.size(); ++i) {
+    const auto& itf = r.interfaces[i];
+    itfs.push_back({{"name", itf.name},
+                    {"bodies", {r.mesh.bodies[static_cast<std::size_t>(itf.body_a)],
+                                r.mesh.bodies[static_cast<std::size_t>(itf.body_b)]}},
+                    {"faces", itf.face_pairs.size()},
+                    {"elements", itf.patches.size()},
+                    {"area_m2", itf.area},
+                    {"normal_stiffness_Pa_per_m", c.interfaces[i].normal_stiffness},
+                    {"tangential_stiffness_Pa_per_m", c.interfaces[i].tangential_stiffness}});
+  }
+  j["interfaces"] = itfs;
+  Json bolts = Json::array();
+  for (const auto& b : r.bolts)
+    bolts.push_back({{"name", b.spec.name},
+                     {"preload_N", b.spec.preload},
+                     {"length_m", b.length},
+                     {"axial_stiffness_N_per_m", b.axial_stiffness},
+                     {"head_footprint_nodes", b.head_nodes.size()},
+                     {"nut_footprint_nodes", b.nut_nodes.size()}});
+  j["bolts"] = bolts;
+  // The rigid-body modes of the structure held by its bolts alone (interface open).
+  j["rigid_body_modes"] = r.analyses.empty() ? 0 : r.analyses.front().modes.rigid_body_modes;
+  Json lm;
+  for (const auto& a : r.analyses)
+    lm[a.name] = {{"frequency_hz", vec_json(a.modes.frequency_hz)},
+                  {"rigid_body_modes", a.modes.rigid_body_modes}};
+  j["linear_modes"] = lm;
+  if (!r.interfaces.empty()) {
+    double force = 0.0;
+    for (Eigen::Index e = 0; e < r.prestress.pressure.size(); ++e)
+      force += r.prestress.pressure[e] * r.model.elements[static_cast<std::size_t>(e)].area;
+    j["prestress"] = {{"model", "linear normal penalty, frictionless, contact set by active set"},
+                      {"bolt_load_N", r.bolt_load_total},
+                      {"interface_normal_force_N", force},
+                      {"contact_area_m2", r.prestress.contact_area},
+                      {"max_pressure_Pa", r.prestress.pressure.size() ? r.prestress.pressure.maxCoeff() : 0.0},
+                      {"active_set_iterations", r.prestress.iterations}};
+  }
+  j["reduced_model"] = {{"dofs", r.model.dofs()},
+                        {"interface_elements", r.model.elements.size()},
+                        {"fixed_interface_modes", r.model.fixed_interface_modes},
+                        {"tied_rigid_body_modes", r.reduction.rigid_body_modes},
+                        {"static_vectors", r.reduction.static_vectors},
+                        {"outputs", r.model.output_names}};
+  Json costs = Json::array();
+  for (const auto& s : r.costs)
+    costs.push_back({{"step", s.step}, {"seconds", s.seconds}, {"peak_rss_MiB", s.peak_rss_mib}});
+  j["costs"] = costs;
+  return j;
+}
+
+std::string text_summary(const StructureCase& c, const StructureResult& r) {
+  std::string out = fmt::format("{}: {} nodes, {} quadratic elements, {} bodies, {:.4g} kg\n", c.path,
+                                r.mesh.node_count(), r.mesh.element_count(), r.mesh.bodies.size(),
+                                r.total_mass);
+  for (const auto& itf : r.interfaces)
+    out += fmt::format("interface {}: {} face pairs, {:.4g} mm^2, {} zero-thickness elements\n",
+                       itf.name, itf.face_pairs.size(), itf.area * 1e6, itf.patches.size());
+  out += fmt::format("reduced model: {} DOFs ({} interface, {} fixed-interface modes)\n",
+                     r.model.dofs(), r.reduction.interface_dofs,
+                     r.model.dofs() - r.reduction.interface_dofs);
+  if (!r.interfaces.empty()) {
+    double force = 0.0;
+    for (Eigen::Index e = 0; e < r.prestress.pressure.size(); ++e)
+      force += r.prestress.pressure[e] * r.model.elements[static_cast<std::size_t>(e)].area;
+    out += fmt::format("prestress: bolts {:.6g} N, interface normal force {:.6g} N, contact area "
+                       "{:.4g} mm^2\n",
+                       r.bolt_load_total, force, r.prestress.contact_area * 1e6);
+  }
+  for (const auto& a : r.analyses) {
+    std::string f;
+    for (Eigen::Index i = 0; i < std::min<Eigen::Index>(6, a.modes.frequency_hz.size()); ++i)
+      f += fmt::format("{}{:.2f}", i ? ", " : "", a.modes.frequency_hz[i]);
+    out += fmt::format("{:<13} {} rigid-body modes; elastic modes [Hz]: {}\n", a.name + ":",
+                       a.modes.rigid_body_modes, f);
+  }
+  for (const auto& s : r.costs)
+    out += fmt::format("  {:<28} {:7.2f} s, peak memory {:.0f} MiB\n", s.step, s.seconds, s.peak_rss_mib);
+  return out;
+}
+
+// Side view (x, z) of the outer edges of the mesh, displaced by `u` (mesh DOFs) when given.
+Series mesh_edges(const StructureResult& r, const std::vector<BoundaryFace>& faces,
+                  const Eigen::VectorXd* u, double scale, const std::string& title,
+                  const std::string& style) {
+  Series s{.title = title, .style = style};
+  auto at = [&](std::int32_t node) {
+    Eigen::Vector3d x = r.mesh.nodes.col(node);
+    if (u) x += scale * u->segment<3>(3 * Eigen::Index{node});
+    return x;
+  };
+  for (const auto& f : faces) {
+    const int nc = f.node_count == 6 ? 3 : 4;
+    for (int i = 0; i <= nc; ++i) {
+      const Eigen::Vector3d x = at(f.nodes[i % nc]);
+      s.x.push_back(x.x() * 1e3);
+      s.y.push_back(x.z() * 1e3);
+    }
+    s.x.push_back(std::nan(""));
+    s.y.push_back(std::nan(""));
+  }
+  return s;
+}
+
+void write_files(const StructureCase& c, const StructureResult& r, joint::StagedDirectory& dir,
+                 bool plots, std::vector<std::string>& written) {
+  write_file_atomically(dir.file("summary.json"), json_output(summary(c, r)));
+  written.push_back("summary.json");
+  write_reduced_model(dir.file("reduced_model.mat"), r.model);
+  written.push_back("reduced_model.mat");
+  // Mode shapes (first 6 elastic of each analysis) and the prestress pressure on side A.
+  std::vector<PointField> fields;
+  const auto nn = r.mesh.node_count();
+  for (const auto& a : r.analyses)
+    for (Eigen::Index k = 0; k < std::min<Eigen::Index>(6, a.modes.frequency_hz.size()); ++k) {
+      const Eigen::VectorXd u = r.reduction.expand(a.modes.shapes.col(k));
+      fields.push_back({fmt::format("{}_mode_{}_{:.1f}Hz", a.name, k + 1, a.modes.frequency_hz[k]),
+                        Eigen::Map<const Eigen::MatrixXd>(u.data(), 3, nn)});
+    }
+  if (!r.interfaces.empty()) {
+    Eigen::MatrixXd p = Eigen::MatrixXd::Zero(1, nn), id = Eigen::MatrixXd::Constant(1, nn, -1.0);
+    Eigen::Index e = 0;
+    for (const auto& itf : r.interfaces)
+      for (const auto& patch : itf.patches) {
+        for (const auto fi : patch.faces)
+          for (int i = 0; i < itf.face_pairs[static_cast<std::size_t>(fi)].side_a.node_count; ++i) {
+            const auto node = itf.face_pairs[static_cast<std::size_t>(fi)].side_a.nodes[i];
+            p(0, node) = r.prestress.pressure[e];
+            id(0, node) = static_cast<double>(e);
+          }
+        ++e;
+      }
+    fields.push_back({"prestress_pressure_Pa", p});
+    fields.push_back({"interface_element", id});
+  }
+  write_vtu(dir.file("structure.vtu"), r.mesh, fields);
+  written.push_back("structure.vtu");
+  if (!plots) return;
+  const auto faces = boundary_faces(r.mesh);
+  PlotSpec m{.title = fmt::format("{}: mesh, side view ({} nodes, {} elements)", c.name,
+                                  r.mesh.node_count(), r.mesh.element_count()),
+             .xlabel = "x [mm]",
+             .ylabel = "z [mm]",
+             .extra = "set size ratio -1\nunset key"};
+  m.series.push_back(mesh_edges(r, faces, nullptr, 0, "mesh", "lines lc rgb '#4060a0' lw 0.5"));
+  plot_png(dir.file("mesh.png"), m);
+  written.push_back("mesh.png");
+  const double extent =
+      (r.mesh.nodes.rowwise().maxCoeff() - r.mesh.nodes.rowwise().minCoeff()).norm();
+  for (const auto& a : r.analyses) {
+    if (a.name != "stuck") continue;
+    for (Eigen::Index k = 0; k < std::min<Eigen::Index>(3, a.modes.frequency_hz.size()); ++k) {
+      const Eigen::VectorXd u = r.reduction.expand(a.modes.shapes.col(k));
+      double umax = 0;
+      for (Eigen::Index i = 0; i < nn; ++i) umax = std::max(umax, u.segment<3>(3 * i).norm());
+      const double scale = umax > 0 ? 0.08 * extent / umax : 0.0;
+      PlotSpec p{.title = fmt::format("{}: mode {} of the stuck interface, {:.2f} Hz (side view, "
+                                      "displacement exaggerated)",
+                                      c.name, k + 1, a.modes.frequency_hz[k]),
+                 .xlabel = "x [mm]",
+                 .ylabel = "z [mm]",
+                 .extra = "set size ratio -1\nset key bottom right"};
+      p.series.push_back(mesh_edges(r, faces, nullptr, 0, "undeformed", "lines lc rgb '#c0c0c0' lw 0.5"));
+      p.series.push_back(mesh_edges(r, faces, &u, scale, "mode shape", "lines lc rgb '#b02020' lw 0.5"));
+      const auto name = fmt::format("mode_{}.png", k + 1);
+      plot_png(dir.file(name), p);
+      written.push_back(name);
+    }
+  }
+}
+
+void run_structure_cli(const StructureOptionsCli& o, std::string& out) {
+  if (o.out_dir) require_case_output_directory(*o.out_dir, o.case_file);
+  const StructureCase c = read_structure_case(o.case_file);
+  StructureOptions options;
+  options.meshing.gmsh = o.gmsh;
+  const StructureResult r = run_structure(c, options);
+  std::vector<std::string> written;
+  if (o.out_dir) {
+    joint::StagedDirectory dir(*o.out_dir, "asperity structure");
+    write_files(c, r, dir, !o.no_plots, written);
+    dir.commit();
+  }
+  out = o.json ? json_output(summary(c, r)) : text_summary(c, r);
+  if (!o.json && o.out_dir) {
+    std::string list;
+    for (const auto& f : written) list += (list.empty() ? "" : ", ") + f;
+    out += fmt::format("wrote {}/ ({})\n", *o.out_dir, list);
+  }
+}
+
+}  // namespace
+
+void add_structure_command(CLI::App& app, std::function<int()>& action) {
+  auto o = std::make_shared<StructureOptionsCli>();
+  auto* cmd = app.add_subcommand(
+      "structure",
+      "A bolted structure of finite elements: mesh (gmsh), assemble (10-node tetrahedra), bolts "
+      "(beam shanks on distributing couplings, pretension), contact interfaces as zero-thickness "
+      "elements, Craig-Bampton reduction, linear modes with the interface open, in frictionless "
+      "contact and stuck. Writes summary.json, reduced_model.mat, structure.vtu and PNG pictures "
+      "(format: docs/structures.md, examples/brb).");
+  cmd->add_option("case", o->case_file, "TOML structure case file")->required();
+  cmd->add_option("--out", o->out_dir,
+                  "output directory, written whole (created; an existing one is replaced only if "
+                  "asperity wrote it); without it only the summary is printed");
+  cmd->add_flag("--json", o->json, "print summary.json instead of the text summary");
+  cmd->add_flag("--no-plots", o->no_plots, "skip the PNG pictures (no gnuplot needed)");
+  cmd->add_option("--gmsh", o->gmsh, "the gmsh program (a separate program: GPL) (default: gmsh)");
+  cmd->callback([o, &action] {
+    action = [o] { return run_guarded([o](std::string& out) { run_structure_cli(*o, out); }); };
+  });
+}
+
+}  // namespace asperity::cli

@@ -1,0 +1,316 @@
+#include "asperity/fem/reduction.hpp"
+
+#include <Spectra/MatOp/SparseSymMatProd.h>
+#include <Spectra/SymGEigsShiftSolver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include <Eigen/SparseCholesky>
+#include <fmt/format.h>
+
+#include "asperity/core/error.hpp"
+
+namespace asperity::fem {
+namespace {
+
+using Sparse = Eigen::SparseMatrix<double>;
+
+// (K - sigma M)^-1 for Spectra's shift-invert mode; K - sigma M is positive definite for
+// sigma < 0 and K, M positive semi-definite / definite, so LDL^T (Eigen, MPL-2.0) suffices.
+class ShiftInvertLdlt {
+ public:
+  using Scalar = double;
+  ShiftInvertLdlt(const Sparse& K, const Sparse& M) : K_(K), M_(M) {}
+  [[nodiscard]] Eigen::Index rows() const { return K_.rows(); }
+  [[nodiscard]] Eigen::Index cols() const { return K_.cols(); }
+  void set_shift(double sigma) {
+    const Sparse A = K_ - sigma * M_;
+    solver_.compute(A);
+    if (solver_.info() != Eigen::Success)
+      throw NumericalError(fmt::format(
+          "the factorisation of K - sigma M (sigma = {:g} rad^2/s^2, {} DOFs) failed", sigma,
+          K_.rows()));
+  }
+  void perform_op(const double* x, double* y) const {
+    Eigen::Map<const Eigen::VectorXd> xv(x, K_.rows());
+    Eigen::Map<Eigen::VectorXd> yv(y, K_.rows());
+    yv = solver_.solve(xv);
+  }
+
+ private:
+  const Sparse& K_;
+  const Sparse& M_;
+  Eigen::SimplicialLDLT<Sparse> solver_;
+};
+
+struct LowestModes {
+  Eigen::VectorXd omega2;
+  Eigen::MatrixXd shapes;
+};
+
+LowestModes lowest_modes(const Sparse& K, const Sparse& M, int count, double shift) {
+  ShiftInvertLdlt op(K, M);
+  Spectra::SparseSymMatProd<double> bop(M);
+  const Eigen::Index n = K.rows();
+  const int ncv = static_cast<int>(std::min<Eigen::Index>(n, std::max(2 * count + 1, count + 20)));
+  Spectra::SymGEigsShiftSolver<ShiftInvertLdlt, Spectra::SparseSymMatProd<double>,
+                               Spectra::GEigsMode::ShiftInvert>
+      eigs(op, bop, count, ncv, shift);
+  eigs.init();
+  eigs.compute(Spectra::SortRule::LargestMagn, 1000, 1e-10, Spectra::SortRule::SmallestAlge);
+  if (eigs.info() != Spectra::CompInfo::Successful)
+    throw NumericalError(fmt::format(
+        "the {} lowest modes of {} DOFs did not converge (Spectra shift-invert Lanczos, shift "
+        "{:g} rad^2/s^2, {} Lanczos vectors, 1000 restarts)",
+        count, n, shift, ncv));
+  LowestModes out{eigs.eigenvalues(), eigs.eigenvectors()};
+  // ascending
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(out.omega2.size()));
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<Eigen::Index>(i);
+  std::sort(order.begin(), order.end(),
+            [&](Eigen::Index a, Eigen::Index b) { return out.omega2[a] < out.omega2[b]; });
+  LowestModes sorted{Eigen::VectorXd(out.omega2.size()),
+                     Eigen::MatrixXd(out.shapes.rows(), out.shapes.cols())};
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const auto j = static_cast<Eigen::Index>(i);
+    sorted.omega2[j] = out.omega2[order[i]];
+    sorted.shapes.col(j) = out.shapes.col(order[i]);
+  }
+  return sorted;
+}
+
+Sparse block(const Sparse& A, Eigen::Index r0, Eigen::Index c0, Eigen::Index nr, Eigen::Index nc) {
+  return Sparse(A.block(r0, c0, nr, nc));
+}
+
+}  // namespace
+
+void ReductionOptions::validate() const {
+  if (fixed_interface_modes < 0 || fixed_interface_modes > 2000)
+    throw InvalidInput(fmt::format(
+        "reduction: `fixed_interface_modes` = {} is not allowed; give 0 to 2000", fixed_interface_modes));
+}
+
+Eigen::MatrixXd rigid_body_modes(const Eigen::Matrix3Xd& nodes) {
+  const Eigen::Index n = nodes.cols();
+  const Eigen::Vector3d c = nodes.rowwise().mean();
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(3 * n, 6);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector3d r = nodes.col(i) - c;
+    for (int k = 0; k < 3; ++k) R(3 * i + k, k) = 1.0;
+    // rotation about x, y, z: e_k x r
+    R(3 * i + 1, 3) = -r.z(), R(3 * i + 2, 3) = r.y();
+    R(3 * i + 0, 4) = r.z(), R(3 * i + 2, 4) = -r.x();
+    R(3 * i + 0, 5) = -r.y(), R(3 * i + 1, 5) = r.x();
+  }
+  return R;
+}
+
+Eigen::RowVectorXd CraigBampton::reduce_row(const Eigen::SparseVector<double>& row) const {
+  const Eigen::SparseMatrix<double> r = Eigen::SparseMatrix<double>(row).transpose();
+  const Eigen::SparseMatrix<double> rt = r * elimination;
+  return Eigen::RowVectorXd(rt * basis);
+}
+
+CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix3Xd& nodes,
+                           const std::vector<Interface>& interfaces,
+                           const ReductionOptions& options,
+                           const std::vector<Eigen::VectorXd>& static_loads) {
+  options.validate();
+  const Eigen::Index n = K.rows();
+  std::vector<const InterfacePatch*> patches;
+  for (const auto& itf : interfaces)
+    for (const auto& p : itf.patches) patches.push_back(&p);
+  const auto np = static_cast<Eigen::Index>(patches.size());
+  const Eigen::Index ng = 3 * np, nv = n - ng;
+
+  // One interior node of side B per patch (used by no other patch) is eliminated.
+  std::unordered_map<std::int32_t, int> uses;
+  for (const auto* p : patches)
+    for (const auto& w : p->weights) ++uses[w.node_a], ++uses[w.node_b];
+  std::vector<std::int32_t> master(patches.size(), -1);
+  std::vector<double> master_weight(patches.size(), 0.0);
+  std::vector<char> is_master(static_cast<std::size_t>(nodes.cols()), 0);
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    for (const auto& w : patches[p]->weights)
+      if (uses[w.node_b] == 1 && w.node_a != w.node_b && w.weight > master_weight[p])
+        master[p] = w.node_b, master_weight[p] = w.weight;
+    if (master[p] < 0)
+      throw InvalidInput(fmt::format(
+          "interface patch {} (centroid ({:.4g}, {:.4g}, {:.4g}) m) has no node of its own: too "
+          "many `patches` for the interface mesh; give fewer patches or refine the interface",
+          p, patches[p]->centroid.x(), patches[p]->centroid.y(), patches[p]->centroid.z()));
+    is_master[static_cast<std::size_t>(master[p])] = 1;
+  }
+  std::vector<Eigen::Index> v_index(static_cast<std::size_t>(n), -1);
+  {
+    Eigen::Index next = 0;
+    for (Eigen::Index d = 0; d < n; ++d)
+      if (!is_master[static_cast<std::size_t>(d / 3)]) v_index[static_cast<std::size_t>(d)] = next++;
+  }
+  std::vector<Eigen::Triplet<double>> t;
+  for (Eigen::Index d = 0; d < n; ++d)
+    if (v_index[static_cast<std::size_t>(d)] >= 0) t.emplace_back(d, v_index[static_cast<std::size_t>(d)], 1.0);
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    const double cm = master_weight[p];
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Index row = 3 * Eigen::Index{master[p]} + k;
+      t.emplace_back(row, nv + 3 * static_cast<Eigen::Index>(p) + k, 1.0 / cm);
+      for (const auto& w : patches[p]->weights) {
+        if (w.node_b != master[p])
+          t.emplace_back(row, v_index[static_cast<std::size_t>(3 * Eigen::Index{w.node_b} + k)],
+                         -w.weight / cm);
+        t.emplace_back(row, v_index[static_cast<std::size_t>(3 * Eigen::Index{w.node_a} + k)],
+                       w.weight / cm);
+      }
+    }
+  }
+  CraigBampton cb;
+  cb.interface_dofs = ng;
+  cb.elimination.resize(n, n);
+  cb.elimination.setFromTriplets(t.begin(), t.end());
+  const Sparse& Tc = cb.elimination;
+  const Sparse Kt = Sparse(Tc.transpose() * K * Tc);
+  const Sparse Mt = Sparse(Tc.transpose() * M * Tc);
+  const Sparse Kvv = block(Kt, 0, 0, nv, nv), Mvv = block(Mt, 0, 0, nv, nv);
+
+  // Rigid-body modes (the constraint holds for them: no relative motion).
+  const Eigen::MatrixXd R = rigid_body_modes(nodes);
+  Eigen::MatrixXd Rt = Eigen::MatrixXd::Zero(n, 6);
+  for (Eigen::Index d = 0; d < n; ++d)
+    if (const auto j = v_index[static_cast<std::size_t>(d)]; j >= 0) Rt.row(j) = R.row(d);
+
+  // Fixed-interface (tied) modes.
+  const double shift = -1e-6 * Kvv.diagonal().sum() / Mvv.diagonal().sum();
+  const int wanted = options.fixed_interface_modes + 6;
+  LowestModes tied = lowest_modes(Kvv, Mvv, std::min<int>(wanted, static_cast<int>(nv) - 1), shift);
+  for (Eigen::Index i = 0; i < tied.omega2.size(); ++i)
+    if (std::abs(tied.omega2[i]) < 1e-6 * std::abs(shift)) ++cb.rigid_body_modes;
+  if (cb.rigid_body_modes > 6)
+    throw InvalidInput(fmt::format(
+        "the structure with its interfaces tied has {} rigid-body modes, more than a free-free "
+        "structure allows (6): a body is held by nothing (no interface or bolt joins it)",
+        cb.rigid_body_modes));
+  cb.tied_omega2 = tied.omega2;
+
+  // Constraint modes: static response to unit g on a statically determinate 3-2-1 support.
+  auto node_ok = [&](Eigen::Index i) { return !is_master[static_cast<std::size_t>(i)]; };
+  Eigen::Index a = -1;
+  for (Eigen::Index i = 0; i < nodes.cols(); ++i)
+    if (node_ok(i) && (a < 0 || nodes(0, i) < nodes(0, a))) a = i;
+  Eigen::Index b = a;
+  for (Eigen::Index i = 0; i < nodes.cols(); ++i)
+    if (node_ok(i) && (nodes.col(i) - nodes.col(a)).norm() > (nodes.col(b) - nodes.col(a)).norm()) b = i;
+  const Eigen::Vector3d ab = nodes.col(b) - nodes.col(a);
+  Eigen::Index c = a;
+  double cd = -1;
+  for (Eigen::Index i = 0; i < nodes.cols(); ++i) {
+    if (!node_ok(i)) continue;
+    const double d = ab.cross(nodes.col(i) - nodes.col(a)).norm();
+    if (d > cd) cd = d, c = i;
+  }
+  Eigen::Index free_b;
+  ab.cwiseAbs().maxCoeff(&free_b);
+  Eigen::Index fix_c;
+  ab.cross(nodes.col(c) - nodes.col(a)).cwiseAbs().maxCoeff(&fix_c);
+  std::vector<Eigen::Index> support{3 * a, 3 * a + 1, 3 * a + 2};
+  for (Eigen::Index k = 0; k < 3; ++k)
+    if (k != free_b) support.push_back(3 * b + k);
+  support.push_back(3 * c + fix_c);
+  std::vector<char> held(static_cast<std::size_t>(nv), 0);
+  for (const auto d : support) held[static_cast<std::size_t>(v_index[static_cast<std::size_t>(d)])] = 1;
+  std::vector<Eigen::Index> f_index(static_cast<std::size_t>(nv), -1);
+  Eigen::Index nf = 0;
+  for (Eigen::Index i = 0; i < nv; ++i)
+    if (!held[static_cast<std::size_t>(i)]) f_index[static_cast<std::size_t>(i)] = nf++;
+  std::vector<Eigen::Triplet<double>> tf;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nf, ng);
+  for (Eigen::Index col = 0; col < Kt.outerSize(); ++col)
+    for (Sparse::InnerIterator it(Kt, col); it; ++it) {
+      const Eigen::Index r = it.row();
+      if (r >= nv) continue;
+      const Eigen::Index fr = f_index[static_cast<std::size_t>(r)];
+      if (fr < 0) continue;
+      if (col < nv) {
+        const Eigen::Index fc = f_index[static_cast<std::size_t>(col)];
+        if (fc >= 0) tf.emplace_back(fr, fc, it.value());
+      } else {
+        rhs(fr, col - nv) = -it.value();
+      }
+    }
+  Sparse Kff(nf, nf);
+  Kff.setFromTriplets(tf.begin(), tf.end());
+  Eigen::SimplicialLDLT<Sparse> ldlt(Kff);
+  const auto D = ldlt.vectorD();
+  if (ldlt.info() != Eigen::Success || D.minCoeff() <= 1e-12 * D.maxCoeff())
+    throw InvalidInput(
+        "the structure with its interfaces tied and a statically determinate support is "
+        "singular: it has more rigid-body modes than a free-free structure allows (6)");
+  const Eigen::MatrixXd psi_f = ldlt.solve(rhs);
+  const Eigen::Index nt = nv + ng;
+  const auto ns = static_cast<Eigen::Index>(static_loads.size());
+  const Eigen::Index nm = tied.omega2.size();
+  const Eigen::Index nr = ng + nm + ns;
+  cb.basis = Eigen::MatrixXd::Zero(nt, nr);
+  for (Eigen::Index i = 0; i < nv; ++i)
+    if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0) cb.basis.row(i).head(ng) = psi_f.row(fi);
+  cb.basis.block(nv, 0, ng, ng).setIdentity();
+  {
+    const Eigen::MatrixXd MR = Mt.topLeftCorner(nt, nt) * Rt.topRows(nt).eval();
+    const Eigen::MatrixXd A = Rt.topRows(nt).transpose() * MR;
+    const Eigen::MatrixXd coef = A.ldlt().solve(MR.transpose() * cb.basis.leftCols(ng));
+    cb.basis.leftCols(ng) -= Rt.topRows(nt) * coef;
+  }
+  // The patches' DOFs in their local frames: g_global = F^T g_local.
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    const auto c0 = 3 * static_cast<Eigen::Index>(p);
+    const Eigen::MatrixXd cols = cb.basis.middleCols(c0, 3) * patches[p]->frame.transpose();
+    cb.basis.middleCols(c0, 3) = cols;
+  }
+  cb.basis.block(0, ng, nv, nm) = tied.shapes;
+  // Load-dependent Ritz vectors of the static loads (g = 0), M-orthogonal to the rigid-body
+  // and fixed-interface modes and to each other.
+  for (Eigen::Index s = 0; s < ns; ++s) {
+    const auto& load = static_loads[static_cast<std::size_t>(s)];
+    if (load.size() != n)
+      throw InvalidInput(fmt::format("reduction: static load {} has {} entries for {} DOFs", s,
+                                     load.size(), n));
+    const Eigen::VectorXd ft = Tc.transpose() * load;
+    Eigen::VectorXd rhs_f(nf);
+    for (Eigen::Index i = 0; i < nv; ++i)
+      if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0) rhs_f[fi] = ft[i];
+    const Eigen::VectorXd y = ldlt.solve(rhs_f);
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(nt);
+    for (Eigen::Index i = 0; i < nv; ++i)
+      if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0) v[i] = y[fi];
+    for (int pass = 0; pass < 2; ++pass) {  // Gram-Schmidt, twice for round-off
+      const Eigen::VectorXd Mv = Mt * v;
+      for (int k = 0; k < 6; ++k) {
+        const Eigen::VectorXd r = Rt.col(k);
+        v -= (r.dot(Mv) / r.dot(Mt * r)) * r;
+      }
+      const Eigen::VectorXd Mv2 = Mt * v;
+      for (Eigen::Index k = ng; k < ng + nm + s; ++k) {
+        const Eigen::VectorXd b = cb.basis.col(k);
+        v -= (b.dot(Mv2) / b.dot(Mt * b)) * b;
+      }
+    }
+    const double norm = std::sqrt(v.dot(Mt * v));
+    if (!(norm > 0))
+      throw NumericalError(fmt::format(
+          "reduction: static load {} has no response beyond the kept modes (a zero load?)", s));
+    cb.basis.col(ng + nm + s) = v / norm;
+  }
+  cb.static_vectors = ns;
+  const Eigen::MatrixXd KB = Kt * cb.basis;
+  const Eigen::MatrixXd MB = Mt * cb.basis;
+  cb.K = cb.basis.transpose() * KB;
+  cb.M = cb.basis.transpose() * MB;
+  cb.K = 0.5 * (cb.K + cb.K.transpose()).eval();
+  cb.M = 0.5 * (cb.M + cb.M.transpose()).eval();
+  return cb;
+}
+
+}  // namespace asperity::fem

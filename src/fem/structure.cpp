@@ -1,0 +1,417 @@
+#include "asperity/fem/structure.hpp"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <map>
+
+#include "asperity/core/error.hpp"
+#include "asperity/core/file_io.hpp"
+#include "asperity/core/units.hpp"
+#include "asperity/fem/mesh_io.hpp"
+#include "core/toml_case.hpp"
+
+namespace asperity::fem {
+namespace tc = core::toml_case;
+namespace {
+
+constexpr core::Dimension density{-3, 1, 0};
+constexpr core::Dimension pressure_per_length{-2, 1, -2};
+
+struct Reader {
+  std::string path;
+  double unit = 1.0;  // geometry numbers -> m
+
+  [[noreturn]] void fail(const std::string& where, const std::string& what, const toml::node* n) const {
+    throw InvalidInput(fmt::format("{}: {}: {}{}", path, where, what, n ? tc::at_line(*n) : ""));
+  }
+  // A quantity as text with units, or a bare number in `bare_unit` (0: text required).
+  double quantity(const toml::table& t, const std::string& key, const std::string& where,
+                  core::Dimension dim, double bare_unit, std::optional<double> dflt = std::nullopt) const {
+    const auto* n = t.get(key);
+    if (!n) {
+      if (dflt) return *dflt;
+      fail(where, fmt::format("`{}` is missing", key), nullptr);
+    }
+    if (const auto s = n->value<std::string>()) {
+      try {
+        return core::parse_quantity(*s, dim, key);
+      } catch (const InvalidInput& e) {
+        fail(where, e.what(), n);
+      }
+    }
+    if (bare_unit > 0 && (n->is_floating_point() || n->is_integer())) {
+      const double v = *n->value<double>();
+      if (!std::isfinite(v)) fail(where, fmt::format("`{}` must be finite", key), n);
+      return v * bare_unit;
+    }
+    fail(where, fmt::format("`{}` must be {}", key,
+                            bare_unit > 0 ? "a number (geometry unit) or a quantity with units"
+                                          : "a quantity with units, e.g. \"200 GPa\""),
+         n);
+  }
+  Eigen::Vector3d point(const toml::table& t, const std::string& key, const std::string& where) const {
+    const auto* n = t.get(key);
+    const auto* a = n ? n->as_array() : nullptr;
+    if (!a || a->size() != 3) fail(where, fmt::format("`{}` must be an array of 3 numbers", key), n);
+    Eigen::Vector3d p;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const auto v = (*a)[i].value<double>();
+      if (!v || !std::isfinite(*v)) fail(where, fmt::format("`{}` must be an array of 3 finite numbers", key), n);
+      p[static_cast<Eigen::Index>(i)] = *v * unit;
+    }
+    return p;
+  }
+  std::string text(const toml::table& t, const std::string& key, const std::string& where,
+                   std::optional<std::string> dflt = std::nullopt) const {
+    const auto* n = t.get(key);
+    if (!n) {
+      if (dflt) return *dflt;
+      fail(where, fmt::format("`{}` is missing", key), nullptr);
+    }
+    const auto s = n->value<std::string>();
+    if (!s) fail(where, fmt::format("`{}` must be a string", key), n);
+    return *s;
+  }
+  int integer(const toml::table& t, const std::string& key, const std::string& where, int dflt) const {
+    const auto* n = t.get(key);
+    if (!n) return dflt;
+    const auto v = n->value<std::int64_t>();
+    if (!n->is_integer() || !v || *v < -1000000 || *v > 1000000)
+      fail(where, fmt::format("`{}` must be an integer", key), n);
+    return static_cast<int>(*v);
+  }
+  const toml::array* tables(const toml::table& t, const std::string& key) const {
+    const auto* n = t.get(key);
+    if (!n) return nullptr;
+    const auto* a = n->as_array();
+    if (!a || !a->is_array_of_tables())
+      fail("top level", fmt::format("`{}` must be an array of tables ([[{}]])", key, key), n);
+    return a;
+  }
+  Primitive primitive(const toml::table& t, const std::string& where) const {
+    tc::check_keys(t, where, {"box", "cylinder", "prism"});
+    if (t.size() != 1) fail(where, "give exactly one of box, cylinder, prism", nullptr);
+    if (const auto* b = tc::subtable(t, "box", where)) {
+      tc::check_keys(*b, where + ".box", {"corner", "size"});
+      return Box{point(*b, "corner", where + ".box"), point(*b, "size", where + ".box")};
+    }
+    if (const auto* c = tc::subtable(t, "cylinder", where)) {
+      tc::check_keys(*c, where + ".cylinder", {"base", "axis", "radius"});
+      return Cylinder{point(*c, "base", where + ".cylinder"), point(*c, "axis", where + ".cylinder"),
+                      quantity(*c, "radius", where + ".cylinder", core::dim::length, unit)};
+    }
+    const auto* p = tc::subtable(t, "prism", where);
+    tc::check_keys(*p, where + ".prism", {"polygon", "extrusion"});
+    const auto* poly = p->get("polygon") ? p->get("polygon")->as_array() : nullptr;
+    if (!poly) fail(where + ".prism", "`polygon` must be an array of points [[x, y, z], ...]", p->get("polygon"));
+    Prism prism;
+    for (std::size_t i = 0; i < poly->size(); ++i) {
+      toml::table holder;
+      holder.insert("p", *(*poly)[i].as_array());
+      if (!(*poly)[i].as_array()) fail(where + ".prism", "`polygon` must hold points [x, y, z]", p);
+      prism.polygon.push_back(point(holder, "p", fmt::format("{}.prism.polygon[{}]", where, i)));
+    }
+    prism.extrusion = point(*p, "extrusion", where + ".prism");
+    return prism;
+  }
+};
+
+double peak_rss_mib() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;
+}
+
+}  // namespace
+
+StructureCase read_structure_case(const std::string& path) {
+  const auto file = core::read_case_file_text(path);
+  const toml::table doc = tc::parse(file.text, path);
+  Reader r{path};
+  StructureCase c;
+  c.path = path;
+  tc::check_keys(doc, "", {"name", "geometry", "mesh", "material", "body", "interface", "bolt",
+                           "output", "reduction"});
+  c.name = r.text(doc, "name", "top level", std::filesystem::path(path).stem().string());
+  const auto* geo = tc::subtable(doc, "geometry", "top level");
+  const auto* mesh = tc::subtable(doc, "mesh", "top level");
+  if (geo) {
+    tc::check_keys(*geo, "[geometry]", {"unit", "size", "interface_size", "hole_size"});
+    r.unit = core::parse_quantity("1 " + r.text(*geo, "unit", "[geometry]", "m"), core::dim::length, "unit");
+    c.geometry.size.global = r.quantity(*geo, "size", "[geometry]", core::dim::length, r.unit);
+    c.geometry.size.interface =
+        r.quantity(*geo, "interface_size", "[geometry]", core::dim::length, r.unit, c.geometry.size.global);
+    c.geometry.size.hole =
+        r.quantity(*geo, "hole_size", "[geometry]", core::dim::length, r.unit, c.geometry.size.interface);
+  }
+  if (mesh) {
+    tc::check_keys(*mesh, "[mesh]", {"file", "unit"});
+    c.mesh_file = (std::filesystem::path(file.base_dir) / r.text(*mesh, "file", "[mesh]")).string();
+    r.unit = core::parse_quantity("1 " + r.text(*mesh, "unit", "[mesh]", "m"), core::dim::length, "unit");
+    c.mesh_unit = r.unit;
+  }
+  if (!geo == !mesh)
+    r.fail("top level", "give either [geometry] (with [[body]] add/cut, meshed by gmsh) or [mesh] file", nullptr);
+
+  std::map<std::string, IsotropicMaterial> materials;
+  std::map<std::string, std::pair<double, double>> bolt_material;  // E, nu (and rho below)
+  std::map<std::string, double> material_rho;
+  if (const auto* mats = r.tables(doc, "material"))
+    for (std::size_t i = 0; i < mats->size(); ++i) {
+      const auto& m = *(*mats)[i].as_table();
+      const std::string where = fmt::format("[[material]] {}", i + 1);
+      tc::check_keys(m, where, {"name", "E", "nu", "rho"});
+      IsotropicMaterial mat{r.quantity(m, "E", where, core::dim::pressure, 0),
+                            tc::number(m, "nu", where, 0.3),
+                            r.quantity(m, "rho", where, density, 0)};
+      const auto name = r.text(m, "name", where);
+      try {
+        mat.validate();
+      } catch (const InvalidInput& e) {
+        r.fail(where + " \"" + name + "\"", e.what(), &m);
+      }
+      materials[name] = mat;
+    }
+  auto material = [&](const std::string& name, const std::string& where, const toml::node* n) {
+    const auto it = materials.find(name);
+    if (it == materials.end()) r.fail(where, fmt::format("no [[material]] named \"{}\"", name), n);
+    return it->second;
+  };
+  const auto* bodies = r.tables(doc, "body");
+  if (!bodies || bodies->empty()) r.fail("top level", "no [[body]]", nullptr);
+  for (std::size_t i = 0; i < bodies->size(); ++i) {
+    const auto& b = *(*bodies)[i].as_table();
+    const std::string where = fmt::format("[[body]] {}", i + 1);
+    tc::check_keys(b, where, geo ? std::set<std::string>{"name", "material", "add", "cut"}
+                                 : std::set<std::string>{"name", "material"});
+    Body body;
+    body.name = r.text(b, "name", where);
+    c.body_names.push_back(body.name);
+    c.body_materials.push_back(material(r.text(b, "material", where), where, b.get("material")));
+    if (geo) {
+      for (const char* key : {"add", "cut"}) {
+        const auto* list = b.get(key) ? b.get(key)->as_array() : nullptr;
+        if (!list) {
+          if (std::string(key) == "add") r.fail(where, "`add` must list the body's solids", nullptr);
+          continue;
+        }
+        for (std::size_t k = 0; k < list->size(); ++k) {
+          const auto* pt = (*list)[k].as_table();
+          const std::string w = fmt::format("{} \"{}\" {}[{}]", where, body.name, key, k);
+          if (!pt) r.fail(w, "must be a table {box = {...}} or {cylinder = ...} or {prism = ...}", list);
+          (std::string(key) == "add" ? body.add : body.cut).push_back(r.primitive(*pt, w));
+        }
+      }
+      c.geometry.bodies.push_back(std::move(body));
+    }
+  }
+  if (const auto* itfs = r.tables(doc, "interface"))
+    for (std::size_t i = 0; i < itfs->size(); ++i) {
+      const auto& t = *(*itfs)[i].as_table();
+      const std::string where = fmt::format("[[interface]] {}", i + 1);
+      tc::check_keys(t, where, {"name", "bodies", "normal", "patches", "normal_stiffness",
+                                "tangential_stiffness"});
+      StructureInterface si;
+      si.spec.name = r.text(t, "name", where, fmt::format("interface_{}", i + 1));
+      const auto* bl = t.get("bodies") ? t.get("bodies")->as_array() : nullptr;
+      if (!bl || bl->size() != 2 || !(*bl)[0].value<std::string>() || !(*bl)[1].value<std::string>())
+        r.fail(where, "`bodies` must name two bodies, [\"A\", \"B\"]", t.get("bodies"));
+      si.spec.body_a = *(*bl)[0].value<std::string>();
+      si.spec.body_b = *(*bl)[1].value<std::string>();
+      if (t.get("normal")) {
+        const double keep = r.unit;
+        r.unit = 1.0;
+        si.spec.normal = r.point(t, "normal", where);
+        r.unit = keep;
+      }
+      si.spec.patches = r.integer(t, "patches", where, 0);
+      si.normal_stiffness = r.quantity(t, "normal_stiffness", where, pressure_per_length, 0);
+      si.tangential_stiffness =
+          r.quantity(t, "tangential_stiffness", where, pressure_per_length, 0, si.normal_stiffness);
+      for (const auto& [key, v] : {std::pair{"normal_stiffness", si.normal_stiffness},
+                                   std::pair{"tangential_stiffness", si.tangential_stiffness}})
+        if (!(v > 0)) r.fail(where, fmt::format("`{}` = {} Pa/m: give a value > 0", key, v), t.get(key));
+      try {
+        si.spec.validate();
+      } catch (const InvalidInput& e) {
+        r.fail(where, e.what(), &t);
+      }
+      c.interfaces.push_back(si);
+    }
+  if (const auto* bolts = r.tables(doc, "bolt"))
+    for (std::size_t i = 0; i < bolts->size(); ++i) {
+      const auto& t = *(*bolts)[i].as_table();
+      const std::string where = fmt::format("[[bolt]] {}", i + 1);
+      tc::check_keys(t, where, {"name", "head", "nut", "shank_diameter", "hole_diameter",
+                                "washer_diameter", "material", "head_mass", "preload"});
+      BoltSpec b;
+      b.name = r.text(t, "name", where, fmt::format("bolt_{}", i + 1));
+      b.head = r.point(t, "head", where);
+      b.nut = r.point(t, "nut", where);
+      b.shank_diameter = r.quantity(t, "shank_diameter", where, core::dim::length, r.unit);
+      b.hole_diameter = r.quantity(t, "hole_diameter", where, core::dim::length, r.unit);
+      b.washer_diameter = r.quantity(t, "washer_diameter", where, core::dim::length, r.unit);
+      const auto m = material(r.text(t, "material", where), where, t.get("material"));
+      b.E = m.E, b.nu = m.nu, b.rho = m.rho;
+      b.head_mass = r.quantity(t, "head_mass", where, core::dim::mass, 0, 0.0);
+      b.preload = r.quantity(t, "preload", where, core::dim::force, 0);
+      try {
+        b.validate();
+      } catch (const InvalidInput& e) {
+        r.fail(where, e.what(), &t);
+      }
+      c.bolts.push_back(b);
+    }
+  if (const auto* outs = r.tables(doc, "output"))
+    for (std::size_t i = 0; i < outs->size(); ++i) {
+      const auto& t = *(*outs)[i].as_table();
+      const std::string where = fmt::format("[[output]] {}", i + 1);
+      tc::check_keys(t, where, {"name", "point"});
+      c.outputs.push_back({r.text(t, "name", where), r.point(t, "point", where)});
+    }
+  if (const auto* red = tc::subtable(doc, "reduction", "top level")) {
+    tc::check_keys(*red, "[reduction]", {"fixed_interface_modes", "modes"});
+    c.reduction.fixed_interface_modes = r.integer(*red, "fixed_interface_modes", "[reduction]", 40);
+    c.modes = r.integer(*red, "modes", "[reduction]", 10);
+    if (c.modes < 1 || c.modes > 1000)
+      r.fail("[reduction]", fmt::format("`modes` = {}: give 1 to 1000", c.modes), red->get("modes"));
+    try {
+      c.reduction.validate();
+    } catch (const InvalidInput& e) {
+      r.fail("[reduction]", e.what(), red);
+    }
+  }
+  if (geo) {
+    try {
+      c.geometry.validate();
+    } catch (const InvalidInput& e) {
+      r.fail("[[body]]", e.what(), nullptr);
+    }
+  }
+  return c;
+}
+
+StructureResult run_structure(const StructureCase& c, const StructureOptions& options) {
+  StructureResult res;
+  auto clock = std::chrono::steady_clock::now();
+  auto step = [&](const char* name) {
+    const auto now = std::chrono::steady_clock::now();
+    res.costs.push_back({name, std::chrono::duration<double>(now - clock).count(), peak_rss_mib()});
+    clock = now;
+  };
+  if (c.mesh_file.empty()) {
+    res.mesh = mesh_geometry(c.geometry, options.meshing);
+  } else {
+    const auto ext = std::filesystem::path(c.mesh_file).extension().string();
+    if (ext == ".msh")
+      res.mesh = read_gmsh(c.mesh_file);
+    else if (ext == ".inp")
+      res.mesh = read_abaqus_inp(c.mesh_file);
+    else
+      throw InvalidInput(fmt::format("{}: [mesh] file \"{}\": give a gmsh .msh or an Abaqus .inp file",
+                                     c.path, c.mesh_file));
+    res.mesh.nodes *= c.mesh_unit;
+  }
+  step("mesh");
+  res.mesh.validate();
+  // One material per mesh body, by name.
+  std::vector<IsotropicMaterial> per_body;
+  for (const auto& b : res.mesh.bodies) {
+    const auto it = std::find(c.body_names.begin(), c.body_names.end(), b);
+    if (it == c.body_names.end())
+      throw InvalidInput(fmt::format("{}: the mesh has a body \"{}\" that no [[body]] names", c.path, b));
+    per_body.push_back(c.body_materials[static_cast<std::size_t>(it - c.body_names.begin())]);
+  }
+  res.shared_nodes_split = split_shared_nodes(res.mesh);
+  const auto faces = boundary_faces(res.mesh);
+  auto km = assemble(res.mesh, per_body);
+  for (const double m : body_masses(res.mesh, per_body)) res.total_mass += m;
+  step("assembly");
+  const Eigen::Index dofs = 3 * res.mesh.node_count();
+  for (const auto& spec : c.bolts) {
+    res.bolts.push_back(place_bolt(res.mesh, faces, spec));
+    km.K += bolt_stiffness(res.bolts.back(), dofs);
+    km.M += bolt_mass(res.bolts.back(), dofs);
+    res.bolt_load_total += spec.preload;
+  }
+  for (const auto& si : c.interfaces) res.interfaces.push_back(build_interface(res.mesh, faces, si.spec));
+  step("bolts and interfaces");
+  std::vector<Eigen::VectorXd> bolt_loads;
+  for (const auto& b : res.bolts) bolt_loads.push_back(-Eigen::VectorXd(b.elongation));
+  res.reduction = craig_bampton(km.K, km.M, res.mesh.nodes, res.interfaces, c.reduction, bolt_loads);
+  step("reduction");
+
+  // The reduced model: x = [g (3 per element, local frame); eta].
+  auto& m = res.model;
+  m.source = "asperity structure " + c.path;
+  m.M = res.reduction.M;
+  m.K = res.reduction.K;
+  const Eigen::Index n = m.M.rows(), ng = res.reduction.interface_dofs;
+  m.Q = Eigen::MatrixXd::Zero(ng, n);
+  m.Q.leftCols(ng).setIdentity();
+  m.T = Eigen::MatrixXd::Zero(n, ng);
+  for (const auto& itf : res.interfaces)
+    for (const auto& p : itf.patches) {
+      const auto e = static_cast<Eigen::Index>(m.elements.size());
+      for (int k = 0; k < 3; ++k) m.T(3 * e + k, 3 * e + k) = p.area;
+      m.elements.push_back({itf.name, p.area, p.centroid, p.frame});
+    }
+  const auto nb = static_cast<Eigen::Index>(res.bolts.size());
+  m.bolt_load.resize(n, nb);
+  m.bolt_elongation.resize(nb, n);
+  m.bolt_axial_stiffness.resize(nb);
+  m.bolt_preload.resize(nb);
+  for (Eigen::Index b = 0; b < nb; ++b) {
+    const auto& bolt = res.bolts[static_cast<std::size_t>(b)];
+    m.bolt_elongation.row(b) = res.reduction.reduce_row(bolt.elongation);
+    m.bolt_load.col(b) = -m.bolt_elongation.row(b).transpose();  // unit tension pulls head to nut
+    m.bolt_axial_stiffness[b] = bolt.axial_stiffness;
+    m.bolt_preload[b] = bolt.spec.preload;
+    m.bolt_names.push_back(bolt.spec.name);
+  }
+  m.recovery.resize(3 * static_cast<Eigen::Index>(c.outputs.size()), n);
+  m.output_points.resize(static_cast<Eigen::Index>(c.outputs.size()), 3);
+  for (std::size_t o = 0; o < c.outputs.size(); ++o) {
+    Eigen::Index nearest = 0;
+    (res.mesh.nodes.colwise() - c.outputs[o].point).colwise().squaredNorm().minCoeff(&nearest);
+    const auto row = static_cast<Eigen::Index>(3 * o);
+    for (int k = 0; k < 3; ++k) {
+      Eigen::SparseVector<double> e(dofs);
+      e.insert(3 * nearest + k) = 1.0;
+      m.recovery.row(row + k) = res.reduction.reduce_row(e);
+    }
+    m.output_points.row(static_cast<Eigen::Index>(o)) = res.mesh.nodes.col(nearest).transpose();
+    m.output_names.push_back(c.outputs[o].name);
+  }
+  m.fixed_interface_modes = c.reduction.fixed_interface_modes;
+  m.validate();
+
+  // Linear analyses at the bolt preload.
+  const Eigen::VectorXd open = Eigen::VectorXd::Zero(ng);
+  res.analyses.push_back({"open", reduced_linear_modes(m, open, c.modes, "open interface")});
+  double kn = 0.0;
+  Eigen::VectorXd kn_e = Eigen::VectorXd::Zero(ng), kt_e = Eigen::VectorXd::Zero(ng);
+  {
+    Eigen::Index e = 0;
+    for (std::size_t i = 0; i < res.interfaces.size(); ++i)
+      for (std::size_t p = 0; p < res.interfaces[i].patches.size(); ++p, ++e) {
+        kn_e[3 * e + 2] = c.interfaces[i].normal_stiffness;
+        kt_e[3 * e] = kt_e[3 * e + 1] = c.interfaces[i].tangential_stiffness;
+      }
+    kn = c.interfaces.empty() ? 0.0 : c.interfaces.front().normal_stiffness;
+  }
+  if (!c.interfaces.empty()) {
+    res.prestress = linear_prestress(m, kn);
+    for (Eigen::Index e = 0; e < static_cast<Eigen::Index>(m.elements.size()); ++e)
+      if (!res.prestress.in_contact[static_cast<std::size_t>(e)]) kn_e[3 * e + 2] = kt_e[3 * e] = kt_e[3 * e + 1] = 0;
+    res.analyses.push_back({"frictionless", reduced_linear_modes(m, kn_e, c.modes, "frictionless contact")});
+    res.analyses.push_back({"stuck", reduced_linear_modes(m, kn_e + kt_e, c.modes, "stuck interface")});
+  }
+  step("prestress and linear modes");
+  return res;
+}
+
+}  // namespace asperity::fem
