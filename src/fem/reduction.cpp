@@ -293,8 +293,8 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
       }
       const Eigen::VectorXd Mv2 = Mt * v;
       for (Eigen::Index k = ng; k < ng + nm + s; ++k) {
-        const Eigen::VectorXd b = cb.basis.col(k);
-        v -= (b.dot(Mv2) / b.dot(Mt * b)) * b;
+        const Eigen::VectorXd phi = cb.basis.col(k);
+        v -= (phi.dot(Mv2) / phi.dot(Mt * phi)) * phi;
       }
     }
     const double norm = std::sqrt(v.dot(Mt * v));
