@@ -1,0 +1,297 @@
+// Interfaces, bolts, the Craig-Bampton reduction and the linear prestress of fem/ on
+// structured meshes (no mesher needed): two boxes stacked along z, their shared face the
+// interface, optionally a bolt through both.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "asperity/core/error.hpp"
+#include "asperity/fem/bolt.hpp"
+#include "asperity/fem/elasticity.hpp"
+#include "asperity/fem/interface.hpp"
+#include "asperity/fem/modes.hpp"
+#include "asperity/fem/reduced_model.hpp"
+#include "asperity/fem/reduction.hpp"
+#include "asperity/fem/structured.hpp"
+
+namespace asperity::fem {
+namespace {
+
+using ::testing::HasSubstr;
+
+// Two boxes [0, lx] x [0, ly] x [0, h] ("lower") and [0, lx] x [0, ly] x [h, 2h] ("upper"),
+// one mesh: the upper one's nodes appended (coincident with the lower one's top face).
+Mesh stacked_boxes(ElementType type, std::array<int, 3> div, double lx = 0.04, double ly = 0.02,
+                   double h = 0.01) {
+  Mesh a = structured_box_mesh({0, 0, 0}, {lx, ly, h}, div, type, "lower");
+  const Mesh b = structured_box_mesh({0, 0, h}, {lx, ly, h}, div, type, "upper");
+  const auto offset = static_cast<std::int32_t>(a.node_count());
+  a.nodes.conservativeResize(3, a.node_count() + b.node_count());
+  a.nodes.rightCols(b.node_count()) = b.nodes;
+  a.bodies.push_back("upper");
+  auto& block = a.blocks.front();
+  for (const auto n : b.blocks.front().connectivity) block.connectivity.push_back(n + offset);
+  for (std::size_t e = 0; e < b.blocks.front().size(); ++e) block.body.push_back(1);
+  return a;
+}
+
+InterfaceSpec lap_spec(int patches) {
+  return {.name = "lap", .body_a = "lower", .body_b = "upper", .normal = {0, 0, 1}, .patches = patches};
+}
+
+TEST(FemInterface, CoincidentFacesFormTheInterfaceWithItsArea) {
+  for (const auto type : {ElementType::tet10, ElementType::hex20}) {
+    const Mesh m = stacked_boxes(type, {4, 2, 1});
+    const auto faces = boundary_faces(m);
+    const Interface itf = build_interface(m, faces, lap_spec(4));
+    // 4 x 2 cells on the plane: hex20 one quad each, tet10 two triangles each.
+    EXPECT_EQ(itf.face_pairs.size(), type == ElementType::hex20 ? 8u : 16u);
+    EXPECT_NEAR(itf.area, 0.04 * 0.02, 1e-15);  // straight faces: exact
+    ASSERT_EQ(itf.patches.size(), 4u);
+    double area = 0;
+    for (const auto& p : itf.patches) {
+      area += p.area;
+      double wsum = 0;
+      for (const auto& w : p.weights) wsum += w.weight;
+      EXPECT_NEAR(wsum, 1.0, 1e-13);  // a patch average: the weights sum to one
+      EXPECT_NEAR(p.frame.row(2).dot(Eigen::Vector3d::UnitZ()), 1.0, 1e-14);
+      EXPECT_NEAR((p.frame * p.frame.transpose() - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-14);
+    }
+    EXPECT_NEAR(area, itf.area, 1e-15);
+  }
+}
+
+TEST(FemInterface, RigidMotionsGiveNoRelativeDisplacement) {
+  const Mesh m = stacked_boxes(ElementType::tet10, {4, 2, 2});
+  const Interface itf = build_interface(m, boundary_faces(m), lap_spec(6));
+  const Eigen::MatrixXd R = rigid_body_modes(m.nodes);
+  const Eigen::MatrixXd g = itf.local_operator(3 * m.node_count()) * R;
+  EXPECT_LT(g.cwiseAbs().maxCoeff(), 1e-15);
+  // A relative translation of the upper body is seen whole by every patch.
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * m.node_count());
+  for (const auto& blk : m.blocks)
+    for (std::size_t e = 0; e < blk.size(); ++e)
+      if (blk.body[e] == 1)
+        for (const auto n : blk.element(e)) u.segment<3>(3 * Eigen::Index{n}) = Eigen::Vector3d(1e-6, -2e-6, 3e-6);
+  const Eigen::VectorXd gl = itf.local_operator(3 * m.node_count()) * u;
+  for (std::size_t p = 0; p < itf.patches.size(); ++p) {
+    const Eigen::Vector3d expect = itf.patches[p].frame * Eigen::Vector3d(1e-6, -2e-6, 3e-6);
+    EXPECT_NEAR((gl.segment<3>(3 * static_cast<Eigen::Index>(p)) - expect).norm(), 0.0, 1e-12 * expect.norm());
+  }
+}
+
+TEST(FemInterface, UniformTractionGivesNodalForcesSummingToTractionTimesArea) {
+  const Mesh m = stacked_boxes(ElementType::hex20, {3, 3, 1});
+  const Interface itf = build_interface(m, boundary_faces(m), lap_spec(5));
+  const Eigen::Vector3d t_local(2e6, -1e6, -5e6);  // Pa (t1, t2, n): a compressive normal
+  Eigen::VectorXd t(3 * itf.patches.size());
+  for (std::size_t p = 0; p < itf.patches.size(); ++p) t.segment<3>(3 * static_cast<Eigen::Index>(p)) = t_local;
+  const Eigen::VectorXd f = itf.nodal_forces(t, 3 * m.node_count());
+  Eigen::Vector3d upper = Eigen::Vector3d::Zero(), lower = Eigen::Vector3d::Zero();
+  const auto& blk = m.blocks.front();
+  std::vector<int> body(static_cast<std::size_t>(m.node_count()), -1);
+  for (std::size_t e = 0; e < blk.size(); ++e)
+    for (const auto n : blk.element(e)) body[static_cast<std::size_t>(n)] = blk.body[e];
+  for (Eigen::Index n = 0; n < m.node_count(); ++n)
+    (body[static_cast<std::size_t>(n)] == 1 ? upper : lower) += f.segment<3>(3 * n);
+  // The frame is the same for every patch of a flat interface.
+  const Eigen::Vector3d t_global = itf.patches.front().frame.transpose() * t_local;
+  const Eigen::Vector3d expect = t_global * itf.area;
+  EXPECT_NEAR((upper - expect).norm(), 0.0, 1e-12 * expect.norm());
+  EXPECT_NEAR((lower + expect).norm(), 0.0, 1e-12 * expect.norm());
+}
+
+TEST(FemInterface, SplitSharedNodesSeparatesBodiesOfOneMesh) {
+  // One box of two cells in z; the upper cell becomes a second body.
+  Mesh m = structured_box_mesh({0, 0, 0}, {0.02, 0.02, 0.02}, {2, 2, 2}, ElementType::hex20, "lower");
+  m.bodies.push_back("upper");
+  auto& blk = m.blocks.front();
+  for (std::size_t e = 0; e < blk.size(); ++e) {
+    double z = 0;
+    for (const auto n : blk.element(e)) z += m.nodes(2, n);
+    if (z / 20 > 0.01) blk.body[e] = 1;
+  }
+  const auto before = m.node_count();
+  const auto added = split_shared_nodes(m);
+  // The mid-plane of a 2 x 2 hex20 grid: 9 corner nodes and 12 mid-edge nodes.
+  EXPECT_EQ(added, 21u);
+  EXPECT_EQ(m.node_count(), before + 21);
+  const Interface itf = build_interface(m, boundary_faces(m), lap_spec(2));
+  EXPECT_NEAR(itf.area, 0.02 * 0.02, 1e-16);
+}
+
+TEST(FemInterface, RefusalsNameTheInterface) {
+  const Mesh m = stacked_boxes(ElementType::tet10, {2, 2, 1});
+  const auto faces = boundary_faces(m);
+  auto spec = lap_spec(2);
+  spec.normal = {1, 0, 0};
+  EXPECT_THAT([&] { (void)build_interface(m, faces, spec); },
+              ::testing::ThrowsMessage<InvalidInput>(HasSubstr("do not touch")));
+  spec = lap_spec(1000);
+  EXPECT_THAT([&] { (void)build_interface(m, faces, spec); },
+              ::testing::ThrowsMessage<InvalidInput>(HasSubstr("has only 8 faces")));
+  spec = lap_spec(2);
+  spec.body_b = "nowhere";
+  EXPECT_THAT([&] { (void)build_interface(m, faces, spec); },
+              ::testing::ThrowsMessage<InvalidInput>(HasSubstr("no body named \"nowhere\"")));
+  spec = lap_spec(0);
+  EXPECT_THAT([&] { (void)build_interface(m, faces, spec); },
+              ::testing::ThrowsMessage<InvalidInput>(HasSubstr("`patches` = 0")));
+}
+
+BoltSpec centre_bolt(double preload) {
+  return {.name = "b",
+          .head = {0.02, 0.01, 0.02},
+          .nut = {0.02, 0.01, 0.0},
+          .shank_diameter = 0.004,
+          .hole_diameter = 0.0,
+          .washer_diameter = 0.012,
+          .E = 200e9,
+          .nu = 0.3,
+          .rho = 7800,
+          .head_mass = 0.0,
+          .preload = preload};
+}
+
+TEST(FemBolt, CouplingFollowsRigidMotionAndPretensionIsSelfEquilibrated) {
+  const Mesh m = stacked_boxes(ElementType::hex20, {8, 4, 2});
+  const auto faces = boundary_faces(m);
+  const Bolt bolt = place_bolt(m, faces, centre_bolt(1000.0));
+  EXPECT_NEAR(bolt.length, 0.02, 1e-12);
+  EXPECT_GT(bolt.head_nodes.size(), 4u);
+  // A rigid rotation about x through the mesh centroid: each end's reference moves as
+  // the rigid body does at its centre, and turns by the same angle (RBE3 fit, exact).
+  const Eigen::MatrixXd R = rigid_body_modes(m.nodes);
+  const Eigen::Vector3d c = m.nodes.rowwise().mean();
+  for (int k = 0; k < 6; ++k) {
+    const Eigen::VectorXd ref = bolt.coupling * R.col(k);
+    for (int end = 0; end < 2; ++end) {
+      const Eigen::Vector3d at = (end == 0 ? centre_bolt(0).head : centre_bolt(0).nut) - c;
+      Eigen::Vector3d u = Eigen::Vector3d::Zero(), th = Eigen::Vector3d::Zero();
+      if (k < 3) u[k] = 1.0;
+      else th[k - 3] = 1.0, u = th.cross(at);
+      EXPECT_NEAR((ref.segment<3>(6 * end) - u).norm(), 0.0, 1e-12) << "mode " << k << " end " << end;
+      EXPECT_NEAR((ref.segment<3>(6 * end + 3) - th).norm(), 0.0, 1e-10) << "mode " << k;
+    }
+  }
+  // A rigid motion strains no shank: K_b R = 0.
+  const auto Kb = bolt_stiffness(bolt, 3 * m.node_count());
+  EXPECT_LT((Kb * R).cwiseAbs().maxCoeff(), 1e-6 * bolt.axial_stiffness * 1e-3);
+  // The pretension force (unit tension) sums to zero force and zero moment.
+  const Eigen::VectorXd f = -Eigen::VectorXd(bolt.elongation);
+  Eigen::Vector3d F = Eigen::Vector3d::Zero(), Mo = Eigen::Vector3d::Zero();
+  for (Eigen::Index n = 0; n < m.node_count(); ++n) {
+    F += f.segment<3>(3 * n);
+    Mo += (m.nodes.col(n) - c).cross(Eigen::Vector3d(f.segment<3>(3 * n)));
+  }
+  EXPECT_LT(F.norm(), 1e-12);
+  EXPECT_LT(Mo.norm(), 1e-14);
+  // On the head's footprint it pushes down (-z) by 1 N in all.
+  double head_z = 0;
+  for (const auto n : bolt.head_nodes) head_z += f[3 * Eigen::Index{n} + 2];
+  EXPECT_NEAR(head_z, -1.0, 1e-12);
+}
+
+TEST(FemBolt, AFootprintOffTheBodiesIsRefused) {
+  const Mesh m = stacked_boxes(ElementType::hex20, {4, 2, 1});
+  auto spec = centre_bolt(1000.0);
+  spec.head = {0.2, 0.01, 0.02};  // beyond the box
+  EXPECT_THAT([&] { (void)place_bolt(m, boundary_faces(m), spec); },
+              ::testing::ThrowsMessage<InvalidInput>(HasSubstr("bolt \"b\": the head footprint")));
+}
+
+// The full structure: assembly, a bolt, the interface; reduction and its checks.
+struct Assembled {
+  Mesh mesh;
+  Interface itf;
+  Bolt bolt;
+  SparseMatrix K, M;
+};
+Assembled assemble_stack(std::array<int, 3> div, int patches, double preload) {
+  Assembled a{stacked_boxes(ElementType::hex20, div), {}, {}, {}, {}};
+  const auto faces = boundary_faces(a.mesh);
+  const IsotropicMaterial steel{200e9, 0.3, 7800};
+  const std::vector<IsotropicMaterial> mats{steel, steel};
+  auto km = assemble(a.mesh, mats);
+  a.bolt = place_bolt(a.mesh, faces, centre_bolt(preload));
+  const auto n = 3 * a.mesh.node_count();
+  a.K = km.K + bolt_stiffness(a.bolt, n);
+  a.M = km.M + bolt_mass(a.bolt, n);
+  a.itf = build_interface(a.mesh, faces, lap_spec(patches));
+  return a;
+}
+
+ReducedModel reduced(const Assembled& a, const CraigBampton& cb) {
+  ReducedModel m;
+  m.M = cb.M;
+  m.K = cb.K;
+  const auto n = m.M.rows(), ng = cb.interface_dofs;
+  m.Q = Eigen::MatrixXd::Zero(ng, n);
+  m.Q.leftCols(ng).setIdentity();
+  m.T = Eigen::MatrixXd::Zero(n, ng);
+  for (std::size_t p = 0; p < a.itf.patches.size(); ++p) {
+    const auto e = static_cast<Eigen::Index>(p);
+    for (int k = 0; k < 3; ++k) m.T(3 * e + k, 3 * e + k) = a.itf.patches[p].area;
+    m.elements.push_back({"lap", a.itf.patches[p].area, a.itf.patches[p].centroid, a.itf.patches[p].frame});
+  }
+  m.bolt_elongation = cb.reduce_row(a.bolt.elongation);
+  m.bolt_load = -m.bolt_elongation.transpose();
+  m.bolt_axial_stiffness = Eigen::VectorXd::Constant(1, a.bolt.axial_stiffness);
+  m.bolt_preload = Eigen::VectorXd::Constant(1, a.bolt.spec.preload);
+  m.bolt_names = {"b"};
+  m.recovery = Eigen::MatrixXd::Zero(0, n);
+  m.output_points = Eigen::MatrixXd::Zero(0, 3);
+  return m;
+}
+
+TEST(FemReduction, ReducedModesMatchTheFullModelInTheRetainedRange) {
+  const Assembled a = assemble_stack({8, 4, 2}, 8, 1000.0);
+  const CraigBampton cb = craig_bampton(a.K, a.M, a.mesh.nodes, {a.itf}, {.fixed_interface_modes = 30},
+                                        {-Eigen::VectorXd(a.bolt.elongation)});
+  EXPECT_EQ(cb.rigid_body_modes, 6);
+  EXPECT_EQ(cb.K.rows(), 24 + 36 + 1);
+  // Open interface (bolt only): the full model's lowest elastic modes.
+  const auto full = sparse_modes(a.K, a.M, 12, -1e4);
+  const ReducedModel m = reduced(a, cb);
+  const auto red = reduced_linear_modes(m, Eigen::VectorXd::Zero(24), 6, "open");
+  EXPECT_EQ(red.rigid_body_modes, 6);
+  for (Eigen::Index i = 0; i < 6; ++i) {
+    const double f_full = std::sqrt(full.omega2[6 + i]) / (2 * std::numbers::pi);
+    // Craig-Bampton is an upper bound (Rayleigh-Ritz); with 30 tied modes and the whole
+    // interface motion retained the first elastic modes converge to < 1e-3.
+    EXPECT_GE(red.frequency_hz[i], f_full * (1 - 1e-9)) << "mode " << i;
+    EXPECT_LT(red.frequency_hz[i] / f_full - 1, 1e-3) << "mode " << i;
+  }
+}
+
+TEST(FemReduction, BoltPretensionIsInEquilibriumWithTheInterfacePressure) {
+  const Assembled a = assemble_stack({8, 4, 2}, 8, 1500.0);
+  const CraigBampton cb = craig_bampton(a.K, a.M, a.mesh.nodes, {a.itf}, {.fixed_interface_modes = 10},
+                                        {-Eigen::VectorXd(a.bolt.elongation)});
+  const ReducedModel m = reduced(a, cb);
+  const LinearPrestress p = linear_prestress(m, 1e14);
+  double force = 0;
+  for (Eigen::Index e = 0; e < p.pressure.size(); ++e) force += p.pressure[e] * m.elements[static_cast<std::size_t>(e)].area;
+  // The interface carries the bolt's tension: exact in the reduced model because the
+  // bolt's load-dependent Ritz vector is in the basis (round-off of the dense solve).
+  EXPECT_NEAR(force, 1500.0, 1e-6 * 1500.0);
+  EXPECT_GT(p.contact_area, 0.0);
+}
+
+TEST(FemReduction, MoreRigidBodyModesThanFreeFreeIsRefused) {
+  // No bolt and the interface open: the bodies fly apart (12 rigid-body modes).
+  Assembled a = assemble_stack({4, 2, 1}, 4, 0.0);
+  const IsotropicMaterial steel{200e9, 0.3, 7800};
+  const std::vector<IsotropicMaterial> mats{steel, steel};
+  auto km = assemble(a.mesh, mats);
+  const CraigBampton cb = craig_bampton(km.K, km.M, a.mesh.nodes, {a.itf}, {.fixed_interface_modes = 5});
+  ReducedModel m = reduced(a, cb);
+  m.bolt_load.setZero();
+  EXPECT_THAT([&] { (void)reduced_linear_modes(m, Eigen::VectorXd::Zero(12), 4, "open interface"); },
+              ::testing::ThrowsMessage<InvalidInput>(HasSubstr("12 rigid-body modes, more than a free-free")));
+}
+
+}  // namespace
+}  // namespace asperity::fem
