@@ -196,7 +196,8 @@ JointBackbone joint_backbone(const std::string& path, const std::string& base_di
 }
 
 PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Index dofs,
-                            const std::optional<JointBackbone>& joint) {
+                            const std::optional<JointBackbone>& joint,
+                            const fem::ReducedModel* model) {
   const std::string w = fmt::format("element[{}]", index);
   if (!t.get("type")) {
     throw InvalidInput(
@@ -262,7 +263,38 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
         "row per direction){}",
         w, dofs, e->directions(), at_line(t)));
   }
-  pe.T = matrix(*T, w + ".T", true);
+  if (const auto* ref = T->as_table()) {
+    // Rows of the reduced model's Q: an interface element's relative displacements.
+    if (!model)
+      throw InvalidInput(fmt::format(
+          "{}.T names an interface element, which needs [structure] model = \"FILE\" (a reduced "
+          "model of `asperity structure`){}",
+          w, at_line(*T)));
+    check_keys(*ref, w + ".T", {"interface_element", "directions"});
+    const auto ne = static_cast<std::int64_t>(model->elements.size());
+    const auto* ie = ref->get("interface_element");
+    const auto e_idx = ie ? ie->value<std::int64_t>() : std::nullopt;
+    if (!e_idx || !ie->is_integer() || *e_idx < 0 || *e_idx >= ne)
+      throw InvalidInput(fmt::format("{}.T.interface_element: give an element index 0 .. {} of the "
+                                     "reduced model{}",
+                                     w, ne - 1, at_line(*T)));
+    const auto* dirs = ref->get("directions") ? ref->get("directions")->as_array() : nullptr;
+    if (!dirs || dirs->empty())
+      throw InvalidInput(fmt::format("{}.T.directions: list the element directions, e.g. [\"t1\", "
+                                     "\"n\"] (t1, t2 tangential, n normal){}",
+                                     w, at_line(*T)));
+    pe.T.resize(static_cast<Eigen::Index>(dirs->size()), dofs);
+    for (std::size_t k = 0; k < dirs->size(); ++k) {
+      const auto d = (*dirs)[k].value<std::string>();
+      const int col = !d ? -1 : *d == "t1" ? 0 : *d == "t2" ? 1 : *d == "n" ? 2 : -1;
+      if (col < 0)
+        throw InvalidInput(fmt::format("{}.T.directions[{}]: use \"t1\", \"t2\" or \"n\"{}", w, k,
+                                       at_line(*T)));
+      pe.T.row(static_cast<Eigen::Index>(k)) = model->Q.row(3 * *e_idx + col);
+    }
+  } else {
+    pe.T = matrix(*T, w + ".T", true);
+  }
   if (pe.T.cols() != dofs) {
     throw InvalidInput(fmt::format(
         "{}.T has {} column(s) but the structure has {} DOFs: give one column per DOF{}", w,

@@ -272,9 +272,22 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
   const std::string S = "structure";
   check_keys(*st, S,
              {"mass", "mass_file", "stiffness", "stiffness_file", "damping", "damping_file",
-              "rayleigh", "output_dofs"});
+              "rayleigh", "output_dofs", "model"});
   auto M = structure_matrix(*st, "mass", base_dir);
   auto K = structure_matrix(*st, "stiffness", base_dir);
+  // A reduced model of `asperity structure` (or the published BRB layout): M and K, and
+  // interface elements that [[element]] T may name.
+  std::optional<fem::ReducedModel> model;
+  if (const auto* mf = st->get("model")) {
+    if (M || K)
+      throw InvalidInput(fmt::format("structure: give model or mass and stiffness, not both{}",
+                                     at_line(*mf)));
+    std::filesystem::path p(text(*st, "model", S, ""));
+    if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+    model = fem::read_reduced_model(p.lexically_normal().string());
+    M = model->M;
+    K = model->K;
+  }
   if (!M) throw InvalidInput(fmt::format("structure needs mass (or mass_file){}", at_line(*st)));
   if (!K) {
     throw InvalidInput(
@@ -325,6 +338,8 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
       }
       c.output_dofs.push_back(static_cast<Eigen::Index>(*v));
     }
+  } else if (model) {
+    c.output_dofs.push_back(0);  // a reduced model has hundreds of DOFs: name the ones wanted
   } else {
     for (Eigen::Index d = 0; d < n; ++d) c.output_dofs.push_back(d);
   }
@@ -344,7 +359,8 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
           fmt::format("element must be an array of tables: write [[element]]{}", at_line(*en)));
     }
     for (std::size_t k = 0; k < arr->size(); ++k) {
-      c.elements.push_back(parse_element(*arr->get(k)->as_table(), k, n, joint));
+      c.elements.push_back(
+          parse_element(*arr->get(k)->as_table(), k, n, joint, model ? &*model : nullptr));
     }
   }
   if (joint) {

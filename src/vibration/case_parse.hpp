@@ -4,6 +4,8 @@
 // and the readers of [[element]] and [joint]. toml++ is a private dependency: no public
 // header includes it.
 #include <toml++/toml.h>
+
+#include "asperity/fem/reduced_model.hpp"
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -50,8 +52,11 @@ JointBackbone joint_backbone(const std::string& path, const std::string& base_di
                              const std::string& file_text, const toml::table& root);
 
 /// The [[element]] table number `index` (0-based) on a structure of `dofs` DOFs; `joint`
-/// is the backbone of a rough_flat element with backbone = "joint".
+/// is the backbone of a rough_flat element with backbone = "joint". With a reduced model
+/// (`[structure] model`), T may name one of its interface elements instead of a matrix:
+/// T = { interface_element = 12, directions = ["t1", "n"] } takes those rows of Q.
 PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Index dofs,
-                            const std::optional<JointBackbone>& joint);
+                            const std::optional<JointBackbone>& joint,
+                            const fem::ReducedModel* model = nullptr);
 
 }  // namespace asperity::vibration::detail
