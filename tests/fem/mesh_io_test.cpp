@@ -212,6 +212,109 @@ TEST(FemMeshIo, GmshRefusesWrongCountsAndNodeCounts) {
   EXPECT_CONTAINS(msg, "count.msh, line ");
 }
 
+// --- Abaqus ---------------------------------------------------------------------------
+
+std::string inp_msg(const std::string& path) {
+  return invalid_input_message([&] { (void)fem::read_abaqus_inp(path); });
+}
+
+TEST(FemMeshIo, AbaqusC3D10CubeWithSets) {
+  const auto m = fem::read_abaqus_inp(kData + "cube_c3d10.inp");
+  // Five tetrahedra in a cube use its 12 edges and its 6 face diagonals: 8 corner nodes
+  // and 18 mid-edge nodes (node 999, used by no element, is left out).
+  EXPECT_EQ(m.nodes.cols(), 8 + 18);
+  ASSERT_EQ(m.blocks.size(), 1u);
+  EXPECT_EQ(m.blocks[0].size(), 5u);
+  EXPECT_EQ(m.bodies, (std::vector<std::string>{"Steel", "CORE"}));
+  EXPECT_EQ(m.blocks[0].body, (std::vector<std::int32_t>{0, 0, 0, 0, 1}));
+  EXPECT_LE(max_mid_edge_offset(m), kStraight);
+  // The corner tetrahedra are 1/6 of the cube each, the central one 1/3 (relative 1e-14:
+  // coordinates of 0.01 m written with 17 digits).
+  const double cube = 1e-6;
+  EXPECT_NEAR(body_volume(m, 0).first, 4 * cube / 6, 1e-14 * cube);
+  EXPECT_NEAR(body_volume(m, 1).first, cube / 3, 1e-14 * cube);
+  EXPECT_GT(body_volume(m).second, 0.0);
+  // Node 999 (at (1, 1, 1) m) is used by no element: left out, also from ALLNODES.
+  for (Eigen::Index j = 0; j < m.nodes.cols(); ++j) EXPECT_LE(m.nodes.col(j).maxCoeff(), 0.01);
+  EXPECT_EQ(m.node_sets.at("ALLNODES").size(), static_cast<std::size_t>(m.nodes.cols()));
+  // Bottom: every node on z = 0; CORNERS (GENERATE 1..8): the nodes at the cube's
+  // corners; the set naming Bottom plus node 8 (the corner (1, 1, 1) cm).
+  EXPECT_EQ(m.node_sets.at("Bottom"), nodes_on_plane(m, 2, 0.0));
+  const auto& corners = m.node_sets.at("CORNERS");
+  ASSERT_EQ(corners.size(), 8u);
+  for (const auto n : corners) {
+    for (int c = 0; c < 3; ++c) {
+      const double x = m.nodes(c, n);
+      EXPECT_TRUE(x == 0.0 || x == 0.01) << n;
+    }
+  }
+  const auto& both = m.node_sets.at("BOTTOM_AND_TOP_CORNER");
+  EXPECT_EQ(both.size(), m.node_sets.at("Bottom").size() + 1);
+  EXPECT_EQ(m.node_sets.count("BOTTOM"), 0u);  // names keep their first spelling
+  // Element sets: ELSET= of *ELEMENT, GENERATE, a list.
+  EXPECT_EQ(m.element_sets.at("Steel").size(), 4u);
+  EXPECT_EQ(m.element_sets.at("CORE"), (std::vector<std::array<std::int32_t, 2>>{{0, 4}}));
+  EXPECT_EQ(m.element_sets.at("ALL").size(), 5u);
+  EXPECT_EQ(m.element_sets.at("ODD"),
+            (std::vector<std::array<std::int32_t, 2>>{{0, 0}, {0, 2}, {0, 4}}));
+}
+
+TEST(FemMeshIo, AbaqusC3D20RPartAndInstance) {
+  const auto m = fem::read_abaqus_inp(kData + "block_c3d20r.inp");
+  ASSERT_EQ(m.blocks.size(), 1u);
+  EXPECT_EQ(m.blocks[0].type, fem::ElementType::hex20);
+  EXPECT_EQ(m.bodies, std::vector<std::string>{"Block"});  // the part's name
+  EXPECT_EQ(m.nodes.cols(), 20);  // the assembly's reference node is not the part's
+  EXPECT_LE(max_mid_edge_offset(m), kStraight);
+  const double v = 0.01 * 0.02 * 0.03;
+  EXPECT_NEAR(body_volume(m).first, v, 1e-14 * v);  // a rigid motion keeps the volume
+  // Translated by (0.1, 0, 0) m, then turned by 90 degrees about the z line through
+  // (0.1, 0): the 10 x 20 mm section now spans x in [0.08, 0.1], y in [0, 0.01].
+  const Eigen::Vector3d lo = m.nodes.rowwise().minCoeff();
+  const Eigen::Vector3d hi = m.nodes.rowwise().maxCoeff();
+  EXPECT_NEAR(lo.x(), 0.08, 1e-15);
+  EXPECT_NEAR(hi.x(), 0.10, 1e-15);
+  EXPECT_NEAR(lo.y(), 0.0, 1e-15);
+  EXPECT_NEAR(hi.y(), 0.01, 1e-15);
+  EXPECT_NEAR(hi.z(), 0.03, 1e-15);
+  EXPECT_EQ(m.node_sets.at("Base").size(), 8u);
+  EXPECT_EQ(m.node_sets.count("RP"), 0u);  // an assembly-level set of the reference node
+  ASSERT_EQ(m.node_sets.at("Corner").size(), 1u);
+}
+
+TEST(FemMeshIo, AbaqusRefusals) {
+  const TempDir dir;
+  const std::string cube = slurp(kData + "cube_c3d10.inp");
+  const std::string block = slurp(kData + "block_c3d20r.inp");
+  auto msg = inp_msg(dir.write("lin.inp", replaced(cube, "TYPE=C3D10", "TYPE=C3D8R")));
+  EXPECT_CONTAINS(msg, "TYPE=C3D8R is a linear element: quadratic elements are needed");
+  EXPECT_CONTAINS(msg, "lin.inp, line ");
+  msg = inp_msg(dir.write("shell.inp", replaced(cube, "TYPE=C3D10", "TYPE=S4R")));
+  EXPECT_CONTAINS(msg, "element type S4R is not read");
+  msg = inp_msg(dir.write("two.inp", replaced(block, "*End Instance\n",
+                                              "*End Instance\n*Instance, name=Block-2, "
+                                              "part=Block\n*End Instance\n")));
+  EXPECT_CONTAINS(msg, "more than one instance (\"Block-1\" and \"Block-2\")");
+  msg = inp_msg(dir.write("parts.inp",
+                          replaced(block, "*Assembly", "*Part, name=Other\n*End Part\n*Assembly")));
+  EXPECT_CONTAINS(msg, "a second *PART (\"Other\"): only single-part files are read");
+  msg = inp_msg(
+      dir.write("inc.inp", replaced(cube, "*Heading", "*INCLUDE, INPUT=nodes.inp\n*Heading")));
+  EXPECT_CONTAINS(msg, "inc.inp, line 1: *INCLUDE is not read");
+  msg = inp_msg(dir.write("node.inp", replaced(cube, "5, 5, 3, 2, 8,", "5, 5, 3, 2, 88,")));
+  EXPECT_CONTAINS(msg, "element 5 refers to node 88, which is not defined");
+  msg = inp_msg(dir.write("set.inp", replaced(cube, "1, 3, 5\n", "1, 3, 7\n")));
+  EXPECT_CONTAINS(msg, "element set \"ODD\" names element 7, which is not defined");
+  msg = inp_msg(dir.write("dup.inp", replaced(cube, "999, 1, 1, 1", "1, 1, 1, 1")));
+  EXPECT_CONTAINS(msg, "node 1 is defined twice");
+  msg = inp_msg(dir.write("short.inp", replaced(cube, ", 110, 115\n*Nset", "\n*Nset")));
+  EXPECT_CONTAINS(msg, "element 5 has 8 nodes, TYPE=C3D10 has 10");
+  msg = inp_msg(dir.write("name.inp", replaced(cube, "bottom, 8", "bottum, 8")));
+  EXPECT_CONTAINS(msg, "\"bottum\" is neither a label nor a defined node set");
+  msg = inp_msg(dir.write("empty.inp", "*HEADING\n"));
+  EXPECT_CONTAINS(msg, "the file has no elements");
+}
+
 // --- writers -------------------------------------------------------------------------
 
 TEST(FemMeshIo, GmshWriterRoundTrips) {
