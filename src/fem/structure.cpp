@@ -11,7 +11,7 @@
 #include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
 #include "asperity/fem/mesh_io.hpp"
-#include "core/toml_case.hpp"
+#include "../core/toml_case.hpp"
 
 namespace asperity::fem {
 namespace tc = core::toml_case;
