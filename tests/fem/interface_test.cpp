@@ -1,10 +1,14 @@
 // Interfaces, bolts, the Craig-Bampton reduction and the linear prestress of fem/ on
 // structured meshes (no mesher needed): two boxes stacked along z, their shared face the
 // interface, optionally a bolt through both.
+
+// Eigen's dense eigensolvers inlined at -O3: g++ 12's -Wnull-dereference false positive.
+#pragma GCC diagnostic ignored "-Wnull-dereference"
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "asperity/core/error.hpp"
@@ -248,22 +252,34 @@ ReducedModel reduced(const Assembled& a, const CraigBampton& cb) {
 
 TEST(FemReduction, ReducedModesMatchTheFullModelInTheRetainedRange) {
   const Assembled a = assemble_stack({8, 4, 2}, 8, 1000.0);
-  const CraigBampton cb = craig_bampton(a.K, a.M, a.mesh.nodes, {a.itf}, {.fixed_interface_modes = 30},
-                                        {-Eigen::VectorXd(a.bolt.elongation)});
-  EXPECT_EQ(cb.rigid_body_modes, 6);
-  EXPECT_EQ(cb.K.rows(), 24 + 36 + 1);
   // Open interface (bolt only): the full model's lowest elastic modes.
   const auto full = sparse_modes(a.K, a.M, 12, -1e4);
-  const ReducedModel m = reduced(a, cb);
-  const auto red = reduced_linear_modes(m, Eigen::VectorXd::Zero(24), 6, "open");
-  EXPECT_EQ(red.rigid_body_modes, 6);
-  for (Eigen::Index i = 0; i < 6; ++i) {
-    const double f_full = std::sqrt(full.omega2[6 + i]) / (2 * std::numbers::pi);
-    // Craig-Bampton is an upper bound (Rayleigh-Ritz); with 30 tied modes and the whole
-    // interface motion retained the first elastic modes converge to < 1e-3.
-    EXPECT_GE(red.frequency_hz[i], f_full * (1 - 1e-9)) << "mode " << i;
-    EXPECT_LT(red.frequency_hz[i] / f_full - 1, 1e-3) << "mode " << i;
+  std::vector<double> worst;
+  for (const int modes : {10, 30, 60}) {
+    const CraigBampton cb = craig_bampton(a.K, a.M, a.mesh.nodes, {a.itf},
+                                          {.fixed_interface_modes = modes},
+                                          {-Eigen::VectorXd(a.bolt.elongation)});
+    EXPECT_EQ(cb.rigid_body_modes, 6);
+    EXPECT_EQ(cb.K.rows(), 24 + modes + 6 + 1);
+    const ReducedModel m = reduced(a, cb);
+    const auto red = reduced_linear_modes(m, Eigen::VectorXd::Zero(24), 6, "open");
+    EXPECT_EQ(red.rigid_body_modes, 6);
+    double w = 0;
+    for (Eigen::Index i = 0; i < 6; ++i) {
+      const double f_full = std::sqrt(full.omega2[6 + i]) / (2 * std::numbers::pi);
+      // Craig-Bampton is a Rayleigh-Ritz method: upper bounds of the full model's.
+      EXPECT_GE(red.frequency_hz[i], f_full * (1 - 1e-9)) << modes << " modes, mode " << i;
+      w = std::max(w, red.frequency_hz[i] / f_full - 1);
+    }
+    std::printf("fixed-interface modes %d: largest relative error of the first 6 elastic "
+                "frequencies %.3e\n", modes, w);
+    worst.push_back(w);
   }
+  // Converging with the tied modes kept, and below 1e-3 with 60 of them (all the
+  // interface motion is retained, so only the bodies' interior dynamics is truncated).
+  EXPECT_LT(worst[1], worst[0]);
+  EXPECT_LT(worst[2], worst[1]);
+  EXPECT_LT(worst[2], 1e-3);
 }
 
 TEST(FemReduction, BoltPretensionIsInEquilibriumWithTheInterfacePressure) {
@@ -282,7 +298,7 @@ TEST(FemReduction, BoltPretensionIsInEquilibriumWithTheInterfacePressure) {
 
 TEST(FemReduction, MoreRigidBodyModesThanFreeFreeIsRefused) {
   // No bolt and the interface open: the bodies fly apart (12 rigid-body modes).
-  Assembled a = assemble_stack({4, 2, 1}, 4, 0.0);
+  Assembled a = assemble_stack({8, 4, 1}, 4, 0.0);
   const IsotropicMaterial steel{200e9, 0.3, 7800};
   const std::vector<IsotropicMaterial> mats{steel, steel};
   auto km = assemble(a.mesh, mats);
