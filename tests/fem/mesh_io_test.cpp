@@ -311,6 +311,8 @@ TEST(FemMeshIo, AbaqusRefusals) {
   EXPECT_CONTAINS(msg, "element 5 has 8 nodes, TYPE=C3D10 has 10");
   msg = inp_msg(dir.write("name.inp", replaced(cube, "bottom, 8", "bottum, 8")));
   EXPECT_CONTAINS(msg, "\"bottum\" is neither a label nor a defined node set");
+  msg = inp_msg(dir.write("gen.inp", replaced(cube, "1, 8, 1", "1, 100000000, 1")));
+  EXPECT_CONTAINS(msg, "GENERATE 1, 100000000, 1 lists more labels than the file can define");
   msg = inp_msg(dir.write("empty.inp", "*HEADING\n"));
   EXPECT_CONTAINS(msg, "the file has no elements");
 }
