@@ -465,7 +465,7 @@ std::string gmsh_script(const Geometry& g) {
           s += fmt::format("{} = newl; Line({}) = {{{}, {}}};\n", lines.back(), lines.back(),
                            points[i], points[(i + 1) % v.size()]);
         }
-        s += fmt::format("{}_cl = newcl; Curve Loop({}_cl) = {{{}}};\n", var, var,
+        s += fmt::format("{}_cl = newll; Curve Loop({}_cl) = {{{}}};\n", var, var,
                          fmt::join(lines, ", "));
         s += fmt::format("{}_s = news; Plane Surface({}_s) = {{{}_cl}};\n", var, var, var);
         s += fmt::format("{}_e[] = Extrude{{{}}}{{ Surface{{{}_s}}; }};\n", var, vec(p.extrusion),

@@ -54,12 +54,14 @@ struct Keyword {
 
 class InpReader {
  public:
-  InpReader(std::string_view text, const std::string& path) : r_(text, path) {}
+  InpReader(std::string_view text, const std::string& path)
+      : r_(text, path), text_bytes_(text.size()) {}
   Mesh read();
 
  private:
   enum class Block { skip, node, element, nset, elset, instance };
   LineReader r_;
+  std::size_t text_bytes_ = 0;
   LabelledMesh raw_;
   std::vector<std::string_view> tok_;
   Block block_ = Block::skip;
@@ -338,13 +340,24 @@ void InpReader::data(std::string_view line) {
         const std::int64_t first = integer(0, "the first label");
         const std::int64_t last = integer(1, "the last label");
         const std::int64_t step = tok_.size() > 2 ? integer(2, "the increment") : 1;
-        if (step <= 0 || last < first || (last - first) / step > 100'000'000) {
+        if (step <= 0 || last < first) {
           r_.fail(
               fmt::format("GENERATE {}, {}, {}: the first label must not exceed the last and "
                           "the increment must be > 0",
                           first, last, step));
         }
-        for (std::int64_t k = first; k <= last; k += step) target.push_back({k, r_.line_number()});
+        // Each label is defined on a line of its own, of 2 bytes at least.
+        const std::uint64_t count =
+            (static_cast<std::uint64_t>(last) - static_cast<std::uint64_t>(first)) /
+                static_cast<std::uint64_t>(step) +
+            1;
+        if (count > text_bytes_ / 2) {
+          r_.fail(fmt::format("GENERATE {}, {}, {} lists more labels than the file can define",
+                              first, last, step));
+        }
+        for (std::uint64_t i = 0; i < count; ++i) {
+          target.push_back({first + static_cast<std::int64_t>(i) * step, r_.line_number()});
+        }
         return;
       }
       for (std::size_t i = 0; i < tok_.size(); ++i) {

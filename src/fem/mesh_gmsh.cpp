@@ -112,6 +112,7 @@ class MshReader {
   std::size_t first_plain_line_ = 0;
   std::int64_t first_plain_entity_ = 0;
   std::map<std::int64_t, std::int64_t> element_first_physical_;  // 2.2 repeats
+  std::vector<std::int64_t> element_keys_;                       // per element
 
   std::int64_t integer(std::size_t i, std::string_view what);
   double number(std::size_t i, std::string_view what);
@@ -261,6 +262,12 @@ void MshReader::read_nodes41() {
     if (n < 0 || read + n > total) {
       r_.fail(fmt::format("node block of {} nodes: more than the {} announced", n, total));
     }
+    if (static_cast<std::uint64_t>(n) > r_.remaining()) {
+      r_.fail(
+          fmt::format("node block of {} nodes: more than the rest of the file holds "
+                      "(truncated?)",
+                      n));
+    }
     const std::size_t coords =
         3 + (parametric != 0 ? static_cast<std::size_t>(std::clamp<std::int64_t>(dim, 0, 3)) : 0);
     labels.resize(static_cast<std::size_t>(n));
@@ -322,7 +329,7 @@ void MshReader::add_element(std::int64_t type, std::int64_t label, std::size_t f
   el.label = label;
   el.line = r_.line_number();
   el.type = tet ? ElementType::tet10 : ElementType::hex20;
-  el.body = static_cast<std::int32_t>(key);  // remapped to a body index in read()
+  element_keys_.push_back(key);  // made a body index in read()
   for (std::size_t k = 0; k < n; ++k) {
     const auto from = static_cast<std::size_t>(tet ? kTet10FromGmsh[k] : kHex20FromGmsh[k]);
     el.nodes[k] = integer(first_node + from, "a node tag");
@@ -505,8 +512,9 @@ Mesh MshReader::read() {
     body_of_key[key] = static_cast<std::int32_t>(raw_.bodies.size());
     raw_.bodies.push_back(std::move(name));
   }
-  for (auto& el : raw_.elements) {
-    el.body = body_of_key.at(el.body);
+  for (std::size_t e = 0; e < raw_.elements.size(); ++e) {
+    auto& el = raw_.elements[e];
+    el.body = body_of_key.at(element_keys_[e]);
     raw_.element_sets[raw_.bodies[static_cast<std::size_t>(el.body)]].push_back(
         {el.label, el.line});
   }

@@ -22,6 +22,8 @@ class LineReader {
   /// The next line; throws "ends inside <where> (truncated?)" at the end of the text.
   std::string_view require(std::string_view where);
   [[nodiscard]] std::size_t line_number() const { return line_; }
+  /// Bytes not read yet.
+  [[nodiscard]] std::size_t remaining() const { return text_.size() - pos_; }
   [[nodiscard]] const std::string& path() const { return path_; }
   /// Throws InvalidInput "<path>, line <n>: <what>".
   [[noreturn]] void fail(std::string_view what) const;

@@ -193,6 +193,63 @@ TEST(FemGeometry, TwoBoxesMeshConforming) {
             m.blocks[0].size());
 }
 
+TEST(FemGeometry, ObliquePrismWithACapMeshes) {
+  // An L-shaped hexagon (area 2 x 1 + 1 x 1 cm^2 = 3e-4 m^2) swept along (2, 0, 10) mm:
+  // an oblique prism of volume area x height = 3e-6 m^3 (Cavalieri); on its top face a
+  // 10 x 10 x 5 mm box, sharing the part of the face under it.
+  fem::Geometry g;
+  const std::vector<Vector3d> ell = {{0, 0, 0},       {0.02, 0, 0},    {0.02, 0.01, 0},
+                                     {0.01, 0.01, 0}, {0.01, 0.02, 0}, {0, 0.02, 0}};
+  g.bodies.push_back({"ell", {fem::Prism{ell, Vector3d(0.002, 0, 0.01)}}, {}});
+  g.bodies.push_back(
+      {"cap", {fem::Box{Vector3d(0.002, 0, 0.01), Vector3d(0.01, 0.01, 0.005)}}, {}});
+  g.size = {0.004, 0.002, 0.002};
+  const auto m = fem::mesh_geometry(g);
+  ASSERT_EQ(m.bodies, (std::vector<std::string>{"ell", "cap"}));
+  EXPECT_LE(max_mid_edge_offset(m), 1e-15);
+  // Straight-sided tetrahedra fill plane-faced solids exactly: 1e-9 relative is rounding.
+  EXPECT_NEAR(body_volume(m, 0).first, 3e-6, 1e-9 * 3e-6);
+  EXPECT_NEAR(body_volume(m, 1).first, 5e-7, 1e-9 * 5e-7);
+  EXPECT_GT(body_volume(m).second, 0.0);
+  // Every element's centroid is in its own body and not in the other.
+  for (std::size_t e = 0; e < m.blocks[0].size(); ++e) {
+    const auto el = m.blocks[0].element(e);
+    Vector3d c = Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) c += 0.25 * m.nodes.col(el[static_cast<std::size_t>(k)]);
+    const auto b = static_cast<std::size_t>(m.blocks[0].body[e]);
+    EXPECT_TRUE(fem::contains(g.bodies[b], c, 0.0)) << e;
+    EXPECT_FALSE(fem::contains(g.bodies[1 - b], c, 0.0)) << e;
+  }
+  // Conforming on the shared 10 x 10 mm patch of the plane z = 10 mm.
+  const auto of = bodies_of_nodes(m);
+  std::size_t shared = 0;
+  for (Eigen::Index j = 0; j < m.nodes.cols(); ++j) {
+    const Vector3d p = m.nodes.col(j);
+    if (std::abs(p.z() - 0.01) > 1e-15 || p.x() < 0.002 - 1e-15 || p.x() > 0.012 + 1e-15 ||
+        p.y() > 0.01 + 1e-15) {
+      continue;
+    }
+    EXPECT_EQ(of[static_cast<std::size_t>(j)].size(), 2u) << j;
+    ++shared;
+  }
+  EXPECT_GE(shared, 25u);  // a 5 x 5 grid at 2 mm at least
+}
+
+TEST(FemGeometry, UnionOfOverlappingPrimitivesIsOneBody) {
+  // A tee: a 30 x 10 x 10 mm bar and a 10 x 10 x 30 mm post overlapping over a 10 mm
+  // cube; union volume 3 + 3 - 1 = 5 cm^3, exactly (plane faces).
+  fem::Geometry g;
+  g.bodies.push_back({"tee",
+                      {fem::Box{Vector3d(0, 0, 0), Vector3d(0.03, 0.01, 0.01)},
+                       fem::Box{Vector3d(0.01, 0, 0), Vector3d(0.01, 0.01, 0.03)}},
+                      {}});
+  g.size = {0.005, 0.005, 0.005};
+  const auto m = fem::mesh_geometry(g);
+  ASSERT_EQ(m.bodies, std::vector<std::string>{"tee"});
+  EXPECT_NEAR(body_volume(m).first, 5e-6, 1e-9 * 5e-6);
+  EXPECT_GT(body_volume(m).second, 0.0);
+}
+
 TEST(FemGeometry, BrakeReussBeam) {
   // Issue 19's BRB: two half-beams 420 mm long, 25.4 x 25.4 mm, lapped over 120 mm at
   // half thickness, three 8.5 mm holes through the lap at -30, 0, +30 mm from its centre.
@@ -302,6 +359,11 @@ TEST(FemGeometry, MissingOrFailingGmsh) {
   const auto start = std::chrono::steady_clock::now();
   EXPECT_THROW((void)fem::mesh_geometry(g, options), NumericalError);
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+  options.time_limit = 600;
+  options.work_dir = fake + "/sub";  // under a regular file: cannot be created
+  EXPECT_CONTAINS(invalid_input_message([&] { (void)fem::mesh_geometry(g, options); }),
+                  "mesh options: work_dir");
+  options.work_dir.clear();
   options.threads = 0;
   EXPECT_CONTAINS(invalid_input_message([&] { (void)fem::mesh_geometry(g, options); }),
                   "threads = 0 is not allowed");

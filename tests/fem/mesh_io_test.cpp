@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
@@ -311,8 +312,49 @@ TEST(FemMeshIo, AbaqusRefusals) {
   EXPECT_CONTAINS(msg, "element 5 has 8 nodes, TYPE=C3D10 has 10");
   msg = inp_msg(dir.write("name.inp", replaced(cube, "bottom, 8", "bottum, 8")));
   EXPECT_CONTAINS(msg, "\"bottum\" is neither a label nor a defined node set");
+  msg = inp_msg(dir.write("gen.inp", replaced(cube, "1, 8, 1", "1, 100000000, 1")));
+  EXPECT_CONTAINS(msg, "GENERATE 1, 100000000, 1 lists more labels than the file can define");
   msg = inp_msg(dir.write("empty.inp", "*HEADING\n"));
   EXPECT_CONTAINS(msg, "the file has no elements");
+}
+
+TEST(FemMeshIo, DamagedFilesGiveInvalidInputOnly) {
+  // Deterministic damage to every test file (a cut at a random byte, or a few bytes
+  // replaced by characters that matter to the parsers): each read either succeeds or
+  // throws InvalidInput; never another exception, a crash or a hang (run under ASan by
+  // scripts/test.sh).
+  const TempDir dir;
+  std::mt19937 rng(19);
+  const std::string alphabet = "0123456789 -+.eE,*$\n\"";
+  for (const char* name :
+       {"box_tet10_v41.msh", "box_tet10_v22.msh", "hex20_v41.msh", "hex20_v22.msh",
+        "two_boxes_v41.msh", "cube_c3d10.inp", "block_c3d20r.inp"}) {
+    const std::string good = slurp(kData + name);
+    const bool inp = std::string(name).find(".inp") != std::string::npos;
+    for (int trial = 0; trial < 150; ++trial) {
+      std::string bad = good;
+      if (trial % 3 == 0) {
+        bad.resize(std::uniform_int_distribution<std::size_t>(0, good.size() - 1)(rng));
+      } else {
+        for (int k = 0; k < 1 + trial % 4; ++k) {
+          const auto at = std::uniform_int_distribution<std::size_t>(0, bad.size() - 1)(rng);
+          bad[at] =
+              alphabet[std::uniform_int_distribution<std::size_t>(0, alphabet.size() - 1)(rng)];
+        }
+      }
+      const auto path = dir.write(inp ? "bad.inp" : "bad.msh", bad);
+      try {
+        if (inp) {
+          (void)fem::read_abaqus_inp(path);
+        } else {
+          (void)fem::read_gmsh(path);
+        }
+      } catch (const InvalidInput&) {
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << name << " trial " << trial << ": " << e.what();
+      }
+    }
+  }
 }
 
 // --- writers -------------------------------------------------------------------------
