@@ -310,7 +310,8 @@ std::string body_item(const Geometry& g, std::size_t b) {
   return fmt::format("bodies[{}] \"{}\"", b, core::printable(g.bodies[b].name));
 }
 
-// The regions of size refinement: pairs of bodies whose bounding boxes meet.
+// Pairs of bodies whose bounding boxes meet: an upper bound of the refined region, for the
+// element-count estimate of validate().
 struct InterfaceRegion {
   std::size_t a, b;
   Box3 box;  // the overlap of the two bounding boxes, grown by the interface size
@@ -507,17 +508,42 @@ std::string gmsh_script(const Geometry& g) {
   // Size fields.
   std::vector<int> fields;
   int next = 1;
-  for (const auto& r : interface_regions(g)) {
-    s += fmt::format("// interface size where bodies[{}] and bodies[{}] meet\n", r.a, r.b);
-    s += fmt::format("Field[{}] = Box;\n", next);
-    s += fmt::format("Field[{0}].VIn = {1}; Field[{0}].VOut = {2}; Field[{0}].Thickness = {2};\n",
-                     next, num(g.size.interface), num(g.size.global));
+  if (g.bodies.size() > 1) {
+    // Interface size on the faces two bodies share (found after the fragments: a surface
+    // bounding two volumes), growing linearly to the global size from half an interface
+    // size to 2.5 interface sizes away (gmsh Distance + Threshold fields).
+    s += "// interface size near the faces that two bodies share\n";
+    s += "shared_volumes[] = Volume{:};\nshared[] = {};\n"
+         "For i In {0:#shared_volumes[]-1}\n"
+         "  bi[] = Boundary{ Volume{shared_volumes[i]}; };\n"
+         "  For j In {0:#shared_volumes[]-1}\n"
+         "    If (j > i)\n"
+         "      bj[] = Boundary{ Volume{shared_volumes[j]}; };\n"
+         "      For k In {0:#bi[]-1}\n"
+         "        For l In {0:#bj[]-1}\n"
+         "          If (Abs(bi[k]) == Abs(bj[l]))\n"
+         "            shared[] += Abs(bi[k]);\n"
+         "          EndIf\n"
+         "        EndFor\n"
+         "      EndFor\n"
+         "    EndIf\n"
+         "  EndFor\n"
+         "EndFor\n";
+    s += "If (#shared[] > 0)\n";
+    s += fmt::format("  Field[{0}] = Distance;\n  Field[{0}].FacesList = {{shared[]}};\n"
+                     "  Field[{0}].NumPointsPerCurve = 200;\n",
+                     next);
     s += fmt::format(
-        "Field[{0}].XMin = {1}; Field[{0}].YMin = {2}; Field[{0}].ZMin = {3};\n"
-        "Field[{0}].XMax = {4}; Field[{0}].YMax = {5}; Field[{0}].ZMax = {6};\n",
-        next, num(r.box.min().x()), num(r.box.min().y()), num(r.box.min().z()),
-        num(r.box.max().x()), num(r.box.max().y()), num(r.box.max().z()));
-    fields.push_back(next++);
+        "  Field[{0}] = Threshold;\n  Field[{0}].InField = {1};\n  Field[{0}].SizeMin = {2};\n"
+        "  Field[{0}].SizeMax = {3};\n  Field[{0}].DistMin = {4};\n  Field[{0}].DistMax = {5};\n",
+        next + 1, next, num(g.size.interface), num(g.size.global), num(0.5 * g.size.interface),
+        num(2.5 * g.size.interface));
+    s += "Else\n";
+    s += fmt::format("  Field[{0}] = Constant;\n  Field[{0}].VIn = {1};\n", next + 1,
+                     num(g.size.global));
+    s += "EndIf\n";
+    fields.push_back(next + 1);
+    next += 2;
   }
   for (std::size_t b = 0; b < g.bodies.size(); ++b) {
     for (std::size_t i = 0; i < g.bodies[b].cut.size(); ++i) {

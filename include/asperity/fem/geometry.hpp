@@ -76,8 +76,9 @@ struct Geometry {
 
 /// The gmsh script (.geo, OpenCASCADE kernel) of `geometry`: the primitives, the
 /// BooleanUnion / BooleanDifference of each body, BooleanFragments of all bodies, the
-/// size fields (Box fields with `interface` size where two bodies' bounding boxes meet,
-/// Cylinder fields with `hole` size around each cylinder cut, `global` elsewhere), second
+/// size fields (`interface` size on the faces two bodies share, found after the fragments,
+/// growing to `global` from 0.5 to 2.5 interface sizes away: Distance and Threshold
+/// fields; Cylinder fields with `hole` size around each cylinder cut, `global` elsewhere), second
 /// order (Mesh.ElementOrder = 2), 3-D tetrahedra, one physical volume per resulting
 /// volume (tag = the volume's tag). Body names do not enter the script.
 /// Calls geometry.validate().
