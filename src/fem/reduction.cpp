@@ -11,75 +11,57 @@
 #include <fmt/format.h>
 
 #include "asperity/core/error.hpp"
+#include "asperity/core/parallel.hpp"
 
 namespace asperity::fem {
 namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
 
-// (K - sigma M)^-1 for Spectra's shift-invert mode; K - sigma M is positive definite for
-// sigma < 0 and K, M positive semi-definite / definite, so LDL^T (Eigen, MPL-2.0) suffices.
-class ShiftInvertLdlt {
+// The flexibility of a free-free structure with inertia relief (Spectra operator, shift 0):
+// y = P K_ff^-1 P^T x on the DOFs v, K_ff the stiffness on a statically determinate
+// support (f_index: v -> free index, -1 for the six held DOFs). P^T x removes the load's
+// rigid-body resultant (x - M R G R^T x), P makes the displacement M-orthogonal to the
+// rigid-body modes R (y - R G (M R)^T y), G = (R^T M R)^-1.
+class InertiaReliefFlexibility {
  public:
   using Scalar = double;
-  ShiftInvertLdlt(const Sparse& K, const Sparse& M) : K_(K), M_(M) {}
-  [[nodiscard]] Eigen::Index rows() const { return K_.rows(); }
-  [[nodiscard]] Eigen::Index cols() const { return K_.cols(); }
-  void set_shift(double sigma) {
-    const Sparse A = K_ - sigma * M_;
-    solver_.compute(A);
-    if (solver_.info() != Eigen::Success)
-      throw NumericalError(fmt::format(
-          "the factorisation of K - sigma M (sigma = {:g} rad^2/s^2, {} DOFs) failed", sigma,
-          K_.rows()));
-  }
+  InertiaReliefFlexibility(const Eigen::SimplicialLDLT<Sparse>& ldlt,
+                           const std::vector<Eigen::Index>& f_index, Eigen::Index nf,
+                           const Eigen::MatrixXd& R, const Eigen::MatrixXd& MR,
+                           const Eigen::MatrixXd& G)
+      : ldlt_(ldlt), f_index_(f_index), nf_(nf), R_(R), MR_(MR), G_(G) {}
+  [[nodiscard]] Eigen::Index rows() const { return R_.rows(); }
+  [[nodiscard]] Eigen::Index cols() const { return R_.rows(); }
+  void set_shift(double) {}
   void perform_op(const double* x, double* y) const {
-    Eigen::Map<const Eigen::VectorXd> xv(x, K_.rows());
-    Eigen::Map<Eigen::VectorXd> yv(y, K_.rows());
-    yv = solver_.solve(xv);
+    const Eigen::Index n = R_.rows();
+    Eigen::Map<const Eigen::VectorXd> xv(x, n);
+    Eigen::Map<Eigen::VectorXd> yv(y, n);
+    const Eigen::VectorXd load = xv - MR_ * (G_ * (R_.transpose() * xv));
+    Eigen::VectorXd lf(nf_);
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (const auto f = f_index_[static_cast<std::size_t>(i)]; f >= 0) lf[f] = load[i];
+    const Eigen::VectorXd zf = ldlt_.solve(lf);
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (const auto f = f_index_[static_cast<std::size_t>(i)]; f >= 0) z[i] = zf[f];
+    yv = z - R_ * (G_ * (MR_.transpose() * z));
   }
 
  private:
-  const Sparse& K_;
-  const Sparse& M_;
-  Eigen::SimplicialLDLT<Sparse> solver_;
+  const Eigen::SimplicialLDLT<Sparse>& ldlt_;
+  const std::vector<Eigen::Index>& f_index_;
+  Eigen::Index nf_;
+  const Eigen::MatrixXd& R_;
+  const Eigen::MatrixXd& MR_;
+  const Eigen::MatrixXd& G_;
 };
 
 struct LowestModes {
   Eigen::VectorXd omega2;
   Eigen::MatrixXd shapes;
 };
-
-LowestModes lowest_modes(const Sparse& K, const Sparse& M, int count, double shift) {
-  ShiftInvertLdlt op(K, M);
-  Spectra::SparseSymMatProd<double> bop(M);
-  const Eigen::Index n = K.rows();
-  const int ncv = static_cast<int>(std::min<Eigen::Index>(n, std::max(2 * count + 1, count + 20)));
-  Spectra::SymGEigsShiftSolver<ShiftInvertLdlt, Spectra::SparseSymMatProd<double>,
-                               Spectra::GEigsMode::ShiftInvert>
-      eigs(op, bop, count, ncv, shift);
-  eigs.init();
-  eigs.compute(Spectra::SortRule::LargestMagn, 1000, 1e-10, Spectra::SortRule::SmallestAlge);
-  if (eigs.info() != Spectra::CompInfo::Successful)
-    throw NumericalError(fmt::format(
-        "the {} lowest modes of {} DOFs did not converge (Spectra shift-invert Lanczos, shift "
-        "{:g} rad^2/s^2, {} Lanczos vectors, 1000 restarts)",
-        count, n, shift, ncv));
-  LowestModes out{eigs.eigenvalues(), eigs.eigenvectors()};
-  // ascending
-  std::vector<Eigen::Index> order(static_cast<std::size_t>(out.omega2.size()));
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<Eigen::Index>(i);
-  std::sort(order.begin(), order.end(),
-            [&](Eigen::Index a, Eigen::Index b) { return out.omega2[a] < out.omega2[b]; });
-  LowestModes sorted{Eigen::VectorXd(out.omega2.size()),
-                     Eigen::MatrixXd(out.shapes.rows(), out.shapes.cols())};
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const auto j = static_cast<Eigen::Index>(i);
-    sorted.omega2[j] = out.omega2[order[i]];
-    sorted.shapes.col(j) = out.shapes.col(order[i]);
-  }
-  return sorted;
-}
 
 Sparse block(const Sparse& A, Eigen::Index r0, Eigen::Index c0, Eigen::Index nr, Eigen::Index nc) {
   return Sparse(A.block(r0, c0, nr, nc));
@@ -174,7 +156,7 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
   const Sparse& Tc = cb.elimination;
   const Sparse Kt = Sparse(Tc.transpose() * K * Tc);
   const Sparse Mt = Sparse(Tc.transpose() * M * Tc);
-  const Sparse Kvv = block(Kt, 0, 0, nv, nv), Mvv = block(Mt, 0, 0, nv, nv);
+  const Sparse Mvv = block(Mt, 0, 0, nv, nv);
 
   // Rigid-body modes (the constraint holds for them: no relative motion).
   const Eigen::MatrixXd R = rigid_body_modes(nodes);
@@ -182,19 +164,7 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
   for (Eigen::Index d = 0; d < n; ++d)
     if (const auto j = v_index[static_cast<std::size_t>(d)]; j >= 0) Rt.row(j) = R.row(d);
 
-  // Fixed-interface (tied) modes.
-  const double shift = -1e-6 * Kvv.diagonal().sum() / Mvv.diagonal().sum();
-  const int wanted = options.fixed_interface_modes + 6;
-  LowestModes tied = lowest_modes(Kvv, Mvv, std::min<int>(wanted, static_cast<int>(nv) - 1), shift);
-  for (Eigen::Index i = 0; i < tied.omega2.size(); ++i)
-    if (std::abs(tied.omega2[i]) < 1e-6 * std::abs(shift)) ++cb.rigid_body_modes;
-  if (cb.rigid_body_modes > 6)
-    throw InvalidInput(fmt::format(
-        "the structure with its interfaces tied has {} rigid-body modes, more than a free-free "
-        "structure allows (6): a body is held by nothing (no interface or bolt joins it)",
-        cb.rigid_body_modes));
-  cb.tied_omega2 = tied.omega2;
-
+  LowestModes tied;
   // Constraint modes: static response to unit g on a statically determinate 3-2-1 support.
   auto node_ok = [&](Eigen::Index i) { return !is_master[static_cast<std::size_t>(i)]; };
   Eigen::Index a = -1;
@@ -248,7 +218,56 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
     throw InvalidInput(
         "the structure with its interfaces tied and a statically determinate support is "
         "singular: it has more rigid-body modes than a free-free structure allows (6)");
-  const Eigen::MatrixXd psi_f = ldlt.solve(rhs);
+
+  // Fixed-interface (tied) modes from the same factorisation: the free-free tied
+  // structure's flexibility with inertia relief, F = P K_ff^-1 P^T (P removes the
+  // rigid-body part: loads are made self-equilibrated, displacements mass-orthogonal to
+  // the rigid-body modes), whose eigenpairs under M are the elastic modes (1/omega^2);
+  // the six rigid-body modes are added exactly.
+  {
+    const Eigen::MatrixXd Rv = Rt.topRows(nv);
+    const Eigen::MatrixXd MRv = Mvv * Rv;
+    const Eigen::MatrixXd G = (Rv.transpose() * MRv).inverse();
+    InertiaReliefFlexibility op(ldlt, f_index, nf, Rv, MRv, G);
+    Spectra::SparseSymMatProd<double> bop(Mvv);
+    const int count = std::min<int>(options.fixed_interface_modes, static_cast<int>(nf) - 7);
+    Eigen::MatrixXd shapes(nv, 6 + std::max(count, 0));
+    Eigen::VectorXd omega2 = Eigen::VectorXd::Zero(shapes.cols());
+    // Rigid-body modes, mass-orthonormal (Cholesky of R^T M R).
+    const Eigen::MatrixXd L = Eigen::LLT<Eigen::MatrixXd>(Rv.transpose() * MRv).matrixL();
+    shapes.leftCols(6) = Rv * L.transpose().inverse();
+    if (count > 0) {
+      const int ncv = static_cast<int>(std::min<Eigen::Index>(nf - 6, std::max(2 * count + 1, count + 20)));
+      Spectra::SymGEigsShiftSolver<InertiaReliefFlexibility, Spectra::SparseSymMatProd<double>,
+                                   Spectra::GEigsMode::ShiftInvert>
+          eigs(op, bop, count, ncv, 0.0);
+      eigs.init();
+      eigs.compute(Spectra::SortRule::LargestMagn, 1000, 1e-10, Spectra::SortRule::SmallestAlge);
+      if (eigs.info() != Spectra::CompInfo::Successful)
+        throw NumericalError(fmt::format(
+            "the {} lowest modes of the tied structure ({} DOFs) did not converge (Spectra "
+            "Lanczos on the inertia-relief flexibility, {} vectors, 1000 restarts)",
+            count, nv, ncv));
+      omega2.tail(count) = eigs.eigenvalues();
+      shapes.rightCols(count) = eigs.eigenvectors();
+    }
+    cb.rigid_body_modes = 6;
+    cb.tied_omega2 = omega2;
+    tied.omega2 = omega2;
+    tied.shapes = std::move(shapes);
+  }
+  // One right-hand side per interface DOF: the triangular solves are memory-bound and
+  // independent, so blocks of columns go to the library's threads.
+  Eigen::MatrixXd psi_f(nf, ng);
+  {
+    const Eigen::Index block_cols = 16;
+    const auto blocks = static_cast<std::size_t>((ng + block_cols - 1) / block_cols);
+    core::parallel_for(blocks, [&](std::size_t k) {
+      const Eigen::Index c0 = static_cast<Eigen::Index>(k) * block_cols;
+      const Eigen::Index nc = std::min(block_cols, ng - c0);
+      psi_f.middleCols(c0, nc) = ldlt.solve(rhs.middleCols(c0, nc));
+    });
+  }
   const Eigen::Index nt = nv + ng;
   const auto ns = static_cast<Eigen::Index>(static_loads.size());
   const Eigen::Index nm = tied.omega2.size();
