@@ -46,6 +46,7 @@ from ._core import mindlin
 from . import joints  # noqa: F401  (matplotlib helpers for predict / analyze_fretting)
 from . import dynamics  # noqa: F401  (dynamics case files, Fig. 7.3-7.7 helpers)
 from . import vibration  # noqa: F401  (harmonic balance, nonlinear modes, FRFs)
+from . import fem  # noqa: F401  (finite elements: stiffness and mass of solid bodies)
 
 # inspect.signature() on the compiled functions, methods and constructors (_signatures.py).
 from . import _signatures  # noqa: E402

@@ -26,6 +26,8 @@ void bind_joint(nb::module_& m);
 void bind_dynamics(nb::module_& m);
 /// vibration/: structures, joint elements, harmonic balance, nonlinear modes, FRFs.
 void bind_vibration(nb::module_& m);
+/// fem/: stiffness and consistent mass of quadratic solid elements (scipy.sparse).
+void bind_fem(nb::module_& m);
 /// The forwarders that give compiled functions and methods an inspect.Signature.
 void bind_signatures(nb::module_& m);
 
