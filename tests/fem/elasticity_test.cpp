@@ -14,6 +14,7 @@
 #include <numbers>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../support.hpp"
@@ -433,6 +434,72 @@ TEST(FemPatchTest, Tet10CurvedDistorted) {
 // and the patch test holds only to the quadrature error: not tested.)
 TEST(FemPatchTest, Hex20StraightEdgedDistorted) {
   patch_test(ElementType::hex20, true);
+}
+
+// ---------------------------------------------------------------- tractions
+
+TEST(FemTraction, FacesNormalsAreaAndTotalForce) {
+  for (const auto type : {ElementType::tet10, ElementType::hex20}) {
+    // Local faces point outward: the cross product of a face's first edges (corners 0-1
+    // and 0-last) points away from the element's centroid.
+    const Eigen::Matrix3Xd xi = natural_node_coordinates(type);
+    const Eigen::Vector3d centre = xi.rowwise().mean();
+    for (const auto& face : element_faces(type)) {
+      const std::size_t corners = face.size() / 2;
+      const Eigen::Vector3d a = xi.col(face[0]);
+      const Eigen::Vector3d n = (xi.col(face[1]) - a).cross(xi.col(face[corners - 1]) - a);
+      EXPECT_GT(n.dot(a - centre), 0.0) << element_type_name(type);
+    }
+    const Mesh mesh = structured_box_mesh({0, 0, 0}, {0.05, 0.02, 0.03}, {3, 2, 3}, type);
+    const auto faces = faces_on_nodes(mesh, mesh.node_sets.at("xmax"));
+    EXPECT_EQ(faces.size(), type == ElementType::tet10 ? 2u * 2u * 3u : 2u * 3u);
+    // Flat faces: area and total force exact to round-off.
+    EXPECT_LT(rel(faces_area(mesh, faces), 0.02 * 0.03), 1e-13);
+    const Eigen::Vector3d t(1e6, -2e5, 3e5);
+    const Eigen::VectorXd f = traction_load(mesh, faces, t);
+    Eigen::Vector3d total = Eigen::Vector3d::Zero();
+    for (Eigen::Index i = 0; i < mesh.node_count(); ++i) total += f.segment<3>(3 * i);
+    EXPECT_LT((total - t * 0.02 * 0.03).norm() / (t.norm() * 0.02 * 0.03), 1e-13);
+    EXPECT_THROW((void)traction_load(mesh, std::vector<ElementFace>{{0, 0, 6}}, t), InvalidInput);
+  }
+}
+
+// Uniaxial tension of a distorted box on rollers (u_x = 0 on x = 0, u_y = 0 on y = 0,
+// u_z = 0 on z = 0) under a traction sigma on x = L: the exact solution u_x = sigma x / E,
+// u_y = -nu sigma y / E, u_z = -nu sigma z / E is linear, so the elements reproduce it.
+TEST(FemTraction, UniaxialTensionIsExact) {
+  const IsotropicMaterial material{.E = 70e9, .nu = 0.33, .rho = 2700};
+  const double sigma = 5e7;
+  for (const auto type : {ElementType::tet10, ElementType::hex20}) {
+    Mesh mesh = structured_box_mesh({0, 0, 0}, {0.04, 0.02, 0.03}, {3, 2, 3}, type);
+    distort(mesh, 0.05, true);
+    const SparseMatrix K =
+        assemble_stiffness(mesh, std::span<const IsotropicMaterial>(&material, 1));
+    const Eigen::VectorXd f = traction_load(mesh, faces_on_nodes(mesh, mesh.node_sets.at("xmax")),
+                                            Eigen::Vector3d(sigma, 0, 0));
+    std::vector<std::int32_t> fixed;
+    for (const auto& [set, c] :
+         {std::pair{"xmin", 0}, std::pair{"ymin", 1}, std::pair{"zmin", 2}}) {
+      for (const auto node : mesh.node_sets.at(set)) fixed.push_back(3 * node + c);
+    }
+    std::sort(fixed.begin(), fixed.end());
+    fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
+    const auto free = complement_dofs(K.rows(), fixed);
+    Eigen::VectorXd rhs(static_cast<Eigen::Index>(free.size()));
+    for (std::size_t k = 0; k < free.size(); ++k) rhs[static_cast<Eigen::Index>(k)] = f[free[k]];
+    Eigen::SimplicialLDLT<SparseMatrix> solver(restrict_dofs(K, free));
+    ASSERT_EQ(solver.info(), Eigen::Success);
+    const Eigen::VectorXd u = expand_dofs(solver.solve(rhs), free, K.rows());
+    double error = 0.0;
+    for (Eigen::Index i = 0; i < mesh.node_count(); ++i) {
+      const Eigen::Vector3d x = mesh.nodes.col(i);
+      const Eigen::Vector3d exact =
+          sigma / material.E * Eigen::Vector3d(x[0], -material.nu * x[1], -material.nu * x[2]);
+      error = std::max(error, (u.segment<3>(3 * i) - exact).cwiseAbs().maxCoeff());
+    }
+    // Round-off of the solve, as in the patch test.
+    EXPECT_LT(error / (sigma / material.E * 0.04), 1e-11) << element_type_name(type);
+  }
 }
 
 // ---------------------------------------------------------------- modes

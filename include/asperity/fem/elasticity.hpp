@@ -10,6 +10,7 @@
 //   tet10 stiffness, curved, and tet10 mass (N_i N_j has degree 4): the collapsed
 //     (Duffy, conical-product) 4 x 4 x 4 Gauss-Legendre rule, exact to degree 5;
 //   hex20 stiffness and mass: 3 x 3 x 3 Gauss-Legendre (exact to degree 5 per direction).
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -97,6 +98,31 @@ struct StiffnessAndMass {
                                               std::span<const IsotropicMaterial> per_body);
 [[nodiscard]] SparseMatrix assemble_mass(const Mesh& mesh,
                                          std::span<const IsotropicMaterial> per_body);
+
+/// One face of one element: `face` in the element's local numbering (element_faces()).
+struct ElementFace {
+  std::int32_t block = 0;
+  std::int32_t element = 0;
+  std::int32_t face = 0;
+};
+/// The local faces of an element type, each as its node indices (canonical order of
+/// mesh.hpp), corners first, then mid-edge nodes, oriented with the outward normal by
+/// the right-hand rule on the corners. tet10: 4 faces of 6 nodes, face k opposite corner
+/// 3, 2, 0, 1 for k = 0, 1, 2, 3 (t = 0, s = 0, L0 = 0, r = 0); hex20: 6 faces of 8 nodes,
+/// zeta = -1, zeta = +1, eta = -1, xi = +1, eta = +1, xi = -1.
+[[nodiscard]] const std::vector<std::vector<int>>& element_faces(ElementType type);
+/// The element faces whose nodes all belong to `nodes` (a node set), in block and
+/// element order.
+[[nodiscard]] std::vector<ElementFace> faces_on_nodes(const Mesh& mesh,
+                                                      std::span<const std::int32_t> nodes);
+/// Area [m^2] of the faces (the element's own shape functions on the face, the face
+/// rule: collapsed 4 x 4 Gauss on triangles, degree 5; 4 x 4 Gauss on quadrilaterals).
+[[nodiscard]] double faces_area(const Mesh& mesh, std::span<const ElementFace> faces);
+/// Consistent nodal forces [N] (3 * node_count(), dof 3 node + component) of a uniform
+/// traction `traction` [Pa] (global axes) on the faces: f_(3a+i) = int_faces N_a t_i dA.
+/// Throws InvalidInput for a face that does not exist.
+[[nodiscard]] Eigen::VectorXd traction_load(const Mesh& mesh, std::span<const ElementFace> faces,
+                                            const Eigen::Vector3d& traction);
 
 /// Volume [m^3] of each body (index as mesh.bodies).
 [[nodiscard]] std::vector<double> body_volumes(const Mesh& mesh);
