@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numeric>
 
 #include "asperity/core/error.hpp"
@@ -254,6 +256,17 @@ struct PatternMatrix {
   PatternMatrix(const NodeGraph& graph, bool diagonal_only)
       : n(3 * static_cast<Eigen::Index>(graph.neighbours.size())), diagonal_blocks(diagonal_only) {
     const int per_neighbour = diagonal_only ? 1 : 3;
+    std::int64_t nnz = 0;
+    for (const auto& list : graph.neighbours) {
+      nnz += 3 * per_neighbour * static_cast<std::int64_t>(list.size());
+    }
+    if (nnz > std::numeric_limits<int>::max()) {
+      throw InvalidInput(
+          fmt::format("the mesh's matrices would have {} nonzeros, more than the "
+                      "{} that 32-bit sparse indices allow",
+                      nnz, std::numeric_limits<int>::max()));
+    }
+    inner.reserve(static_cast<std::size_t>(nnz));
     outer.reserve(static_cast<std::size_t>(n) + 1);
     outer.push_back(0);
     for (const auto& list : graph.neighbours) {
