@@ -1,5 +1,10 @@
 """Stiffness and consistent mass of asperity.fem against scikit-fem (an independent FE code).
 
+hex20 likewise against ``ElementVector(ElementHexS2())`` (the 20-node serendipity brick)
+on a mesh of distorted (trilinear) hexahedra, both with 3 x 3 x 3 Gauss points
+(scikit-fem's ``intorder=5``): the same rule on the same rational integrands, so again
+agreement to round-off.
+
 scikit-fem's ``ElementVector(ElementTetP2())`` (quadratic Lagrange tetrahedra, vector
 valued) with its own linear-elasticity form (``skfem.models.elasticity``) and a mass form
 ``rho u . v``, integrated by its order-4 rule: exact for both on straight-sided
@@ -23,23 +28,47 @@ import asperity
 import asperity.fem
 
 # scikit-fem is a test dependency (python/requirements.txt): imported, never skipped.
-from skfem import Basis, BilinearForm, ElementTetP2, ElementVector, MeshTet, asm  # noqa: E402
+from skfem import (Basis, BilinearForm, ElementHexS2, ElementTetP2, ElementVector,  # noqa: E402
+                   MeshHex, MeshTet, asm)
 from skfem.helpers import dot  # noqa: E402
 from skfem.models.elasticity import lame_parameters, linear_elasticity  # noqa: E402
 
 E, NU, RHO = 200e9, 0.29, 7800.0
 TET_EDGES = [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]
+# Abaqus C3D20: corners at these natural coordinates, then the mid-edges of these pairs.
+HEX_CORNERS = [(-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1),
+               (-1, -1, 1), (1, -1, 1), (1, 1, 1), (-1, 1, 1)]
+HEX_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
+             (0, 4), (1, 5), (2, 6), (3, 7)]
 
 
-def small_mesh() -> MeshTet:
-    """2 x 2 x 2 cells (48 tets) of uneven spacing [m], interior vertex moved: affine
-    tetrahedra of several shapes and orientations."""
-    m = MeshTet.init_tensor(np.array([0.0, 0.013, 0.03]), np.array([0.0, 0.008, 0.02]),
-                            np.array([0.0, 0.011, 0.025]))
+def small_mesh(kind=MeshTet):
+    """2 x 2 x 2 cells of uneven spacing [m] (48 tets or 8 hexahedra), the interior vertex
+    moved: affine tetrahedra of several shapes and orientations, or trilinear bricks."""
+    m = kind.init_tensor(np.array([0.0, 0.013, 0.03]), np.array([0.0, 0.008, 0.02]),
+                         np.array([0.0, 0.011, 0.025]))
     p = m.p.copy()
     centre = np.argmin(np.linalg.norm(p - np.array([[0.013], [0.008], [0.011]]), axis=0))
     p[:, centre] += [0.0017, -0.0009, 0.0013]
-    return MeshTet(p, m.t)
+    return kind(p, m.t)
+
+
+def to_hex20(m: MeshHex):
+    """asperity's (nodes, connectivity (m, 20)) of a serendipity mesh: each cell's corners
+    put in C3D20 order by their direction from its centroid (bricks mildly distorted), the
+    mid-edge nodes at edge midpoints, numbered after the vertices by scikit-fem's edges."""
+    nv = m.p.shape[1]
+    edge_index = {tuple(sorted(e)): k for k, e in enumerate(m.edges.T.tolist())}
+    nodes = np.vstack([m.p.T, 0.5 * (m.p[:, m.edges[0]] + m.p[:, m.edges[1]]).T])
+    connectivity = []
+    for cell in m.t.T:
+        x = m.p[:, cell]
+        centre = x.mean(axis=1, keepdims=True)
+        v = [int(cell[np.argmax(np.array(s) @ (x - centre))]) for s in HEX_CORNERS]
+        assert len(set(v)) == 8
+        connectivity.append(v + [nv + edge_index[tuple(sorted((v[a], v[b])))]
+                                 for a, b in HEX_EDGES])
+    return nodes, np.array(connectivity, dtype=np.int64)
 
 
 def to_tet10(m: MeshTet):
@@ -68,8 +97,8 @@ def dof_map(basis, nv: int, n_nodes: int) -> np.ndarray:
     return out
 
 
-def skfem_matrices(m: MeshTet):
-    basis = Basis(m, ElementVector(ElementTetP2()), intorder=4)
+def skfem_matrices(m, element=None, intorder=4):
+    basis = Basis(m, ElementVector(element or ElementTetP2()), intorder=intorder)
     K = asm(linear_elasticity(*lame_parameters(E, NU)), basis)
 
     @BilinearForm
@@ -99,6 +128,17 @@ def test_tet10_stiffness_and_mass_equal_scikit_fem():
     # The check can fail: E off by 1e-8 relative is 1e-8 in K, far above the tolerance.
     K_off, _ = asperity.fem.assemble(nodes, connectivity, E * (1 + 1e-8), NU, RHO)
     assert relative_frobenius(K_off, K_ref) > 5e-9
+
+
+def test_hex20_stiffness_and_mass_equal_scikit_fem():
+    m = small_mesh(MeshHex)
+    nodes, connectivity = to_hex20(m)
+    K, M = asperity.fem.assemble(nodes, connectivity, E, NU, RHO)
+    basis, K_ref, M_ref = skfem_matrices(m, ElementHexS2(), intorder=5)
+    P = dof_map(basis, m.p.shape[1], nodes.shape[0])
+    assert sorted(P.tolist()) == list(range(basis.N))
+    assert relative_frobenius(K, K_ref.tocsr()[P][:, P]) < 1e-10
+    assert relative_frobenius(M, M_ref.tocsr()[P][:, P]) < 1e-10
 
 
 def test_bad_input_is_named():
