@@ -34,6 +34,8 @@ Cattaneo-Mindlin tilde functions live in :mod:`asperity.mindlin`; matplotlib hel
 matrices or MatrixMarket files, joint elements (Jenkins, Iwan4, Coulomb,
 ElasticDryFriction2d, RoughFlat), harmonic balance with its residual and Jacobian,
 nonlinear modes (EPMC), frequency responses and the quasi-static modal estimate.
+:mod:`asperity.fem` holds the finite-element layer (issue 19): stiffness and consistent
+mass of tet10 / hex20 meshes as scipy.sparse matrices.
 """
 from __future__ import annotations
 

@@ -55,12 +55,12 @@ Mesh structured_box_mesh(const Eigen::Vector3d& corner, const Eigen::Vector3d& s
   ElementBlock block;
   block.type = type;
   std::vector<std::int64_t> element_grid_nodes;
+  const Eigen::Matrix3Xd natural = natural_node_coordinates(type);
   for (std::int64_t iz = 0; iz < divisions[2]; ++iz) {
     for (std::int64_t iy = 0; iy < divisions[1]; ++iy) {
       for (std::int64_t ix = 0; ix < divisions[0]; ++ix) {
         const std::array<std::int64_t, 3> base = {2 * ix, 2 * iy, 2 * iz};
         if (type == ElementType::hex20) {
-          const Eigen::Matrix3Xd natural = natural_node_coordinates(type);
           for (Eigen::Index a = 0; a < natural.cols(); ++a) {
             std::array<std::int64_t, 3> g{};
             for (int c = 0; c < 3; ++c) {
