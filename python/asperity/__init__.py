@@ -34,6 +34,8 @@ Cattaneo-Mindlin tilde functions live in :mod:`asperity.mindlin`; matplotlib hel
 matrices or MatrixMarket files, joint elements (Jenkins, Iwan4, Coulomb,
 ElasticDryFriction2d, RoughFlat), harmonic balance with its residual and Jacobian,
 nonlinear modes (EPMC), frequency responses and the quasi-static modal estimate.
+:mod:`asperity.fem` holds the finite-element layer (issue 19): stiffness and consistent
+mass of tet10 / hex20 meshes as scipy.sparse matrices.
 """
 from __future__ import annotations
 
@@ -46,6 +48,7 @@ from ._core import mindlin
 from . import joints  # noqa: F401  (matplotlib helpers for predict / analyze_fretting)
 from . import dynamics  # noqa: F401  (dynamics case files, Fig. 7.3-7.7 helpers)
 from . import vibration  # noqa: F401  (harmonic balance, nonlinear modes, FRFs)
+from . import fem  # noqa: F401  (finite elements: stiffness and mass of solid bodies)
 
 # inspect.signature() on the compiled functions, methods and constructors (_signatures.py).
 from . import _signatures  # noqa: E402

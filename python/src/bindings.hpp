@@ -28,6 +28,8 @@ void bind_dynamics(nb::module_& m);
 void bind_vibration(nb::module_& m);
 /// fem/ structures: asperity structure's steps and reduced-model files (fem_* functions).
 void bind_fem_structure(nb::module_& m);
+/// fem/: stiffness and consistent mass of quadratic solid elements (scipy.sparse).
+void bind_fem(nb::module_& m);
 /// The forwarders that give compiled functions and methods an inspect.Signature.
 void bind_signatures(nb::module_& m);
 

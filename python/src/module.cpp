@@ -34,6 +34,7 @@ NB_MODULE(_core, m) {
   asperity::python::bind_dynamics(m);
   asperity::python::bind_vibration(m);
   asperity::python::bind_fem_structure(m);
+  asperity::python::bind_fem(m);
   asperity::python::bind_signatures(m);
   g_main_thread = nanobind::cast<unsigned long>(
       nanobind::module_::import_("threading").attr("main_thread")().attr("ident"));

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -221,6 +222,10 @@ void run_structure_cli(const StructureOptionsCli& o, std::string& out) {
   const StructureCase c = read_structure_case(o.case_file);
   StructureOptions options;
   options.meshing.gmsh = o.gmsh;
+  options.progress = [](const std::string& step) {
+    fmt::print(stderr, "asperity structure: {}\n", step);
+    std::fflush(stderr);
+  };
   const StructureResult r = run_structure(c, options);
   std::vector<std::string> written;
   if (o.out_dir) {

@@ -118,6 +118,14 @@ void check_symmetric(const Eigen::MatrixXd& A, const char* name) {
         name, name, name, (A - A.transpose()).cwiseAbs().maxCoeff() / scale, scale));
 }
 
+// Below this |omega^2| a mode is a rigid-body mode: 1e-10 of tr(K)/tr(M) of the model
+// itself (without interface stiffness), a scale of its stiffest modes. A relative
+// threshold on the eigenvalues of K + K_interface would grow with a stiff penalty and take
+// low elastic modes for rigid ones.
+double rigid_tolerance(const ReducedModel& m) {
+  return 1e-10 * std::abs(m.K.diagonal().sum()) / m.M.diagonal().sum();
+}
+
 }  // namespace
 
 void ReducedModel::validate() const {
@@ -307,8 +315,7 @@ LinearModesResult reduced_linear_modes(const ReducedModel& model, const Eigen::V
                                      "(dense generalized symmetric solver; M positive definite?)",
                                      label, K.rows()));
   const Eigen::VectorXd w2 = es.eigenvalues();
-  // Rigid-body modes: |omega^2| below 1e-8 of the largest (round-off of the reduced matrices).
-  const double tol = 1e-8 * w2.cwiseAbs().maxCoeff();
+  const double tol = rigid_tolerance(model);
   LinearModesResult out;
   std::vector<Eigen::Index> elastic;
   for (Eigen::Index i = 0; i < w2.size(); ++i) {
@@ -364,7 +371,7 @@ LinearPrestress linear_prestress(const ReducedModel& model, double k_n) {
       }
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Ke, model.M);
     const Eigen::VectorXd w2 = es.eigenvalues();
-    const double tol = 1e-8 * w2.cwiseAbs().maxCoeff();
+    const double tol = rigid_tolerance(model);
     Eigen::MatrixXd Kr = Ke;
     const double alpha = w2.cwiseAbs().maxCoeff() * 1e-3;
     for (Eigen::Index i = 0; i < w2.size(); ++i)

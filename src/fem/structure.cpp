@@ -6,6 +6,7 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <numeric>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
@@ -297,11 +298,15 @@ StructureCase read_structure_case(const std::string& path) {
 StructureResult run_structure(const StructureCase& c, const StructureOptions& options) {
   StructureResult res;
   auto clock = std::chrono::steady_clock::now();
+  auto starting = [&](const std::string& what) {
+    if (options.progress) options.progress(what);
+  };
   auto step = [&](const char* name) {
     const auto now = std::chrono::steady_clock::now();
     res.costs.push_back({name, std::chrono::duration<double>(now - clock).count(), peak_rss_mib()});
     clock = now;
   };
+  starting(c.mesh_file.empty() ? "meshing with gmsh" : "reading " + c.mesh_file);
   if (c.mesh_file.empty()) {
     res.mesh = mesh_geometry(c.geometry, options.meshing);
   } else {
@@ -327,6 +332,8 @@ StructureResult run_structure(const StructureCase& c, const StructureOptions& op
   }
   res.shared_nodes_split = split_shared_nodes(res.mesh);
   const auto faces = boundary_faces(res.mesh);
+  starting(fmt::format("assembling ({} nodes, {} elements)", res.mesh.node_count(),
+                       res.mesh.element_count()));
   auto km = assemble(res.mesh, per_body);
   for (const double m : body_masses(res.mesh, per_body)) res.total_mass += m;
   step("assembly");
@@ -339,6 +346,13 @@ StructureResult run_structure(const StructureCase& c, const StructureOptions& op
   }
   for (const auto& si : c.interfaces) res.interfaces.push_back(build_interface(res.mesh, faces, si.spec));
   step("bolts and interfaces");
+  starting(fmt::format("reducing ({} DOFs to {} interface DOFs and {} tied modes)", dofs,
+                       3 * std::accumulate(res.interfaces.begin(), res.interfaces.end(),
+                                           std::size_t{0},
+                                           [](std::size_t a, const Interface& i) {
+                                             return a + i.patches.size();
+                                           }),
+                       c.reduction.fixed_interface_modes));
   std::vector<Eigen::VectorXd> bolt_loads;
   for (const auto& b : res.bolts) bolt_loads.push_back(-Eigen::VectorXd(b.elongation));
   res.reduction = craig_bampton(km.K, km.M, res.mesh.nodes, res.interfaces, c.reduction, bolt_loads);
@@ -389,6 +403,7 @@ StructureResult run_structure(const StructureCase& c, const StructureOptions& op
   m.fixed_interface_modes = c.reduction.fixed_interface_modes;
   m.validate();
 
+  starting("prestress and linear modes");
   // Linear analyses at the bolt preload.
   const Eigen::VectorXd open = Eigen::VectorXd::Zero(ng);
   res.analyses.push_back({"open", reduced_linear_modes(m, open, c.modes, "open interface")});

@@ -74,8 +74,9 @@ struct LinearModesResult {
   Eigen::MatrixXd shapes;         ///< reduced, mass-normalised, one column per elastic mode
   Eigen::Index rigid_body_modes = 0;
 };
-/// `label` names the analysis in messages. Throws InvalidInput when there are more than 6
-/// rigid-body modes (more than a free-free structure allows).
+/// `label` names the analysis in messages. Rigid-body modes: |omega^2| below 1e-10 of
+/// tr(K)/tr(M) of the model. Throws InvalidInput when there are more than 6 of them (more
+/// than a free-free structure allows).
 [[nodiscard]] LinearModesResult reduced_linear_modes(const ReducedModel& model,
                                                      const Eigen::VectorXd& element_stiffness,
                                                      int count, const std::string& label);

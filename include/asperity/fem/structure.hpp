@@ -1,6 +1,7 @@
 #pragma once
 // A bolted structure from a case file to a reduced model and its linear modes: the steps
 // of `asperity structure` (beyond the thesis). See docs/structures.md for the case format.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,8 @@ struct StructureResult {
 
 struct StructureOptions {
   MeshOptions meshing;
+  /// Called with the name of each step as it starts (the CLI prints them on stderr).
+  std::function<void(const std::string&)> progress;
 };
 
 /// Mesh, assemble, place bolts and interfaces, reduce, prestress and linear modes.

@@ -1,0 +1,77 @@
+"""Finite elements of elastic bodies: quadratic solids, stiffness and consistent mass.
+
+The Python face of the C++ layer ``fem/`` (docs/structures.md); SI units throughout.
+
+* :func:`assemble` - ``(K, M)`` as scipy.sparse matrices for one isotropic body meshed
+  with 10-node tetrahedra or 20-node hexahedra (node order of
+  ``include/asperity/fem/mesh.hpp``: tet10 corners 0-3 then mid-edges 0-1, 1-2, 2-0,
+  0-3, 1-3, 2-3; hex20 as Abaqus C3D20). DOF ``3 * node + component``.
+* :func:`run_structure` - a structure case file of ``asperity structure`` (the same C++
+  run): the mesh, the reduced model, the linear modes (open, frictionless, stuck) and the
+  prestress, as a dict of numpy arrays.
+* :func:`read_reduced_model` - a reduced model (.mat: asperity's, or the published
+  Brake-Reuss beam layout M, K, Fv, L, Qm, Tm) as a dict; :func:`read_mesh` - a gmsh
+  ``.msh`` or Abaqus ``.inp`` mesh of quadratic solids; :func:`reduced_linear_modes` -
+  the elastic modes of a reduced model file with a linear stiffness per interface element.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import _core
+
+_f = _core._fem
+
+__all__ = ["assemble", "run_structure", "read_reduced_model", "read_mesh",
+           "reduced_linear_modes"]
+
+
+def assemble(nodes, connectivity, E: float, nu: float, rho: float):
+    """``(K [N/m], M [kg])``, scipy.sparse CSC matrices of size ``3 n``, for ``nodes``
+    ``(n, 3)`` [m] and ``connectivity`` ``(m, 10)`` (tet10) or ``(m, 20)`` (hex20) of
+    0-based node indices; Young's modulus ``E`` [Pa], Poisson's ratio ``nu`` in
+    (-1, 0.5), density ``rho`` [kg/m^3]. Raises :class:`asperity.InvalidInput` for an
+    index out of range, a node no element uses, an inverted or degenerate element (named
+    by its row) or a material out of range."""
+    nodes = np.ascontiguousarray(nodes, dtype=float)
+    connectivity = np.ascontiguousarray(connectivity, dtype=np.int64)
+    if nodes.ndim != 2 or connectivity.ndim != 2:
+        raise _core.InvalidInput(
+            f"nodes and connectivity must be 2-D arrays (got {nodes.ndim} and "
+            f"{connectivity.ndim} dimensions)")
+    return _f.assemble(nodes, connectivity, float(E), float(nu), float(rho))
+
+
+def run_structure(path: str, gmsh: str = "gmsh") -> dict:
+    """Runs a structure case file (docs/structures.md): mesh (gmsh, run as a separate
+    program), assembly, bolts, interfaces, Craig-Bampton reduction, linear prestress and
+    modes. Returns ``mesh`` (nodes, blocks, bodies), ``model`` (see
+    :func:`read_reduced_model`), ``linear_modes`` (``open``, ``frictionless``, ``stuck``:
+    ``frequency_hz``, reduced ``shapes``, ``rigid_body_modes``), ``prestress_pressure`` [Pa]
+    per interface element, ``contact_area`` [m^2], ``bolt_load`` [N], ``mass`` [kg] and
+    ``costs`` (step, seconds, peak memory MiB)."""
+    return _core.fem_run_structure(str(path), gmsh)
+
+
+def read_reduced_model(path: str) -> dict:
+    """A reduced model file as a dict: ``M``, ``K``, ``Q`` (element relative
+    displacements, 3 per element: t1, t2, n), ``T`` (element tractions [Pa] to reduced
+    forces [N]), ``element_area``, ``element_centroid``, ``element_frame`` (rows t1, t2, n),
+    ``element_interface``, ``Fv`` (unit bolt tensions), ``bolt_elongation``,
+    ``bolt_axial_stiffness``, ``bolt_preload``, ``bolt_names``, ``R`` (output-point
+    recovery), ``output_names``, ``output_points``, ``source``."""
+    return _core.fem_read_reduced_model(str(path))
+
+
+def read_mesh(path: str) -> dict:
+    """A gmsh ``.msh`` (4.1 or 2.2 ASCII) or Abaqus ``.inp`` mesh: ``nodes`` (n, 3) [m as in
+    the file], ``blocks`` (``type``, ``connectivity``, ``body`` per element), ``bodies``."""
+    return _core.fem_read_mesh(str(path))
+
+
+def reduced_linear_modes(path: str, element_stiffness, count: int = 10) -> dict:
+    """Elastic modes (``frequency_hz``, ``shapes``, ``rigid_body_modes``) of the reduced
+    model file at ``path`` with a linear interface stiffness [Pa/m] per element direction
+    (3 per element: t1, t2, n; 0 where open), multiplied by each element's area."""
+    k = np.ascontiguousarray(element_stiffness, dtype=float).ravel()
+    return _core.fem_reduced_linear_modes(str(path), k, int(count))
