@@ -190,7 +190,7 @@ void write_files(const StructureCase& c, const StructureResult& r, joint::Staged
              .xlabel = "x [mm]",
              .ylabel = "z [mm]",
              .extra = "set size ratio -1\nunset key"};
-  m.series.push_back(mesh_edges(r, faces, nullptr, 0, "mesh", "lines lc rgb '#4060a0' lw 0.5"));
+  m.series.push_back(mesh_edges(r, faces, nullptr, 0, "mesh", "lines lc rgb '#4060a0'"));
   plot_png(dir.file("mesh.png"), m);
   written.push_back("mesh.png");
   const double extent =
@@ -208,8 +208,8 @@ void write_files(const StructureCase& c, const StructureResult& r, joint::Staged
                  .xlabel = "x [mm]",
                  .ylabel = "z [mm]",
                  .extra = "set size ratio -1\nset key bottom right"};
-      p.series.push_back(mesh_edges(r, faces, nullptr, 0, "undeformed", "lines lc rgb '#c0c0c0' lw 0.5"));
-      p.series.push_back(mesh_edges(r, faces, &u, scale, "mode shape", "lines lc rgb '#b02020' lw 0.5"));
+      p.series.push_back(mesh_edges(r, faces, nullptr, 0, "undeformed", "lines lc rgb '#c0c0c0'"));
+      p.series.push_back(mesh_edges(r, faces, &u, scale, "mode shape", "lines lc rgb '#b02020'"));
       const auto name = fmt::format("mode_{}.png", k + 1);
       plot_png(dir.file(name), p);
       written.push_back(name);
