@@ -263,6 +263,7 @@ nb::dict case_result(const VibrationCase& c) {
       r.quasi_static_mode ? nb::object(quasi_static_dict(*r.quasi_static_mode)) : nb::none();
   d["complete"] = r.complete;
   d["stop_reason"] = r.stop_reason;
+  d["remedy"] = r.remedy;
   d["warnings"] = string_list(r.warnings);
   d["system"] = case_system(c);
   return d;

@@ -300,11 +300,9 @@ void run_vibration(const VibrationOptions& o, std::string& out) {
     std::fflush(stdout);
     out.clear();
     throw NumericalError(fmt::format(
-        "{}; the {} points computed are kept{} (solver.complete = false): loosen the "
-        "continuation settings (min_step, max_iterations, max_points) or shorten the range",
-        r.stop_reason,
+        "{}; the {} points computed are kept{} (solver.complete = false): {}", r.stop_reason,
         std::get<std::int64_t>(SummaryValue(r.summary).find("solver")->find("points")->data),
-        files ? fmt::format(" in {}", *o.out_dir) : std::string()));
+        files ? fmt::format(" in {}", *o.out_dir) : std::string(), r.remedy));
   }
 }
 

@@ -34,6 +34,8 @@ struct Work {
   std::size_t points = 0, newton = 0, residuals = 0, jacobians = 0, rejected = 0, turning = 0;
   double wall = 0.0;
   bool complete = true;
+  StopCause cause = StopCause::end;
+  std::size_t max_points = 0;  ///< of the continuation that stopped first
   std::string stop_reason;
 };
 
@@ -49,13 +51,15 @@ SummaryObject solver_summary(const Work& w) {
           {"stop_reason", w.stop_reason}};
 }
 
-void add_continuation(Work& w, const ContinuationResult& c) {
+void add_continuation(Work& w, const ContinuationResult& c, std::size_t max_points) {
   w.points += c.points.size();
   w.newton += c.newton_iterations;
   w.rejected += c.rejected_steps;
   w.turning += c.turning_points;
   if (!c.complete && w.complete) {
     w.complete = false;
+    w.cause = c.cause;
+    w.max_points = max_points;
     w.stop_reason = c.stop_reason;
   } else if (w.complete) {
     w.stop_reason = c.stop_reason;
@@ -71,8 +75,36 @@ void add_analysis(Work& total, const Work& w, const std::string& analysis) {
   total.turning += w.turning;
   if (!w.complete && total.complete) {
     total.complete = false;
+    total.cause = w.cause;
+    total.max_points = w.max_points;
     total.stop_reason = analysis + ": " + w.stop_reason;
   }
+}
+
+// What helps a continuation that stopped early, by its cause (measured on the
+// hardening-contact case of issue 23: min_step, max_iterations and max_points do not
+// help a stall; a finer sampling does).
+std::string remedy(const Work& w, std::size_t time_points) {
+  switch (w.cause) {
+    case StopCause::stalled:
+      return fmt::format(
+          "raise harmonic_balance.time_points (now {}; try {}): contact and slip are located "
+          "at the time samples, and the corners of the curve where the continuation stalls "
+          "shrink as time_points grows (a smaller min_step or more iterations do not help); or "
+          "end the range before the point where it stalled",
+          time_points, 4 * time_points);
+    case StopCause::max_points:
+      return fmt::format(
+          "raise the continuation's max_points (now {}): the curve was still advancing (folds at "
+          "contact and slip corners take many short steps)",
+          w.max_points);
+    case StopCause::turned_back:
+      return "the curve turned back past the start of its range: end the range before the turn "
+             "or start it from the other end";
+    case StopCause::end:
+      break;
+  }
+  return {};
 }
 
 }  // namespace
@@ -156,7 +188,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
       throw cannot_start("nonlinear_mode", e);
     }
     const NonlinearModeResult& m = *r.nonlinear_mode;
-    add_continuation(w, m.continuation);
+    add_continuation(w, m.continuation, c.nonlinear_mode->continuation.max_points);
     account(w, before, t0);
     r.warnings.insert(r.warnings.end(), m.warnings.begin(), m.warnings.end());
     j.emplace_back("nonlinear_mode", SummaryObject{{"mode", c.nonlinear_mode->mode},
@@ -202,7 +234,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
         ++done_curves;
         FrequencyResponseCurve& cv = cs.front();
         Work w;
-        add_continuation(w, cv.continuation);
+        add_continuation(w, cv.continuation, all.continuation.max_points);
         account(w, before, t0);
         r.warnings.insert(r.warnings.end(), cv.warnings.begin(), cv.warnings.end());
         SummaryArray ha;  // per point, per output, per harmonic
@@ -265,6 +297,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     if (total.complete) total.stop_reason = "every analysis reached the end of its range";
     r.complete = total.complete;
     r.stop_reason = total.stop_reason;
+    r.remedy = remedy(total, c.harmonic_balance.time_points);
     j.emplace_back("solver", solver_summary(total));
   }
   SummaryArray w;

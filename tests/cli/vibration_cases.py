@@ -237,7 +237,7 @@ continuation = { step = 0.5, min_step = 0.25, max_step = 0.5, max_iterations = 2
         r, out = run(exe, case, tmp)
         if r.returncode != 3:
             return fail(f"expected exit 3, got {r.returncode}: {r.stderr}")
-        if "stalled" not in r.stderr or "kept" not in r.stderr:
+        if "stalled" not in r.stderr or "kept" not in r.stderr or "time_points" not in r.stderr:
             return fail(f"message: {r.stderr}")
         j = json.load(open(os.path.join(out, "summary.json")))
         msg = check_summary(j, want_qs=False, want_frf=False)

@@ -132,6 +132,8 @@ struct VibrationResult {
   /// turned back; its points are kept and `stop_reason` says why).
   bool complete = true;
   std::string stop_reason;
+  /// What helps, when a continuation stopped early (empty otherwise).
+  std::string remedy;
   std::vector<std::string> warnings;
   /// summary.json: case, structure, elements, harmonic_balance, joint (if any),
   /// nonlinear_mode, frequency_response, quasi_static_mode, solver, warnings.

@@ -1,7 +1,11 @@
 #pragma once
 // Newton's method with a line search, and pseudo-arclength continuation with step-size
 // control that follows turning points (Keller 1977; Allgower & Georg, "Introduction to
-// Numerical Continuation Methods", 2003, ch. 2 and 6).
+// Numerical Continuation Methods", 2003, ch. 2 and 6), including folds at kinks of a
+// piecewise-smooth residual (AFT with contact and slip located at samples): where no
+// point on the corrector's plane continues the curve, the next piece's tangent, taken
+// from the Jacobian across the boundary and oriented by the sign of det [J S; t^T]
+// (ch. 2.1, and the piecewise-linear methods of ch. 12), gives the predictor.
 #include <functional>
 #include <string>
 #include <vector>
@@ -58,13 +62,25 @@ struct ContinuationProblem {
   double parameter_end = 0.0;
 };
 
+/// Why a continuation stopped.
+enum class StopCause {
+  end,          ///< the parameter end was reached
+  max_points,   ///< max_points converged points
+  stalled,      ///< no converged point on steps down to min_step
+  turned_back,  ///< the curve went back past the start of the range
+};
+
 struct ContinuationResult {
   std::vector<Eigen::VectorXd> points;  ///< converged solutions in order along the curve
   std::size_t newton_iterations = 0;
   std::size_t rejected_steps = 0;
   std::size_t turning_points = 0;  ///< sign changes of d parameter / d s
-  bool complete = false;           ///< the parameter end was reached
-  std::string stop_reason;         ///< why it stopped (for messages and summaries)
+  /// Points reached along the tangent of the next piece of a piecewise-smooth residual
+  /// (a fold or sharp turn at a kink of the curve).
+  std::size_t kinks = 0;
+  bool complete = false;  ///< the parameter end was reached
+  StopCause cause = StopCause::end;
+  std::string stop_reason;  ///< why it stopped (for messages and summaries)
 };
 
 /// Progress callback: fraction of the parameter range covered, in [0, 1].
