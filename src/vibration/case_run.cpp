@@ -251,6 +251,21 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                         {"output_amplitude", rows(cv.output_amplitude)},
                         {"max_displacement", rows(cv.max_displacement)},
                         {"harmonic_amplitude", std::move(ha)}};
+        SummaryArray peaks, folds;
+        for (const ResponsePeak& pk : cv.peaks) {
+          peaks.emplace_back(
+              SummaryObject{{"output_dof", static_cast<std::size_t>(c.output_dofs[pk.output])},
+                            {"omega_rad_s", pk.omega},
+                            {"frequency_hz", pk.omega / (2.0 * std::numbers::pi)},
+                            {"amplitude_m", pk.amplitude}});
+        }
+        for (const ResponseFold& f : cv.folds) {
+          folds.emplace_back(SummaryObject{{"omega_rad_s", f.omega},
+                                           {"frequency_hz", f.omega / (2.0 * std::numbers::pi)},
+                                           {"output_amplitude", array(f.output_amplitude)}});
+        }
+        o.emplace_back("peaks", std::move(peaks));
+        o.emplace_back("folds", std::move(folds));
         o.emplace_back("solver", solver_summary(w));
         curves.emplace_back(std::move(o));
         add_analysis(total, w, curve);

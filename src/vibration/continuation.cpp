@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include <fmt/format.h>
 #include <Eigen/LU>
+#include <boost/math/tools/minima.hpp>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
@@ -446,6 +448,105 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
       out.stop_reason = "the curve turned back past the start of the parameter range";
       break;
     }
+  }
+  return out;
+}
+
+namespace {
+
+// Iterations allowed to Brent's method when refining a maximum along the curve.
+constexpr std::uintmax_t kBrentIterations = 100;
+
+// The curve near point k (0 < k < last) as y(sigma): the solution on the plane
+// c^T (z - z_{k-1}) = sigma, c the unit chord from z_{k-1} to z_{k+1} in scaled unknowns,
+// corrected by Newton from the polyline through the three points.
+class LocalCurve {
+ public:
+  LocalCurve(const ContinuationProblem& pb, const std::vector<Eigen::VectorXd>& points,
+             std::size_t k, const NewtonOptions& newton)
+      : pb_(pb), newton_(newton) {
+    for (int j = 0; j < 3; ++j) {
+      z_[j] = (points[k - 1 + static_cast<std::size_t>(j)].array() / pb.scale.array()).matrix();
+    }
+    length_ = (z_[2] - z_[0]).norm();
+    c_ = length_ > 0.0 ? Eigen::VectorXd((z_[2] - z_[0]) / length_) : Eigen::VectorXd();
+    sigma_mid_ = length_ > 0.0 ? c_.dot(z_[1] - z_[0]) : 0.0;
+  }
+  [[nodiscard]] double length() const { return length_; }
+  [[nodiscard]] bool monotone() const {
+    return length_ > 0.0 && sigma_mid_ > 0.0 && sigma_mid_ < length_;
+  }
+  // The point at sigma; empty when Newton fails there.
+  [[nodiscard]] Eigen::VectorXd at(double sigma) const {
+    const Eigen::VectorXd guess =
+        sigma <= sigma_mid_ ? Eigen::VectorXd(z_[0] + (z_[1] - z_[0]) * (sigma / sigma_mid_))
+                            : Eigen::VectorXd(z_[1] + (z_[2] - z_[1]) * ((sigma - sigma_mid_) /
+                                                                         (length_ - sigma_mid_)));
+    const Eigen::Index n = guess.size();
+    const SystemFunction g = [&](const Eigen::VectorXd& y, Eigen::VectorXd& R, Eigen::MatrixXd* J) {
+      Eigen::VectorXd r;
+      Eigen::MatrixXd Jy;
+      pb_.f(y, r, J ? &Jy : nullptr);
+      R.resize(n);
+      R.head(n - 1) = r;
+      R(n - 1) =
+          pb_.residual_scale * (c_.dot((y.array() / pb_.scale.array()).matrix() - z_[0]) - sigma);
+      if (J) {
+        J->resize(n, n);
+        J->topRows(n - 1) = Jy;
+        J->row(n - 1) = pb_.residual_scale * (c_.array() / pb_.scale.array()).matrix().transpose();
+      }
+    };
+    const NewtonResult r =
+        solve_newton(g, guess.cwiseProduct(pb_.scale), pb_.scale, pb_.residual_scale, newton_);
+    return r.converged ? r.y : Eigen::VectorXd();
+  }
+
+ private:
+  const ContinuationProblem& pb_;
+  NewtonOptions newton_;
+  Eigen::VectorXd z_[3];
+  Eigen::VectorXd c_;
+  double length_ = 0.0;
+  double sigma_mid_ = 0.0;
+};
+
+}  // namespace
+
+Eigen::VectorXd refine_curve_maximum(const ContinuationProblem& pb,
+                                     const std::vector<Eigen::VectorXd>& points, std::size_t k,
+                                     const NewtonOptions& newton,
+                                     const std::function<double(const Eigen::VectorXd&)>& value) {
+  const LocalCurve curve(pb, points, k, newton);
+  if (!curve.monotone()) return points[k];
+  bool failed = false;
+  const auto minus_value = [&](double sigma) {
+    const Eigen::VectorXd y = curve.at(sigma);
+    if (y.size() == 0) {
+      failed = true;
+      return std::numeric_limits<double>::max();
+    }
+    return -value(y);
+  };
+  // Brent's method locates a smooth maximum to sqrt(machine epsilon) of the chord (it
+  // caps `bits` at half the mantissa); the value's error is quadratic in that.
+  std::uintmax_t iterations = kBrentIterations;
+  const auto best = boost::math::tools::brent_find_minima(
+      minus_value, 0.0, curve.length(), std::numeric_limits<double>::digits / 2, iterations);
+  if (failed || !(-best.second >= value(points[k]))) return points[k];
+  return curve.at(best.first);
+}
+
+std::vector<std::size_t> prominent_maxima(const std::vector<double>& v,
+                                          const std::function<double(double)>& min_prominence) {
+  std::vector<std::size_t> out;
+  const std::size_t n = v.size();
+  for (std::size_t k = 1; k + 1 < n; ++k) {
+    if (!(v[k] > v[k - 1] && v[k] >= v[k + 1])) continue;
+    double left = v[k], right = v[k];
+    for (std::size_t j = k; j-- > 0 && v[j] <= v[k];) left = std::min(left, v[j]);
+    for (std::size_t j = k + 1; j < n && v[j] <= v[k]; ++j) right = std::min(right, v[j]);
+    if (v[k] - std::max(left, right) >= min_prominence(v[k])) out.push_back(k);
   }
   return out;
 }

@@ -81,6 +81,27 @@ TEST(VibrationHardeningContact, CompletesThroughEveryPeakAtNt256) {
     EXPECT_LT(pk.omega, 2.2) << F;
     EXPECT_GE(c.continuation.turning_points, 2u) << F;
     EXPECT_LT(c.output_amplitude(c.output_amplitude.rows() - 1, 0), 0.5 * pk.amplitude) << F;
+    // The refined peak of the normal DOF and the overhang's two folds (its tip above the
+    // peak, its jump-up point where the contact opens, amplitude 0.5 = the gap); the
+    // Z's one sample wide are not reported (their prominence is below 2 %).
+    ASSERT_EQ(c.peaks.size(), 1u) << F;
+    EXPECT_GE(c.peaks[0].amplitude, pk.amplitude) << F;
+    EXPECT_NEAR(c.peaks[0].omega, pk.omega, 1e-3 * pk.omega) << F;
+    ASSERT_EQ(c.folds.size(), 2u) << F;
+    // The tip: no point in contact (amplitude above the gap of 0.5) lies beyond it.
+    for (Eigen::Index k = 0; k < c.omega.size(); ++k) {
+      if (c.output_amplitude(k, 0) > 0.6) {
+        EXPECT_LE(c.omega(k), c.folds[0].omega) << F;
+      }
+    }
+    EXPECT_GT(c.folds[0].omega, c.peaks[0].omega) << F;
+    EXPECT_LT(c.folds[1].omega, c.folds[0].omega) << F;
+    EXPECT_NEAR(c.folds[1].output_amplitude(0), 0.5, 2e-3) << F;
+    for (const ResponseFold& f : c.folds) {
+      Eigen::VectorXd R;
+      hb.residual(f.harmonics, f.omega, opt.force, R, nullptr, nullptr);
+      EXPECT_LE(R.cwiseAbs().maxCoeff(), opt.continuation.newton.residual_tolerance * 1.0) << F;
+    }
   }
 }
 

@@ -93,4 +93,21 @@ using ProgressFunction = std::function<void(double)>;
                                                 const ContinuationOptions& options,
                                                 const ProgressFunction& progress = {});
 
+/// The maximum of value(y) along the curve between points[k-1] and points[k+1] (0 < k <
+/// points.size() - 1, points[k] the largest of the three): the curve is parametrised by
+/// sigma on the chord from points[k-1] to points[k+1] (in scaled unknowns), each point
+/// corrected by Newton on R(y) = 0 and the chord's plane, and Brent's method finds the
+/// maximum to sqrt(machine epsilon) of the chord (the value's error quadratic in that,
+/// where the curve is smooth). Returns points[k]
+/// where the chord does not parametrise the curve or Newton fails.
+[[nodiscard]] Eigen::VectorXd refine_curve_maximum(
+    const ContinuationProblem& problem, const std::vector<Eigen::VectorXd>& points, std::size_t k,
+    const NewtonOptions& newton, const std::function<double(const Eigen::VectorXd&)>& value);
+
+/// Interior local maxima of v whose topographic prominence (how far v falls on both sides
+/// before rising above the maximum again or reaching an end) is at least
+/// min_prominence(v_k), in order.
+[[nodiscard]] std::vector<std::size_t> prominent_maxima(
+    const std::vector<double>& v, const std::function<double(double)>& min_prominence);
+
 }  // namespace asperity::vibration
