@@ -264,6 +264,7 @@ nb::dict case_result(const VibrationCase& c) {
   d["complete"] = r.complete;
   d["stop_reason"] = r.stop_reason;
   d["remedy"] = r.remedy;
+  d["failures"] = r.failures;
   d["warnings"] = string_list(r.warnings);
   d["system"] = case_system(c);
   return d;

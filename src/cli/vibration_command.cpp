@@ -324,8 +324,15 @@ void run_vibration(const VibrationOptions& o, std::string& out) {
     std::fputs(out.c_str(), stdout);
     std::fflush(stdout);
     out.clear();
+    // Curves that could not start are named too when another stop came first.
+    std::string not_started;
+    if (!r.failures.empty() && r.stop_reason.find("could not start") == std::string::npos) {
+      not_started = fmt::format("; {} curve(s) could not start, first {}", r.failures.size(),
+                                r.failures.front());
+    }
     throw NumericalError(fmt::format(
-        "{}; the {} points computed are kept{} (solver.complete = false): {}", r.stop_reason,
+        "{}{}; the {} points computed are kept{} (solver.complete = false): {}", r.stop_reason,
+        not_started,
         std::get<std::int64_t>(SummaryValue(r.summary).find("solver")->find("points")->data),
         files ? fmt::format(" in {}", *o.out_dir) : std::string(), r.remedy));
   }

@@ -161,6 +161,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
   if (c.joint) j.emplace_back("joint", *c.joint);
 
   Work total;
+  SummaryArray failed;  // curves that could not start, with the reason
   const auto t_all = clock::now();
   auto counters = [&hb] { return hb.counters(); };
   auto account = [&](Work& w, const WorkCounters& before, clock::time_point t0) {
@@ -229,7 +230,13 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                                   })
                                            : ProgressFunction{});
         } catch (const NumericalError& e) {
-          throw cannot_start(curve, e);
+          // The other curves still run; this one is named with its reason.
+          ++done_curves;
+          r.failures.push_back(cannot_start(curve, e).what());
+          r.warnings.push_back(r.failures.back());
+          failed.emplace_back(
+              SummaryObject{{"table", k}, {"force_scale", scale}, {"reason", r.failures.back()}});
+          continue;
         }
         ++done_curves;
         FrequencyResponseCurve& cv = cs.front();
@@ -275,6 +282,11 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     }
     j.emplace_back("frequency_response", std::move(curves));
   }
+  // Nothing computed at all: the case is bad input as a whole (exit 2).
+  if (!r.failures.empty() && r.frequency_response.empty() && !r.nonlinear_mode &&
+      !c.quasi_static_mode) {
+    throw InvalidInput(r.failures.front());
+  }
 
   if (c.quasi_static_mode) {
     Work w;
@@ -309,12 +321,29 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     total.residuals = wc.residual_evaluations;
     total.jacobians = wc.jacobian_evaluations;
     total.wall = std::chrono::duration<double>(clock::now() - t_all).count();
+    if (!r.failures.empty()) {
+      // Curves that could not start: the run is incomplete, the first of them its reason
+      // unless a curve stopped early before it.
+      if (total.complete) {
+        total.complete = false;
+        total.stop_reason = fmt::format(
+            "{} of {} frequency response curve(s) could not start: {}", r.failures.size(),
+            r.failures.size() + r.frequency_response.size(), r.failures.front());
+      }
+    }
     if (total.complete) total.stop_reason = "every analysis reached the end of its range";
     r.complete = total.complete;
     r.stop_reason = total.stop_reason;
     r.remedy = remedy(total, c.harmonic_balance.time_points);
+    if (!r.failures.empty()) {
+      r.remedy += std::string(r.remedy.empty() ? "" : "; ") +
+                  "for the curves that could not start: start the range (omega.from) where the "
+                  "response is small or the joint stuck, lower the force, or raise "
+                  "max_iterations";
+    }
     j.emplace_back("solver", solver_summary(total));
   }
+  j.emplace_back("failed", std::move(failed));
   SummaryArray w;
   for (const auto& s : r.warnings) w.emplace_back(s);
   j.emplace_back("warnings", std::move(w));

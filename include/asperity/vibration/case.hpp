@@ -134,14 +134,19 @@ struct VibrationResult {
   std::string stop_reason;
   /// What helps, when a continuation stopped early (empty otherwise).
   std::string remedy;
+  /// Frequency response curves that could not start, each "frequency_response[k] at force
+  /// scale s: reason"; the other curves are computed (complete is then false).
+  std::vector<std::string> failures;
   std::vector<std::string> warnings;
   /// summary.json: case, structure, elements, harmonic_balance, joint (if any),
   /// nonlinear_mode, frequency_response, quasi_static_mode, solver, warnings.
   SummaryObject summary;
 };
 
-/// Runs the analyses of the case. A continuation that cannot start (its first point does
-/// not converge) and a quasi-static push without equilibrium are bad input: InvalidInput
+/// Runs the analyses of the case. A frequency response curve that cannot start (its
+/// first point does not converge) is named in `failures` and the others run (complete =
+/// false); when nothing at all could be computed, and for a nonlinear mode that cannot
+/// start or a quasi-static push without equilibrium, the case is bad input: InvalidInput
 /// with what to change. A continuation that stops early is not an exception: the result
 /// has complete = false and every point computed.
 [[nodiscard]] VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress = {});
