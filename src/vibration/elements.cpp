@@ -417,6 +417,95 @@ dynamics::SummaryObject ElasticDryFriction2dElement::describe() const {
 }
 
 // ---------------------------------------------------------------------------------------
+// Polynomial stiffness and cubic damping
+
+void PolynomialStiffnessParameters::validate() const {
+  core::require_finite("polynomial_stiffness.k1", k1);
+  core::require_finite("polynomial_stiffness.k2", k2);
+  core::require_finite("polynomial_stiffness.k3", k3);
+  if (k1 == 0.0 && k2 == 0.0 && k3 == 0.0) {
+    throw InvalidInput("polynomial_stiffness: k1, k2 and k3 are all zero: give at least one");
+  }
+}
+
+PolynomialStiffnessElement::PolynomialStiffnessElement(PolynomialStiffnessParameters p) : p_(p) {
+  p_.validate();
+}
+
+void PolynomialStiffnessElement::periodic_response(const Eigen::MatrixXd& u,
+                                                   const Eigen::MatrixXd& /*v*/, bool tangent,
+                                                   PeriodicResponse& out) const {
+  require_finite_samples(u, "displacement");
+  prepare(out, u.rows(), 1, tangent, false);
+  for (Eigen::Index i = 0; i < u.rows(); ++i) {
+    const double x = u(i, 0);
+    out.f(i, 0) = x * (p_.k1 + x * (p_.k2 + x * p_.k3));
+    if (tangent) out.du(i, 0) = p_.k1 + x * (2.0 * p_.k2 + 3.0 * x * p_.k3);
+  }
+}
+
+void PolynomialStiffnessElement::static_response(const Eigen::VectorXd& u, Eigen::VectorXd& f,
+                                                 Eigen::MatrixXd& K) const {
+  core::require_finite("element displacement", u(0));
+  const double x = u(0);
+  f = Eigen::VectorXd::Constant(1, x * (p_.k1 + x * (p_.k2 + x * p_.k3)));
+  K = Eigen::MatrixXd::Constant(1, 1, p_.k1 + x * (2.0 * p_.k2 + 3.0 * x * p_.k3));
+}
+
+Eigen::MatrixXd PolynomialStiffnessElement::initial_stiffness() const {
+  return Eigen::MatrixXd::Constant(1, 1, p_.k1);
+}
+
+double PolynomialStiffnessElement::slip_force() const {
+  return std::numeric_limits<double>::infinity();
+}
+
+dynamics::SummaryObject PolynomialStiffnessElement::describe() const {
+  return {{"type", "polynomial_stiffness"},
+          {"k1_N_per_m", p_.k1},
+          {"k2_N_per_m2", p_.k2},
+          {"k3_N_per_m3", p_.k3}};
+}
+
+void CubicDampingParameters::validate() const {
+  core::require_finite("cubic_damping.c3", c3);
+  if (c3 == 0.0) throw InvalidInput("cubic_damping.c3 = 0: the element would do nothing");
+}
+
+CubicDampingElement::CubicDampingElement(CubicDampingParameters p) : p_(p) {
+  p_.validate();
+}
+
+void CubicDampingElement::periodic_response(const Eigen::MatrixXd& u, const Eigen::MatrixXd& v,
+                                            bool tangent, PeriodicResponse& out) const {
+  require_finite_samples(v, "velocity");
+  prepare(out, u.rows(), 1, tangent, true);
+  for (Eigen::Index i = 0; i < v.rows(); ++i) {
+    const double x = v(i, 0);
+    out.f(i, 0) = p_.c3 * x * x * x;
+    if (tangent) out.dv(i, 0) = 3.0 * p_.c3 * x * x;
+  }
+}
+
+void CubicDampingElement::static_response(const Eigen::VectorXd& /*u*/, Eigen::VectorXd& f,
+                                          Eigen::MatrixXd& K) const {
+  f = Eigen::VectorXd::Zero(1);
+  K = Eigen::MatrixXd::Zero(1, 1);
+}
+
+Eigen::MatrixXd CubicDampingElement::initial_stiffness() const {
+  return Eigen::MatrixXd::Zero(1, 1);
+}
+
+double CubicDampingElement::slip_force() const {
+  return std::numeric_limits<double>::infinity();
+}
+
+dynamics::SummaryObject CubicDampingElement::describe() const {
+  return {{"type", "cubic_damping"}, {"c3_N_s3_per_m3", p_.c3}};
+}
+
+// ---------------------------------------------------------------------------------------
 // Factories
 
 std::shared_ptr<const Element> make_jenkins_element(double k_t, double F_s) {
@@ -440,6 +529,15 @@ std::shared_ptr<const Element> make_coulomb_element(double F_s, double k_tan) {
 std::shared_ptr<const Element> make_elastic_dry_friction_2d_element(
     const ElasticDryFriction2dParameters& p) {
   return std::make_shared<ElasticDryFriction2dElement>(p);
+}
+
+std::shared_ptr<const Element> make_polynomial_stiffness_element(
+    const PolynomialStiffnessParameters& p) {
+  return std::make_shared<PolynomialStiffnessElement>(p);
+}
+
+std::shared_ptr<const Element> make_cubic_damping_element(double c3) {
+  return std::make_shared<CubicDampingElement>(CubicDampingParameters{.c3 = c3});
 }
 
 std::shared_ptr<const Element> make_rough_flat_element(

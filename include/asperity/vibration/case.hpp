@@ -18,6 +18,7 @@
 //
 //   [[element]]                 # any number, each acting on u = T x
 //   type = "jenkins"            # rough_flat | jenkins | iwan4 | coulomb | elastic_dry_friction_2d
+//                               #   | polynomial_stiffness | cubic_damping
 //   name = "bolt 1"             # optional
 //   T = [[1.0]]                 # rows: element directions; columns: structure DOFs
 //                               #    (one direction may be written as a flat list)
@@ -26,6 +27,9 @@
 //     iwan4:     F_S [N], K_T [N/m], chi, beta      (Segalman's four parameters)
 //     elastic_dry_friction_2d: k_t, k_n [N/m], mu, N0 [N] (optional, 0); T has 2 rows
 //                               (tangential, normal)
+//     polynomial_stiffness: k1 [N/m], k2 [N/m^2], k3 [N/m^3] (each optional, not all
+//                               zero): f = k1 u + k2 u^2 + k3 u^3 (Duffing: k3)
+//     cubic_damping: c3 [N s^3/m^3]: f = c3 v^3
 //     rough_flat: the rough flat at one normal load, through Masing's rules, from
 //       backbone = "dimensional": E_star, G_star, H, sigma, R, eta, A0, P (quantities),
 //                                 nu, asperity_model (bke), mu_cfc (optional)
