@@ -413,6 +413,15 @@ void bind_vibration(nb::module_& parent) {
       "Tangential (direction 0) Jenkins slider slipping at mu f_n, normal (direction 1) "
       "unilateral spring f_n = max(N0 + k_n u_n, 0).");
   m.def(
+      "polynomial_stiffness",
+      [](double k1, double k2, double k3) {
+        return make_polynomial_stiffness_element({.k1 = k1, .k2 = k2, .k3 = k3});
+      },
+      "k1"_a = 0.0, "k2"_a = 0.0, "k3"_a = 0.0,
+      "Polynomial stiffness f = k1 u + k2 u^2 + k3 u^3 (Duffing: k3) [N/m, N/m^2, N/m^3].");
+  m.def("cubic_damping", &make_cubic_damping_element, "c3"_a,
+        "Cubic damping f = c3 v^3, c3 [N s^3/m^3].");
+  m.def(
       "masing",
       [](std::shared_ptr<const hysteresis::Backbone> backbone, const std::string& type,
          const nb::dict& parameters) {
