@@ -201,7 +201,8 @@ class Coulomb(Element):
 class ElasticDryFriction2d(Element):
     """Tangential Jenkins slider (row 0 of ``T``) that slips at ``mu f_n``, with a unilateral
     normal spring ``f_n = max(N0 + k_n u_n, 0)`` (row 1; ``u_n > 0`` presses): separation
-    and normal-tangential coupling. The structure receives ``f_n - N0``."""
+    and normal-tangential coupling. The structure receives ``f_n - N0`` for a preload
+    ``N0 > 0``; ``N0 < 0`` is a gap ``-N0 / k_n`` (the structure receives ``f_n``)."""
 
     def __init__(self, k_t: float, k_n: float, mu: float, T, N0: float = 0.0,
                  name: str | None = None):

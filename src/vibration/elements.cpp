@@ -1,5 +1,6 @@
 #include "asperity/vibration/elements.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -300,7 +301,7 @@ void ElasticDryFriction2dParameters::validate() const {
   core::require_positive("elastic_dry_friction_2d.k_t", k_t);
   core::require_positive("elastic_dry_friction_2d.k_n", k_n);
   core::require_positive("elastic_dry_friction_2d.mu", mu);
-  core::require_non_negative("elastic_dry_friction_2d.N0", N0);
+  core::require_finite("elastic_dry_friction_2d.N0", N0);
 }
 
 ElasticDryFriction2dElement::ElasticDryFriction2dElement(ElasticDryFriction2dParameters p) : p_(p) {
@@ -319,6 +320,7 @@ void ElasticDryFriction2dElement::periodic_response(const Eigen::MatrixXd& u,
   prepare(out, u.rows(), 2, tangent, false);
   if (n == 0) return;
   const double kt = p_.k_t, kn = p_.k_n, mu = p_.mu;
+  const double preload = std::max(p_.N0, 0.0);  // carried by the bolt; none with a gap
   // Columns of du: d + 2 e (d: force direction, e: displacement direction).
   constexpr Eigen::Index tt = 0, nt = 1, tn = 2, nn = 3;
   // Since the last event s (slip or separation), f_t,i = f_t,s + k_t (u_t,i - u_t,s); at a
@@ -352,7 +354,7 @@ void ElasticDryFriction2dElement::periodic_response(const Eigen::MatrixXd& u,
     ut_prev = ut;
     if (step >= n) {
       out.f(ii, 0) = ft;
-      out.f(ii, 1) = fn - p_.N0;
+      out.f(ii, 1) = fn - preload;
       if (tangent && contact) {
         out.du(ii, nn) = kn;
         if (now == Event::slip) {
@@ -379,10 +381,11 @@ void ElasticDryFriction2dElement::static_response(const Eigen::VectorXd& u, Eige
   core::require_finite("element normal displacement", u(1));
   f = Eigen::VectorXd::Zero(2);
   K = Eigen::MatrixXd::Zero(2, 2);
-  f(1) = -p_.N0;
+  const double preload = std::max(p_.N0, 0.0);
+  f(1) = -preload;
   const double fn = p_.N0 + p_.k_n * u(1);
   if (fn <= 0.0) return;
-  f(1) = fn - p_.N0;
+  f(1) = fn - preload;
   K(1, 1) = p_.k_n;
   const double trial = p_.k_t * u(0);
   if (std::abs(trial) >= p_.mu * fn) {
@@ -405,7 +408,7 @@ Eigen::MatrixXd ElasticDryFriction2dElement::initial_stiffness() const {
 }
 
 double ElasticDryFriction2dElement::slip_force() const {
-  return p_.mu * p_.N0;
+  return p_.mu * std::max(p_.N0, 0.0);
 }
 
 dynamics::SummaryObject ElasticDryFriction2dElement::describe() const {

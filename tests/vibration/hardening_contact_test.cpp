@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <random>
 #include <utility>
 
 #include "asperity/vibration/analysis.hpp"
@@ -113,6 +114,37 @@ TEST(VibrationHardeningContact, CompletesThroughEveryPeakAtNt256) {
       hb.residual(f.harmonics, f.omega, opt.force, R, nullptr, nullptr);
       EXPECT_LE(R.cwiseAbs().maxCoeff(), opt.continuation.newton.residual_tolerance * 1.0) << F;
     }
+  }
+}
+
+// The same system with the gap in the element (N0 = -k_n 0.5, no static force): the
+// normal DOF shifted by the gap, x_gap = x + 0.5, solves the same equations, since
+// K_nn 0.5 balances the static pull of -1 N and max(N0 + k_n (x + 0.5), 0) = max(k_n x, 0).
+// The residuals agree to round-off at any motion.
+TEST(VibrationHardeningContact, GapInTheElementEqualsTheStaticPull) {
+  const HarmonicBalance pulled = hardening_contact(256);
+  Structure s = pulled.structure();
+  PlacedElement e{
+      make_elastic_dry_friction_2d_element({.k_t = 1.0, .k_n = 20.0, .mu = 0.3, .N0 = -10.0}),
+      Eigen::Matrix2d::Identity(), "contact with a gap"};
+  const HarmonicBalance gap(s, {e}, HarmonicBalanceOptions{{0, 1, 2, 3, 4, 5, 6, 7}, 256});
+  const FrequencyResponseOptions opt_pulled = forcing(pulled, 0.3);
+  FrequencyResponseOptions opt_gap = opt_pulled;
+  const auto c0 = static_cast<std::size_t>(pulled.basis().index_of(0, 0));
+  opt_gap.force(gap.index(1, c0)) = 0.0;
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int trial = 0; trial < 5; ++trial) {
+    Eigen::VectorXd X(pulled.unknowns());
+    for (Eigen::Index i = 0; i < X.size(); ++i) X(i) = U(rng) / (1.0 + static_cast<double>(i % 16));
+    Eigen::VectorXd X_gap = X;
+    X_gap(gap.index(1, c0)) += 0.5;
+    Eigen::VectorXd R, R_gap;
+    Eigen::MatrixXd J, J_gap;
+    pulled.residual(X, 2.0, opt_pulled.force, R, &J, nullptr);
+    gap.residual(X_gap, 2.0, opt_gap.force, R_gap, &J_gap, nullptr);
+    EXPECT_LT((R - R_gap).cwiseAbs().maxCoeff(), 1e-12 * (1.0 + R.cwiseAbs().maxCoeff()));
+    EXPECT_LT((J - J_gap).cwiseAbs().maxCoeff(), 1e-12 * (1.0 + J.cwiseAbs().maxCoeff()));
   }
 }
 

@@ -25,7 +25,8 @@
 //     jenkins:   k_t [N/m], F_s [N]
 //     coulomb:   F_s [N], k_tan [s/m]              (f = F_s tanh(k_tan v), Eq. 7.3)
 //     iwan4:     F_S [N], K_T [N/m], chi, beta      (Segalman's four parameters)
-//     elastic_dry_friction_2d: k_t, k_n [N/m], mu, N0 [N] (optional, 0); T has 2 rows
+//     elastic_dry_friction_2d: k_t, k_n [N/m], mu, N0 [N] (optional, 0; < 0: a gap of
+//                               -N0/k_n); T has 2 rows
 //                               (tangential, normal)
 //     polynomial_stiffness: k1 [N/m], k2 [N/m^2], k3 [N/m^3] (each optional, not all
 //                               zero): f = k1 u + k2 u^2 + k3 u^3 (Duffing: k3)

@@ -157,14 +157,15 @@ class CoulombElement final : public Element {
 /// force f_n = max(N0 + k_n u_n, 0) (u_n > 0 presses the surfaces together; f_n = 0 is
 /// separation) and a tangential spring k_t in series with a slider that slips at
 /// mu f_n. In separation the tangential force is zero and the slider follows. The
-/// preload N0 is carried by the bolt (outside the model): the structure receives the
+/// preload N0 > 0 is carried by the bolt (outside the model): the structure receives the
 /// normal force's change f_n - N0, so that u = 0 is the equilibrium at rest; with N0 = 0
-/// (the default) the structure receives f_n itself.
+/// (the default) the structure receives f_n itself. N0 < 0 is a gap g = -N0 / k_n: the
+/// surfaces touch once u_n > g, and the structure receives f_n (zero at rest).
 struct ElasticDryFriction2dParameters {
   double k_t = 0.0;  ///< [N/m], > 0
   double k_n = 0.0;  ///< [N/m], > 0
   double mu = 0.0;   ///< > 0
-  double N0 = 0.0;   ///< [N], >= 0: normal force at u_n = 0 (a preload the structure carries)
+  double N0 = 0.0;   ///< [N], finite: normal force at u_n = 0 (> 0 a preload, < 0 a gap -N0/k_n)
   void validate() const;
 };
 class ElasticDryFriction2dElement final : public Element {
