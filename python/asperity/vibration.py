@@ -7,7 +7,8 @@ from the same C++ code as ``asperity vibration``. SI units throughout.
   a matrix or Rayleigh ``alpha M + beta K``) or MatrixMarket files.
 * Joint elements, each placed by ``T`` (one row per element direction, one column per
   DOF; it acts on ``u = T x`` and returns ``T^T f``): :class:`Jenkins`, :class:`Iwan4`,
-  :class:`Coulomb`, :class:`ElasticDryFriction2d`, :class:`RoughFlat` (any SI backbone
+  :class:`Coulomb`, :class:`ElasticDryFriction2d`, :class:`PolynomialStiffness`,
+  :class:`CubicDamping`, :class:`RoughFlat` (any SI backbone
   under Masing's rules: from :func:`asperity.epb_backbone`, a joint case file or
   :func:`asperity.predict`).
 * :func:`run_case` / :func:`run_case_text` - a case file of ``asperity vibration``
@@ -42,7 +43,7 @@ _v = _core._vibration
 
 __all__ = [
     "Structure", "Element", "Jenkins", "Iwan4", "Coulomb", "ElasticDryFriction2d",
-    "RoughFlat", "HarmonicBalance", "Result", "nonlinear_mode", "frequency_response",
+    "PolynomialStiffness", "CubicDamping", "RoughFlat", "HarmonicBalance", "Result", "nonlinear_mode", "frequency_response",
     "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
     "run_case_text", "plot_mode", "plot_response",
 ]
@@ -200,11 +201,28 @@ class Coulomb(Element):
 class ElasticDryFriction2d(Element):
     """Tangential Jenkins slider (row 0 of ``T``) that slips at ``mu f_n``, with a unilateral
     normal spring ``f_n = max(N0 + k_n u_n, 0)`` (row 1; ``u_n > 0`` presses): separation
-    and normal-tangential coupling. The structure receives ``f_n - N0``."""
+    and normal-tangential coupling. The structure receives ``f_n - N0`` for a preload
+    ``N0 > 0``; ``N0 < 0`` is a gap ``-N0 / k_n`` (the structure receives ``f_n``)."""
 
     def __init__(self, k_t: float, k_n: float, mu: float, T, N0: float = 0.0,
                  name: str | None = None):
         super().__init__(_v.elastic_dry_friction_2d(k_t, k_n, mu, N0), T, name)
+
+
+class PolynomialStiffness(Element):
+    """Polynomial stiffness ``f = k1 u + k2 u^2 + k3 u^3`` (Duffing: ``k3``): ``k1`` [N/m],
+    ``k2`` [N/m^2], ``k3`` [N/m^3], not all zero."""
+
+    def __init__(self, k1: float = 0.0, k2: float = 0.0, k3: float = 0.0, T=1.0,
+                 name: str | None = None):
+        super().__init__(_v.polynomial_stiffness(k1, k2, k3), T, name)
+
+
+class CubicDamping(Element):
+    """Cubic damping ``f = c3 v^3``: ``c3`` [N s^3/m^3]."""
+
+    def __init__(self, c3: float, T=1.0, name: str | None = None):
+        super().__init__(_v.cubic_damping(c3), T, name)
 
 
 class RoughFlat(Element):

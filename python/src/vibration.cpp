@@ -263,6 +263,8 @@ nb::dict case_result(const VibrationCase& c) {
       r.quasi_static_mode ? nb::object(quasi_static_dict(*r.quasi_static_mode)) : nb::none();
   d["complete"] = r.complete;
   d["stop_reason"] = r.stop_reason;
+  d["remedy"] = r.remedy;
+  d["failures"] = r.failures;
   d["warnings"] = string_list(r.warnings);
   d["system"] = case_system(c);
   return d;
@@ -410,6 +412,15 @@ void bind_vibration(nb::module_& parent) {
       "k_t"_a, "k_n"_a, "mu"_a, "N0"_a = 0.0,
       "Tangential (direction 0) Jenkins slider slipping at mu f_n, normal (direction 1) "
       "unilateral spring f_n = max(N0 + k_n u_n, 0).");
+  m.def(
+      "polynomial_stiffness",
+      [](double k1, double k2, double k3) {
+        return make_polynomial_stiffness_element({.k1 = k1, .k2 = k2, .k3 = k3});
+      },
+      "k1"_a = 0.0, "k2"_a = 0.0, "k3"_a = 0.0,
+      "Polynomial stiffness f = k1 u + k2 u^2 + k3 u^3 (Duffing: k3) [N/m, N/m^2, N/m^3].");
+  m.def("cubic_damping", &make_cubic_damping_element, "c3"_a,
+        "Cubic damping f = c3 v^3, c3 [N s^3/m^3].");
   m.def(
       "masing",
       [](std::shared_ptr<const hysteresis::Backbone> backbone, const std::string& type,

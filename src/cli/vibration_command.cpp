@@ -178,6 +178,24 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
         }
         p.series.push_back(std::move(s));
       }
+      // The refined peaks of this output and the folds of every curve, as markers.
+      Series peaks{.title = "peaks (refined)", .style = "points pt 7 ps 1.2"};
+      Series folds{.title = "folds (turning points)", .style = "points pt 6 ps 1.2"};
+      for (const auto& cv : r.frequency_response) {
+        for (const auto& pk : cv.peaks) {
+          if (pk.output != o || !(pk.amplitude > 0.0)) continue;
+          peaks.x.push_back(pk.omega / (2.0 * std::numbers::pi));
+          peaks.y.push_back(pk.amplitude);
+        }
+        for (const auto& f : cv.folds) {
+          const double y = f.output_amplitude(static_cast<Eigen::Index>(o));
+          if (!(y > 0.0)) continue;
+          folds.x.push_back(f.omega / (2.0 * std::numbers::pi));
+          folds.y.push_back(y);
+        }
+      }
+      if (!peaks.x.empty()) p.series.push_back(std::move(peaks));
+      if (!folds.x.empty()) p.series.push_back(std::move(folds));
       const std::string name = c.output_dofs.size() == 1
                                    ? std::string("frequency_response.png")
                                    : fmt::format("frequency_response_dof{}.png", c.output_dofs[o]);
@@ -219,12 +237,19 @@ std::string text_summary(const VibrationCase& c, const VibrationResult& r) {
     const auto& cv = r.frequency_response[k];
     if (cv.omega.size() == 0 || c.output_dofs.empty()) continue;
     Eigen::Index i = 0;
-    const double peak = cv.output_amplitude.col(0).maxCoeff(&i);
+    double peak = cv.output_amplitude.col(0).maxCoeff(&i);
+    double peak_omega = cv.omega(i);
+    for (const auto& pk : cv.peaks) {  // the refined peaks lie between the points
+      if (pk.output == 0 && pk.amplitude >= peak) {
+        peak = pk.amplitude;
+        peak_omega = pk.omega;
+      }
+    }
     out += fmt::format(
         "frequency response {} (force scale {:.4g}): {} points, peak amplitude of DOF {} {:.6g} m "
-        "at {:.6g} Hz\n",
+        "at {:.6g} Hz, {} fold(s)\n",
         k + 1, cv.force_scale, cv.omega.size(), c.output_dofs[0], peak,
-        cv.omega(i) / (2.0 * std::numbers::pi));
+        peak_omega / (2.0 * std::numbers::pi), cv.folds.size());
   }
   if (r.quasi_static_mode) {
     const auto& q = *r.quasi_static_mode;
@@ -299,12 +324,17 @@ void run_vibration(const VibrationOptions& o, std::string& out) {
     std::fputs(out.c_str(), stdout);
     std::fflush(stdout);
     out.clear();
+    // Curves that could not start are named too when another stop came first.
+    std::string not_started;
+    if (!r.failures.empty() && r.stop_reason.find("could not start") == std::string::npos) {
+      not_started = fmt::format("; {} curve(s) could not start, first {}", r.failures.size(),
+                                r.failures.front());
+    }
     throw NumericalError(fmt::format(
-        "{}; the {} points computed are kept{} (solver.complete = false): loosen the "
-        "continuation settings (min_step, max_iterations, max_points) or shorten the range",
-        r.stop_reason,
+        "{}{}; the {} points computed are kept{} (solver.complete = false): {}", r.stop_reason,
+        not_started,
         std::get<std::int64_t>(SummaryValue(r.summary).find("solver")->find("points")->data),
-        files ? fmt::format(" in {}", *o.out_dir) : std::string()));
+        files ? fmt::format(" in {}", *o.out_dir) : std::string(), r.remedy));
   }
 }
 

@@ -202,7 +202,7 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
   if (!t.get("type")) {
     throw InvalidInput(
         fmt::format("{}: needs type = \"rough_flat\" | \"jenkins\" | \"iwan4\" | \"coulomb\" | "
-                    "\"elastic_dry_friction_2d\"{}",
+                    "\"elastic_dry_friction_2d\" | \"polynomial_stiffness\" | \"cubic_damping\"{}",
                     w, at_line(t)));
   }
   const std::string type = text(t, "type", w, "");
@@ -245,12 +245,28 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
                                      .mu = number(t, "mu", w, 0.0),
                                      .N0 = si(t, "N0", w, force).value_or(0.0)};
     e = make_elastic_dry_friction_2d_element(p);
+  } else if (type == "polynomial_stiffness") {
+    check_keys(t, w, keys({"k1", "k2", "k3"}));
+    PolynomialStiffnessParameters p{.k1 = si(t, "k1", w, stiffness).value_or(0.0),
+                                    .k2 = si(t, "k2", w, Dimension{-1, 1, -2}).value_or(0.0),
+                                    .k3 = si(t, "k3", w, Dimension{-2, 1, -2}).value_or(0.0)};
+    if (p.k1 == 0.0 && p.k2 == 0.0 && p.k3 == 0.0) {
+      throw InvalidInput(fmt::format(
+          "{}: a polynomial_stiffness element needs k1 [N/m], k2 [N/m^2] or k3 [N/m^3] (f = k1 u "
+          "+ k2 u^2 + k3 u^3; Duffing: k3){}",
+          w, at_line(t)));
+    }
+    e = make_polynomial_stiffness_element(p);
+  } else if (type == "cubic_damping") {
+    check_keys(t, w, keys({"c3"}));
+    e = make_cubic_damping_element(
+        need_si(t, "c3", w, Dimension{-2, 1, 1}, "a cubic_damping element (f = c3 v^3)"));
   } else if (type == "rough_flat") {
     e = rough_flat_element(t, w, joint);
   } else {
     throw InvalidInput(
-        fmt::format("{}.type = \"{}\" is not known: use rough_flat, jenkins, iwan4, coulomb or "
-                    "elastic_dry_friction_2d{}",
+        fmt::format("{}.type = \"{}\" is not known: use rough_flat, jenkins, iwan4, coulomb, "
+                    "elastic_dry_friction_2d, polynomial_stiffness or cubic_damping{}",
                     w, type, at_line(t)));
   }
   PlacedElement pe;

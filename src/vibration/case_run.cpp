@@ -34,6 +34,8 @@ struct Work {
   std::size_t points = 0, newton = 0, residuals = 0, jacobians = 0, rejected = 0, turning = 0;
   double wall = 0.0;
   bool complete = true;
+  StopCause cause = StopCause::end;
+  std::size_t max_points = 0;  ///< of the continuation that stopped first
   std::string stop_reason;
 };
 
@@ -49,13 +51,15 @@ SummaryObject solver_summary(const Work& w) {
           {"stop_reason", w.stop_reason}};
 }
 
-void add_continuation(Work& w, const ContinuationResult& c) {
+void add_continuation(Work& w, const ContinuationResult& c, std::size_t max_points) {
   w.points += c.points.size();
   w.newton += c.newton_iterations;
   w.rejected += c.rejected_steps;
   w.turning += c.turning_points;
   if (!c.complete && w.complete) {
     w.complete = false;
+    w.cause = c.cause;
+    w.max_points = max_points;
     w.stop_reason = c.stop_reason;
   } else if (w.complete) {
     w.stop_reason = c.stop_reason;
@@ -71,8 +75,36 @@ void add_analysis(Work& total, const Work& w, const std::string& analysis) {
   total.turning += w.turning;
   if (!w.complete && total.complete) {
     total.complete = false;
+    total.cause = w.cause;
+    total.max_points = w.max_points;
     total.stop_reason = analysis + ": " + w.stop_reason;
   }
+}
+
+// What helps a continuation that stopped early, by its cause (measured on the
+// hardening-contact case of issue 23: min_step, max_iterations and max_points do not
+// help a stall; a finer sampling does).
+std::string remedy(const Work& w, std::size_t time_points) {
+  switch (w.cause) {
+    case StopCause::stalled:
+      return fmt::format(
+          "raise harmonic_balance.time_points (now {}; try {}): contact and slip are located "
+          "at the time samples, and the corners of the curve where the continuation stalls "
+          "shrink as time_points grows (a smaller min_step or more iterations do not help); or "
+          "end the range before the point where it stalled",
+          time_points, 4 * time_points);
+    case StopCause::max_points:
+      return fmt::format(
+          "raise the continuation's max_points (now {}): the curve was still advancing (folds at "
+          "contact and slip corners take many short steps)",
+          w.max_points);
+    case StopCause::turned_back:
+      return "the curve turned back past the start of its range: end the range before the turn "
+             "or start it from the other end";
+    case StopCause::end:
+      break;
+  }
+  return {};
 }
 
 }  // namespace
@@ -129,6 +161,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
   if (c.joint) j.emplace_back("joint", *c.joint);
 
   Work total;
+  SummaryArray failed;  // curves that could not start, with the reason
   const auto t_all = clock::now();
   auto counters = [&hb] { return hb.counters(); };
   auto account = [&](Work& w, const WorkCounters& before, clock::time_point t0) {
@@ -156,7 +189,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
       throw cannot_start("nonlinear_mode", e);
     }
     const NonlinearModeResult& m = *r.nonlinear_mode;
-    add_continuation(w, m.continuation);
+    add_continuation(w, m.continuation, c.nonlinear_mode->continuation.max_points);
     account(w, before, t0);
     r.warnings.insert(r.warnings.end(), m.warnings.begin(), m.warnings.end());
     j.emplace_back("nonlinear_mode", SummaryObject{{"mode", c.nonlinear_mode->mode},
@@ -197,12 +230,18 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                                   })
                                            : ProgressFunction{});
         } catch (const NumericalError& e) {
-          throw cannot_start(curve, e);
+          // The other curves still run; this one is named with its reason.
+          ++done_curves;
+          r.failures.push_back(cannot_start(curve, e).what());
+          r.warnings.push_back(r.failures.back());
+          failed.emplace_back(
+              SummaryObject{{"table", k}, {"force_scale", scale}, {"reason", r.failures.back()}});
+          continue;
         }
         ++done_curves;
         FrequencyResponseCurve& cv = cs.front();
         Work w;
-        add_continuation(w, cv.continuation);
+        add_continuation(w, cv.continuation, all.continuation.max_points);
         account(w, before, t0);
         r.warnings.insert(r.warnings.end(), cv.warnings.begin(), cv.warnings.end());
         SummaryArray ha;  // per point, per output, per harmonic
@@ -219,6 +258,21 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                         {"output_amplitude", rows(cv.output_amplitude)},
                         {"max_displacement", rows(cv.max_displacement)},
                         {"harmonic_amplitude", std::move(ha)}};
+        SummaryArray peaks, folds;
+        for (const ResponsePeak& pk : cv.peaks) {
+          peaks.emplace_back(
+              SummaryObject{{"output_dof", static_cast<std::size_t>(c.output_dofs[pk.output])},
+                            {"omega_rad_s", pk.omega},
+                            {"frequency_hz", pk.omega / (2.0 * std::numbers::pi)},
+                            {"amplitude_m", pk.amplitude}});
+        }
+        for (const ResponseFold& f : cv.folds) {
+          folds.emplace_back(SummaryObject{{"omega_rad_s", f.omega},
+                                           {"frequency_hz", f.omega / (2.0 * std::numbers::pi)},
+                                           {"output_amplitude", array(f.output_amplitude)}});
+        }
+        o.emplace_back("peaks", std::move(peaks));
+        o.emplace_back("folds", std::move(folds));
         o.emplace_back("solver", solver_summary(w));
         curves.emplace_back(std::move(o));
         add_analysis(total, w, curve);
@@ -227,6 +281,11 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
       }
     }
     j.emplace_back("frequency_response", std::move(curves));
+  }
+  // Nothing computed at all: the case is bad input as a whole (exit 2).
+  if (!r.failures.empty() && r.frequency_response.empty() && !r.nonlinear_mode &&
+      !c.quasi_static_mode) {
+    throw InvalidInput(r.failures.front());
   }
 
   if (c.quasi_static_mode) {
@@ -262,11 +321,29 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     total.residuals = wc.residual_evaluations;
     total.jacobians = wc.jacobian_evaluations;
     total.wall = std::chrono::duration<double>(clock::now() - t_all).count();
+    if (!r.failures.empty()) {
+      // Curves that could not start: the run is incomplete, the first of them its reason
+      // unless a curve stopped early before it.
+      if (total.complete) {
+        total.complete = false;
+        total.stop_reason = fmt::format(
+            "{} of {} frequency response curve(s) could not start: {}", r.failures.size(),
+            r.failures.size() + r.frequency_response.size(), r.failures.front());
+      }
+    }
     if (total.complete) total.stop_reason = "every analysis reached the end of its range";
     r.complete = total.complete;
     r.stop_reason = total.stop_reason;
+    r.remedy = remedy(total, c.harmonic_balance.time_points);
+    if (!r.failures.empty()) {
+      r.remedy += std::string(r.remedy.empty() ? "" : "; ") +
+                  "for the curves that could not start: start the range (omega.from) where the "
+                  "response is small or the joint stuck, lower the force, or raise "
+                  "max_iterations";
+    }
     j.emplace_back("solver", solver_summary(total));
   }
+  j.emplace_back("failed", std::move(failed));
   SummaryArray w;
   for (const auto& s : r.warnings) w.emplace_back(s);
   j.emplace_back("warnings", std::move(w));

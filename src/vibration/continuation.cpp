@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include <fmt/format.h>
 #include <Eigen/LU>
+#include <boost/math/tools/minima.hpp>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
@@ -44,6 +47,19 @@ void ContinuationOptions::validate() const {
 
 namespace {
 
+// Smallest turn of the tangent [rad] across a piece boundary taken for a kink of the curve.
+constexpr double kKinkAngle = 1e-3;
+
+// Points of the curve behind the current one against which a kink step is checked for
+// having gone back along the curve.
+constexpr std::size_t kRecentPoints = 64;
+// A kink is looked for once the step has fallen below this fraction of the initial step,
+// so that the probe across the boundary meets the next piece only.
+constexpr double kKinkStep = 1e-3;
+// Largest angle [rad] between a new tangent and the reverse of an old chord, beyond the
+// turn of the tangent over that chord, for the new point to be going back along it.
+constexpr double kRetraceAngle = 0.02;
+
 double scaled_max(const Eigen::VectorXd& dy, const Eigen::VectorXd& scale) {
   return (dy.array() / scale.array()).abs().maxCoeff();
 }
@@ -71,11 +87,25 @@ NewtonResult newton_square(const SystemFunction& g, Eigen::VectorXd y, const Eig
     Eigen::VectorXd y_new, R_new;
     Eigen::MatrixXd J_new;
     bool accepted = false;
+    // The full step with its Jacobian (the usual case); shorter ones residual only, the
+    // Jacobian once one is accepted.
+    Eigen::VectorXd R_full;
+    Eigen::MatrixXd J_full;
     for (int ls = 0; ls < 7; ++ls) {
       y_new = y + t * dy;
-      g(y_new, R_new, &J_new);
+      if (ls == 0) {
+        g(y_new, R_full, &J_full);
+        R_new = R_full;
+      } else {
+        g(y_new, R_new, nullptr);
+      }
       if (R_new.allFinite() && R_new.squaredNorm() <= (1.0 - 2e-4 * t) * r0) {
         accepted = true;
+        if (ls == 0) {
+          J_new = std::move(J_full);
+        } else {
+          g(y_new, R_new, &J_new);
+        }
         break;
       }
       t *= 0.5;
@@ -83,9 +113,10 @@ NewtonResult newton_square(const SystemFunction& g, Eigen::VectorXd y, const Eig
     if (!accepted) {
       // Take the full step anyway if it stays finite: piecewise-smooth residuals (stick-slip
       // kinks) can need a step that first increases |R|.
+      if (!R_full.allFinite()) break;
       y_new = y + dy;
-      g(y_new, R_new, &J_new);
-      if (!R_new.allFinite()) break;
+      R_new = std::move(R_full);
+      J_new = std::move(J_full);
       t = 1.0;
     }
     const double step = t * scaled_max(dy, scale);
@@ -123,16 +154,28 @@ NewtonResult solve_newton(const SystemFunction& f, Eigen::VectorXd y0, const Eig
 namespace {
 
 // Unit tangent of R(y) = 0 in scaled unknowns z = y / scale: [J S; t_ref^T] t = [0; 1].
+// With `orientation`, the sign of det [J S; t^T] (S = diag(scale)) for the returned t:
+// the orientation of the curve, which a continuation keeps across turning points
+// (Allgower & Georg 2003, sec. 2.1). det [J S; v^T] is linear in v and vanishes on the
+// rows of J S, so it is det [J S; t_ref^T] times t.v / t.t_ref, and t.t_ref > 0.
 Eigen::VectorXd tangent_of(const Eigen::MatrixXd& J, const Eigen::VectorXd& scale,
-                           const Eigen::VectorXd& t_ref) {
+                           const Eigen::VectorXd& t_ref, double* orientation = nullptr) {
   const Eigen::Index m = J.rows(), n = J.cols();
   Eigen::MatrixXd A(n, n);
   A.topRows(m) = J * scale.asDiagonal();
   A.row(m) = t_ref.transpose();
   Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
   b(m) = 1.0;
-  Eigen::VectorXd t = Eigen::PartialPivLU<Eigen::MatrixXd>(A).solve(b);
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
+  Eigen::VectorXd t = lu.solve(b);
   if (!t.allFinite() || t.norm() == 0.0) return {};
+  if (orientation) {
+    double sign = static_cast<double>(lu.permutationP().determinant());
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (lu.matrixLU()(i, i) < 0.0) sign = -sign;
+    }
+    *orientation = sign;
+  }
   return t / t.norm();
 }
 
@@ -183,10 +226,14 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
     y << x.head(p), lambda, x.tail(n - p - 1);
     return y;
   };
+  auto correct = [&](const SystemFunction& g, const Eigen::VectorXd& guess,
+                     const Eigen::VectorXd& scale) {
+    NewtonResult r = newton_square(g, guess, scale, pb.residual_scale, opt.newton);
+    out.newton_iterations += static_cast<std::size_t>(r.iterations);
+    return r;
+  };
   {
-    const auto start = newton_square(fixed_parameter(lambda0), without(y0), without(pb.scale),
-                                     pb.residual_scale, opt.newton);
-    out.newton_iterations += static_cast<std::size_t>(start.iterations);
+    const auto start = correct(fixed_parameter(lambda0), without(y0), without(pb.scale));
     if (!start.converged) {
       throw NumericalError(fmt::format(
           "the continuation cannot start: Newton did not converge at the start (parameter {}, "
@@ -202,25 +249,35 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
   pb.f(out.points.back(), R, &J);
   Eigen::VectorXd e_p = Eigen::VectorXd::Zero(n);
   e_p(p) = 1.0;
-  Eigen::VectorXd t = tangent_of(J, pb.scale, e_p);
+  double sigma = 1.0;  // orientation of the tangent t
+  Eigen::VectorXd t = tangent_of(J, pb.scale, e_p, &sigma);
   if (t.size() == 0) {
     throw NumericalError(
         "the continuation cannot start: the tangent at the start is undefined (a "
         "singular Jacobian)");
   }
-  if (t(p) * sense < 0.0) t = -t;
+  if (t(p) * sense < 0.0) {
+    t = -t;
+    sigma = -sigma;
+  }
+  std::vector<Eigen::VectorXd> tangents{t};  // at each point
+  std::vector<Eigen::VectorXd> scaled{(out.points.back().array() / pb.scale.array()).matrix()};
   double h = opt.step;
+  double h_regular = h;     // the step after the last point reached at the first try
+  bool smooth_step = true;  // no step rejected since the last point
   double last_dir = t(p) > 0.0 ? 1.0 : -1.0;
 
   while (true) {
     const Eigen::VectorXd& y = out.points.back();
     if (progress) progress(std::clamp((y(p) - lambda0) / range, 0.0, 1.0));
     if (out.points.size() >= opt.max_points) {
+      out.cause = StopCause::max_points;
       out.stop_reason = fmt::format("reached max_points = {} at parameter {}", opt.max_points,
                                     core::format_value(y(p)));
       break;
     }
     if (h < opt.min_step) {
+      out.cause = StopCause::stalled;
       out.stop_reason = fmt::format(
           "stalled at parameter {}: the step size fell below min_step = {} (Newton did not "
           "converge on smaller steps)",
@@ -228,15 +285,13 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
       break;
     }
     const Eigen::VectorXd z = (y.array() / pb.scale.array()).matrix();
-    const Eigen::VectorXd z_pred = z + h * t;
-    const double lambda_pred = z_pred(p) * pb.scale(p);
+    const Eigen::VectorXd z_ahead = z + h * t;
+    const double lambda_pred = z_ahead(p) * pb.scale(p);
     // Past the end: land the last point on it at fixed parameter.
     if ((lambda_pred - lambda_end) * sense >= 0.0 && t(p) * sense > 0.0) {
       const double frac = (lambda_end - y(p)) / (lambda_pred - y(p));
       const Eigen::VectorXd guess = (z + frac * h * t).cwiseProduct(pb.scale);
-      const auto end = newton_square(fixed_parameter(lambda_end), without(guess), without(pb.scale),
-                                     pb.residual_scale, opt.newton);
-      out.newton_iterations += static_cast<std::size_t>(end.iterations);
+      const auto end = correct(fixed_parameter(lambda_end), without(guess), without(pb.scale));
       if (end.converged) {
         out.points.push_back(with(end.y, lambda_end));
         out.complete = true;
@@ -245,56 +300,126 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
         break;
       }
       ++out.rejected_steps;
+      smooth_step = false;
       h *= 0.5;
       continue;
     }
-    // Corrector: R(y) = 0 and t^T (z - z_pred) = 0.
-    const Eigen::VectorXd t_fixed = t;
-    auto bordered = [&](const Eigen::VectorXd& yy, Eigen::VectorXd& Rb, Eigen::MatrixXd* Jb) {
-      Eigen::VectorXd r;
-      Eigen::MatrixXd Jy;
-      pb.f(yy, r, Jb ? &Jy : nullptr);
-      Rb.resize(n);
-      Rb.head(n - 1) = r;
-      const Eigen::VectorXd zz = (yy.array() / pb.scale.array()).matrix();
-      // The arclength equation in residual units, so that the line search weighs it fairly.
-      Rb(n - 1) = pb.residual_scale * t_fixed.dot(zz - z_pred);
-      if (Jb) {
-        Jb->resize(n, n);
-        Jb->topRows(n - 1) = Jy;
-        Jb->row(n - 1) =
-            pb.residual_scale * (t_fixed.array() / pb.scale.array()).matrix().transpose();
-      }
+    // Corrector: R(y) = 0 and d^T (z - z_pred) = 0 with z_pred = z + h d.
+    auto corrector = [&](const Eigen::VectorXd& d, Eigen::VectorXd& zp) {
+      zp = z + h * d;
+      const Eigen::VectorXd zp_fixed = zp;
+      auto bordered = [&, d, zp_fixed](const Eigen::VectorXd& yy, Eigen::VectorXd& Rb,
+                                       Eigen::MatrixXd* Jb) {
+        Eigen::VectorXd r;
+        Eigen::MatrixXd Jy;
+        pb.f(yy, r, Jb ? &Jy : nullptr);
+        Rb.resize(n);
+        Rb.head(n - 1) = r;
+        const Eigen::VectorXd zz = (yy.array() / pb.scale.array()).matrix();
+        // The arclength equation in residual units, so that the line search weighs it fairly.
+        Rb(n - 1) = pb.residual_scale * d.dot(zz - zp_fixed);
+        if (Jb) {
+          Jb->resize(n, n);
+          Jb->topRows(n - 1) = Jy;
+          Jb->row(n - 1) = pb.residual_scale * (d.array() / pb.scale.array()).matrix().transpose();
+        }
+      };
+      return correct(bordered, zp.cwiseProduct(pb.scale), pb.scale);
     };
-    const auto corr = newton_square(bordered, z_pred.cwiseProduct(pb.scale), pb.scale,
-                                    pb.residual_scale, opt.newton);
-    out.newton_iterations += static_cast<std::size_t>(corr.iterations);
+    // True when a point y moving along `dir` goes back along the curve already traced:
+    // it lies on the polyline of the last points (within a tenth of the step plus the
+    // sag of a chord, about its length times the turn of the tangent over it / 4) and
+    // moves against it.
+    auto retraces = [&](const Eigen::VectorXd& yy, const Eigen::VectorXd& dir, double step) {
+      const Eigen::VectorXd zz = (yy.array() / pb.scale.array()).matrix();
+      const std::size_t np = scaled.size();
+      for (std::size_t k = np - 1; k >= 1 && k + kRecentPoints >= np; --k) {
+        const Eigen::VectorXd& a = scaled[k - 1];
+        if (dir.dot(scaled[k] - a) >= 0.0) continue;  // moving along this chord
+        const Eigen::VectorXd ab = scaled[k] - a;
+        const double l2 = ab.squaredNorm();
+        if (!(l2 > 0.0)) continue;
+        const double turn = std::acos(std::clamp(tangents[k - 1].dot(tangents[k]), -1.0, 1.0));
+        // Against the chord to within the turn over it (another piece of the curve, a
+        // fold's far strand, turns by a finite angle).
+        const double against = std::acos(std::clamp(-dir.dot(ab) / std::sqrt(l2), -1.0, 1.0));
+        if (against > turn + kRetraceAngle) continue;
+        const double s = std::clamp((zz - a).dot(ab) / l2, 0.0, 1.0);
+        if ((a + s * ab - zz).norm() < 0.1 * step + 0.25 * std::sqrt(l2) * turn) return true;
+      }
+      return false;
+    };
+    Eigen::VectorXd z_used;
+    Eigen::VectorXd d_used = t;
+    NewtonResult corr = corrector(t, z_used);
+    bool kink = false;
+    if (!corr.converged && h <= kKinkStep * opt.step) {
+      // A fold at a kink: the curve meets the boundary of a piece of the piecewise-smooth
+      // residual (contact or slip changing at a sample) and leaves it on the next piece,
+      // possibly backwards, so that no point on the plane normal to t continues it. The
+      // next piece's tangent comes from the Jacobian just across the boundary, oriented
+      // so that det [J S; t^T] keeps its sign (Allgower & Georg 2003, sec. 2.1 and 12.1).
+      Eigen::VectorXd Rk;
+      Eigen::MatrixXd Jk;
+      pb.f((z + h * t).cwiseProduct(pb.scale), Rk, &Jk);
+      double sigma_k = 1.0;
+      Eigen::VectorXd d =
+          Jk.allFinite() ? tangent_of(Jk, pb.scale, t, &sigma_k) : Eigen::VectorXd{};
+      if (d.size() != 0 && std::abs(d.dot(t)) < std::cos(kKinkAngle)) {
+        if (sigma_k != sigma) d = -d;
+        // The orientation's sign is that of the piece across the boundary; should the
+        // probe have crossed more than one boundary, the other sense is tried too.
+        for (const double sense_d : {1.0, -1.0}) {
+          Eigen::VectorXd zk;
+          NewtonResult ck = corrector(sense_d * d, zk);
+          if (!ck.converged) continue;
+          Eigen::VectorXd Rc;
+          Eigen::MatrixXd Jc;
+          pb.f(ck.y, Rc, &Jc);
+          Eigen::VectorXd tc = tangent_of(Jc, pb.scale, sense_d * d);
+          if (tc.size() == 0) continue;
+          if (tc.dot(sense_d * d) < 0.0) tc = -tc;
+          if (!retraces(ck.y, tc, h)) {
+            corr = std::move(ck);
+            z_used = zk;
+            d_used = sense_d * d;
+            kink = true;
+            ++out.kinks;
+            break;
+          }
+        }
+      }
+    }
     if (!corr.converged) {
       ++out.rejected_steps;
+      smooth_step = false;
       h *= 0.5;
       continue;
     }
     // A corrector that wandered far from the predictor has jumped to another branch of
     // the curve (seen at lightly damped resonances with large steps): a shorter step.
-    const double wander = ((corr.y.array() / pb.scale.array()).matrix() - z_pred).norm();
+    const double wander = ((corr.y.array() / pb.scale.array()).matrix() - z_used).norm();
     if (wander > std::max(2.0 * h, 10.0 * opt.min_step) && h > opt.min_step * 2.0) {
       ++out.rejected_steps;
+      smooth_step = false;
       h *= 0.5;
       continue;
     }
     pb.f(corr.y, R, &J);
-    Eigen::VectorXd t_new = tangent_of(J, pb.scale, t);
+    double sigma_new = 1.0;
+    Eigen::VectorXd t_new = tangent_of(J, pb.scale, d_used, &sigma_new);
     if (t_new.size() == 0) {
       ++out.rejected_steps;
+      smooth_step = false;
       h *= 0.5;
       continue;
     }
-    if (t_new.dot(t) < 0.0) t_new = -t_new;
     const double angle = std::acos(std::clamp(t_new.dot(t), -1.0, 1.0));
     // A kink of the solution curve (stick-slip onset, separation) turns the tangent by a
     // finite angle however short the step: past a few halvings the point is accepted.
-    if (angle > opt.max_angle && h > std::max(16.0 * opt.min_step, opt.step / 64.0)) {
+    if (!kink && angle > opt.max_angle && h > std::max(16.0 * opt.min_step, opt.step / 64.0)) {
       ++out.rejected_steps;
+      smooth_step = false;
       h *= 0.5;
       continue;
     }
@@ -303,17 +428,125 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
     if (dir != last_dir) ++out.turning_points;
     last_dir = dir;
     t = t_new;
+    tangents.push_back(t);
+    scaled.emplace_back((corr.y.array() / pb.scale.array()).matrix());
+    sigma = sigma_new;
     // Step control: aim at target_iterations per point and a bounded turn.
     const double ratio = static_cast<double>(opt.target_iterations) /
                          static_cast<double>(std::max(1, corr.iterations));
     double factor = std::clamp(ratio, 0.5, 2.0);
     if (angle > 0.5 * opt.max_angle) factor = std::min(factor, 1.0);
-    h = std::clamp(h * factor, opt.min_step * 0.5, opt.max_step);
+    // Past a kink the next piece is smooth again: back to the step of the last regular
+    // point rather than growing from the short step that found the boundary.
+    h = std::clamp(kink ? std::max(h, 0.5 * h_regular) : h * factor, opt.min_step * 0.5,
+                   opt.max_step);
+    if (!kink && smooth_step) h_regular = h;
+    smooth_step = true;
     // Leaving the range backwards (the curve turned round and went past the start).
     if ((corr.y(p) - lambda0) * sense < -std::abs(range)) {
+      out.cause = StopCause::turned_back;
       out.stop_reason = "the curve turned back past the start of the parameter range";
       break;
     }
+  }
+  return out;
+}
+
+namespace {
+
+// Iterations allowed to Brent's method when refining a maximum along the curve.
+constexpr std::uintmax_t kBrentIterations = 100;
+
+// The curve near point k (0 < k < last) as y(sigma): the solution on the plane
+// c^T (z - z_{k-1}) = sigma, c the unit chord from z_{k-1} to z_{k+1} in scaled unknowns,
+// corrected by Newton from the polyline through the three points.
+class LocalCurve {
+ public:
+  LocalCurve(const ContinuationProblem& pb, const std::vector<Eigen::VectorXd>& points,
+             std::size_t k, const NewtonOptions& newton)
+      : pb_(pb), newton_(newton) {
+    for (int j = 0; j < 3; ++j) {
+      z_[j] = (points[k - 1 + static_cast<std::size_t>(j)].array() / pb.scale.array()).matrix();
+    }
+    length_ = (z_[2] - z_[0]).norm();
+    c_ = length_ > 0.0 ? Eigen::VectorXd((z_[2] - z_[0]) / length_) : Eigen::VectorXd();
+    sigma_mid_ = length_ > 0.0 ? c_.dot(z_[1] - z_[0]) : 0.0;
+  }
+  [[nodiscard]] double length() const { return length_; }
+  [[nodiscard]] bool monotone() const {
+    return length_ > 0.0 && sigma_mid_ > 0.0 && sigma_mid_ < length_;
+  }
+  // The point at sigma; empty when Newton fails there.
+  [[nodiscard]] Eigen::VectorXd at(double sigma) const {
+    const Eigen::VectorXd guess =
+        sigma <= sigma_mid_ ? Eigen::VectorXd(z_[0] + (z_[1] - z_[0]) * (sigma / sigma_mid_))
+                            : Eigen::VectorXd(z_[1] + (z_[2] - z_[1]) * ((sigma - sigma_mid_) /
+                                                                         (length_ - sigma_mid_)));
+    const Eigen::Index n = guess.size();
+    const SystemFunction g = [&](const Eigen::VectorXd& y, Eigen::VectorXd& R, Eigen::MatrixXd* J) {
+      Eigen::VectorXd r;
+      Eigen::MatrixXd Jy;
+      pb_.f(y, r, J ? &Jy : nullptr);
+      R.resize(n);
+      R.head(n - 1) = r;
+      R(n - 1) =
+          pb_.residual_scale * (c_.dot((y.array() / pb_.scale.array()).matrix() - z_[0]) - sigma);
+      if (J) {
+        J->resize(n, n);
+        J->topRows(n - 1) = Jy;
+        J->row(n - 1) = pb_.residual_scale * (c_.array() / pb_.scale.array()).matrix().transpose();
+      }
+    };
+    const NewtonResult r =
+        solve_newton(g, guess.cwiseProduct(pb_.scale), pb_.scale, pb_.residual_scale, newton_);
+    return r.converged ? r.y : Eigen::VectorXd();
+  }
+
+ private:
+  const ContinuationProblem& pb_;
+  NewtonOptions newton_;
+  Eigen::VectorXd z_[3];
+  Eigen::VectorXd c_;
+  double length_ = 0.0;
+  double sigma_mid_ = 0.0;
+};
+
+}  // namespace
+
+Eigen::VectorXd refine_curve_maximum(const ContinuationProblem& pb,
+                                     const std::vector<Eigen::VectorXd>& points, std::size_t k,
+                                     const NewtonOptions& newton,
+                                     const std::function<double(const Eigen::VectorXd&)>& value) {
+  const LocalCurve curve(pb, points, k, newton);
+  if (!curve.monotone()) return points[k];
+  bool failed = false;
+  const auto minus_value = [&](double sigma) {
+    const Eigen::VectorXd y = curve.at(sigma);
+    if (y.size() == 0) {
+      failed = true;
+      return std::numeric_limits<double>::max();
+    }
+    return -value(y);
+  };
+  // Brent's method locates a smooth maximum to sqrt(machine epsilon) of the chord (it
+  // caps `bits` at half the mantissa); the value's error is quadratic in that.
+  std::uintmax_t iterations = kBrentIterations;
+  const auto best = boost::math::tools::brent_find_minima(
+      minus_value, 0.0, curve.length(), std::numeric_limits<double>::digits / 2, iterations);
+  if (failed || !(-best.second >= value(points[k]))) return points[k];
+  return curve.at(best.first);
+}
+
+std::vector<std::size_t> prominent_maxima(const std::vector<double>& v,
+                                          const std::function<double(double)>& min_prominence) {
+  std::vector<std::size_t> out;
+  const std::size_t n = v.size();
+  for (std::size_t k = 1; k + 1 < n; ++k) {
+    if (!(v[k] > v[k - 1] && v[k] >= v[k + 1])) continue;
+    double left = v[k], right = v[k];
+    for (std::size_t j = k; j-- > 0 && v[j] <= v[k];) left = std::min(left, v[j]);
+    for (std::size_t j = k + 1; j < n && v[j] <= v[k]; ++j) right = std::min(right, v[j]);
+    if (v[k] - std::max(left, right) >= min_prominence(v[k])) out.push_back(k);
   }
   return out;
 }

@@ -1,5 +1,6 @@
 #include "asperity/vibration/elements.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -300,7 +301,7 @@ void ElasticDryFriction2dParameters::validate() const {
   core::require_positive("elastic_dry_friction_2d.k_t", k_t);
   core::require_positive("elastic_dry_friction_2d.k_n", k_n);
   core::require_positive("elastic_dry_friction_2d.mu", mu);
-  core::require_non_negative("elastic_dry_friction_2d.N0", N0);
+  core::require_finite("elastic_dry_friction_2d.N0", N0);
 }
 
 ElasticDryFriction2dElement::ElasticDryFriction2dElement(ElasticDryFriction2dParameters p) : p_(p) {
@@ -319,6 +320,7 @@ void ElasticDryFriction2dElement::periodic_response(const Eigen::MatrixXd& u,
   prepare(out, u.rows(), 2, tangent, false);
   if (n == 0) return;
   const double kt = p_.k_t, kn = p_.k_n, mu = p_.mu;
+  const double preload = std::max(p_.N0, 0.0);  // carried by the bolt; none with a gap
   // Columns of du: d + 2 e (d: force direction, e: displacement direction).
   constexpr Eigen::Index tt = 0, nt = 1, tn = 2, nn = 3;
   // Since the last event s (slip or separation), f_t,i = f_t,s + k_t (u_t,i - u_t,s); at a
@@ -352,7 +354,7 @@ void ElasticDryFriction2dElement::periodic_response(const Eigen::MatrixXd& u,
     ut_prev = ut;
     if (step >= n) {
       out.f(ii, 0) = ft;
-      out.f(ii, 1) = fn - p_.N0;
+      out.f(ii, 1) = fn - preload;
       if (tangent && contact) {
         out.du(ii, nn) = kn;
         if (now == Event::slip) {
@@ -379,10 +381,11 @@ void ElasticDryFriction2dElement::static_response(const Eigen::VectorXd& u, Eige
   core::require_finite("element normal displacement", u(1));
   f = Eigen::VectorXd::Zero(2);
   K = Eigen::MatrixXd::Zero(2, 2);
-  f(1) = -p_.N0;
+  const double preload = std::max(p_.N0, 0.0);
+  f(1) = -preload;
   const double fn = p_.N0 + p_.k_n * u(1);
   if (fn <= 0.0) return;
-  f(1) = fn - p_.N0;
+  f(1) = fn - preload;
   K(1, 1) = p_.k_n;
   const double trial = p_.k_t * u(0);
   if (std::abs(trial) >= p_.mu * fn) {
@@ -405,7 +408,7 @@ Eigen::MatrixXd ElasticDryFriction2dElement::initial_stiffness() const {
 }
 
 double ElasticDryFriction2dElement::slip_force() const {
-  return p_.mu * p_.N0;
+  return p_.mu * std::max(p_.N0, 0.0);
 }
 
 dynamics::SummaryObject ElasticDryFriction2dElement::describe() const {
@@ -414,6 +417,95 @@ dynamics::SummaryObject ElasticDryFriction2dElement::describe() const {
           {"k_n_N_per_m", p_.k_n},
           {"mu", p_.mu},
           {"N0_N", p_.N0}};
+}
+
+// ---------------------------------------------------------------------------------------
+// Polynomial stiffness and cubic damping
+
+void PolynomialStiffnessParameters::validate() const {
+  core::require_finite("polynomial_stiffness.k1", k1);
+  core::require_finite("polynomial_stiffness.k2", k2);
+  core::require_finite("polynomial_stiffness.k3", k3);
+  if (k1 == 0.0 && k2 == 0.0 && k3 == 0.0) {
+    throw InvalidInput("polynomial_stiffness: k1, k2 and k3 are all zero: give at least one");
+  }
+}
+
+PolynomialStiffnessElement::PolynomialStiffnessElement(PolynomialStiffnessParameters p) : p_(p) {
+  p_.validate();
+}
+
+void PolynomialStiffnessElement::periodic_response(const Eigen::MatrixXd& u,
+                                                   const Eigen::MatrixXd& /*v*/, bool tangent,
+                                                   PeriodicResponse& out) const {
+  require_finite_samples(u, "displacement");
+  prepare(out, u.rows(), 1, tangent, false);
+  for (Eigen::Index i = 0; i < u.rows(); ++i) {
+    const double x = u(i, 0);
+    out.f(i, 0) = x * (p_.k1 + x * (p_.k2 + x * p_.k3));
+    if (tangent) out.du(i, 0) = p_.k1 + x * (2.0 * p_.k2 + 3.0 * x * p_.k3);
+  }
+}
+
+void PolynomialStiffnessElement::static_response(const Eigen::VectorXd& u, Eigen::VectorXd& f,
+                                                 Eigen::MatrixXd& K) const {
+  core::require_finite("element displacement", u(0));
+  const double x = u(0);
+  f = Eigen::VectorXd::Constant(1, x * (p_.k1 + x * (p_.k2 + x * p_.k3)));
+  K = Eigen::MatrixXd::Constant(1, 1, p_.k1 + x * (2.0 * p_.k2 + 3.0 * x * p_.k3));
+}
+
+Eigen::MatrixXd PolynomialStiffnessElement::initial_stiffness() const {
+  return Eigen::MatrixXd::Constant(1, 1, p_.k1);
+}
+
+double PolynomialStiffnessElement::slip_force() const {
+  return std::numeric_limits<double>::infinity();
+}
+
+dynamics::SummaryObject PolynomialStiffnessElement::describe() const {
+  return {{"type", "polynomial_stiffness"},
+          {"k1_N_per_m", p_.k1},
+          {"k2_N_per_m2", p_.k2},
+          {"k3_N_per_m3", p_.k3}};
+}
+
+void CubicDampingParameters::validate() const {
+  core::require_finite("cubic_damping.c3", c3);
+  if (c3 == 0.0) throw InvalidInput("cubic_damping.c3 = 0: the element would do nothing");
+}
+
+CubicDampingElement::CubicDampingElement(CubicDampingParameters p) : p_(p) {
+  p_.validate();
+}
+
+void CubicDampingElement::periodic_response(const Eigen::MatrixXd& u, const Eigen::MatrixXd& v,
+                                            bool tangent, PeriodicResponse& out) const {
+  require_finite_samples(v, "velocity");
+  prepare(out, u.rows(), 1, tangent, true);
+  for (Eigen::Index i = 0; i < v.rows(); ++i) {
+    const double x = v(i, 0);
+    out.f(i, 0) = p_.c3 * x * x * x;
+    if (tangent) out.dv(i, 0) = 3.0 * p_.c3 * x * x;
+  }
+}
+
+void CubicDampingElement::static_response(const Eigen::VectorXd& /*u*/, Eigen::VectorXd& f,
+                                          Eigen::MatrixXd& K) const {
+  f = Eigen::VectorXd::Zero(1);
+  K = Eigen::MatrixXd::Zero(1, 1);
+}
+
+Eigen::MatrixXd CubicDampingElement::initial_stiffness() const {
+  return Eigen::MatrixXd::Zero(1, 1);
+}
+
+double CubicDampingElement::slip_force() const {
+  return std::numeric_limits<double>::infinity();
+}
+
+dynamics::SummaryObject CubicDampingElement::describe() const {
+  return {{"type", "cubic_damping"}, {"c3_N_s3_per_m3", p_.c3}};
 }
 
 // ---------------------------------------------------------------------------------------
@@ -440,6 +532,15 @@ std::shared_ptr<const Element> make_coulomb_element(double F_s, double k_tan) {
 std::shared_ptr<const Element> make_elastic_dry_friction_2d_element(
     const ElasticDryFriction2dParameters& p) {
   return std::make_shared<ElasticDryFriction2dElement>(p);
+}
+
+std::shared_ptr<const Element> make_polynomial_stiffness_element(
+    const PolynomialStiffnessParameters& p) {
+  return std::make_shared<PolynomialStiffnessElement>(p);
+}
+
+std::shared_ptr<const Element> make_cubic_damping_element(double c3) {
+  return std::make_shared<CubicDampingElement>(CubicDampingParameters{.c3 = c3});
 }
 
 std::shared_ptr<const Element> make_rough_flat_element(

@@ -237,7 +237,7 @@ continuation = { step = 0.5, min_step = 0.25, max_step = 0.5, max_iterations = 2
         r, out = run(exe, case, tmp)
         if r.returncode != 3:
             return fail(f"expected exit 3, got {r.returncode}: {r.stderr}")
-        if "stalled" not in r.stderr or "kept" not in r.stderr:
+        if "stalled" not in r.stderr or "kept" not in r.stderr or "time_points" not in r.stderr:
             return fail(f"message: {r.stderr}")
         j = json.load(open(os.path.join(out, "summary.json")))
         msg = check_summary(j, want_qs=False, want_frf=False)
@@ -253,6 +253,40 @@ continuation = { step = 0.5, min_step = 0.25, max_step = 0.5, max_iterations = 2
             return fail(f"nonlinear_mode.csv has {len(rows)} rows, summary {n} points")
         if not any("stalled" in w for w in j["warnings"]):
             return fail(f"warnings {j['warnings']}")
+    return 0
+
+
+def partial_results(exe):
+    # Issue 23: a table that cannot start (Newton allowed one iteration from the linear
+    # guess of a slipping joint) does not cost the others: they run and are written, the
+    # failed one is named with its reason in summary.json `failed` and on stderr, exit 3.
+    case = JENKINS + FRF + """[[frequency_response]]
+force_cos = [[0.0], [3.3]]
+omega = { from = 0.2, to = 0.4 }
+continuation = { max_iterations = 1, target_iterations = 1 }
+""" + FRF.replace("0.1]]", "0.2]]")
+    with tempfile.TemporaryDirectory() as tmp:
+        r, out = run(exe, case, tmp)
+        if r.returncode != 3:
+            return fail(f"expected exit 3, got {r.returncode}: {r.stderr}")
+        if "could not start" not in r.stderr or "frequency_response[1]" not in r.stderr:
+            return fail(f"message: {r.stderr}")
+        j = json.load(open(os.path.join(out, "summary.json")))
+        failed = j.get("failed")
+        if not failed or len(failed) != 1 or failed[0]["table"] != 1 or "cannot start" not in failed[0]["reason"]:
+            return fail(f"failed: {failed}")
+        tables = [c["table"] for c in j["frequency_response"]]
+        if tables != [0, 2]:
+            return fail(f"curves of tables {tables}, expected [0, 2]")
+        for c in j["frequency_response"]:
+            if not c["solver"]["complete"]:
+                return fail(f"curve of table {c['table']} incomplete: {c['solver']}")
+        if j["solver"]["complete"] is not False:
+            return fail(f"solver {j['solver']}")
+        for k in (1, 2):
+            _, rows = read_csv(os.path.join(out, f"frequency_response_{k}.csv"))
+            if len(rows) != len(j["frequency_response"][k - 1]["omega_rad_s"]):
+                return fail(f"frequency_response_{k}.csv rows")
     return 0
 
 
@@ -507,6 +541,7 @@ def main():
         "summary_keys": summary_keys,
         "examples": examples,
         "stall": stall,
+        "partial_results": partial_results,
         "matrix_market": matrix_market,
         "omega_in_hz": omega_in_hz,
         "without_out_prints_the_summary": without_out_prints_the_summary,

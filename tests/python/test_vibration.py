@@ -84,6 +84,9 @@ def _element_cases():
         # The rough flat through the Masing engine, in a structure of its own stiffness
         # scale so that the structure's and the element's forces are comparable.
         "rough_flat": (vib.RoughFlat(bb, T=[1.0, -0.5]), 3.0 * x_rf, k_rf),
+        "polynomial_stiffness": (vib.PolynomialStiffness(k1=0.5, k2=-0.3, k3=2.0, T=[1.0, -0.5]),
+                                 1.0, 1.0),
+        "cubic_damping": (vib.CubicDamping(0.7, T=[1.0, -0.5]), 1.0, 1.0),
     }
 
 

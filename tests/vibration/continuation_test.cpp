@@ -62,6 +62,49 @@ TEST(VibrationContinuation, FollowsBothTurningPointsOfTheDuffingResponse) {
   EXPECT_DOUBLE_EQ(r.points.back()(2), 2.5);
 }
 
+// A Z-shaped curve whose folds are kinks: lambda = f(x) with f piecewise linear, slope 1
+// up to x = 1, -2 up to x = 1.2, 1 beyond (the shape of the AFT curves of issue 23, where
+// contact located at samples makes the residual piecewise smooth). At each kink the curve
+// leaves backwards (the next piece's tangent (1, -2)/sqrt 5 makes an obtuse angle with
+// (1, 1)/sqrt 2), so no point on the corrector's plane normal to the arriving tangent
+// continues it: the continuation has to take the next piece's tangent.
+void zigzag(const Eigen::VectorXd& y, Eigen::VectorXd& R, Eigen::MatrixXd* J) {
+  const double x = y(0), lambda = y(1);
+  const double f = x < 1.0 ? x : (x < 1.2 ? 1.0 - 2.0 * (x - 1.0) : 0.6 + (x - 1.2));
+  const double slope = x < 1.0 ? 1.0 : (x < 1.2 ? -2.0 : 1.0);
+  R = Eigen::VectorXd::Constant(1, f - lambda);
+  if (J) *J = Eigen::RowVector2d(slope, -1.0);
+}
+
+TEST(VibrationContinuation, FollowsFoldsAtKinksOfAPiecewiseLinearCurve) {
+  ContinuationProblem pb;
+  pb.f = zigzag;
+  pb.parameter = 1;
+  pb.scale = Eigen::Vector2d(1.0, 1.0);
+  pb.residual_scale = 1.0;
+  pb.parameter_end = 2.0;
+  ContinuationOptions opt;
+  opt.step = 0.01;
+  opt.max_step = 0.05;
+  const ContinuationResult r = continue_curve(pb, Eigen::Vector2d(0.0, 0.0), opt);
+  ASSERT_TRUE(r.complete) << r.stop_reason;
+  EXPECT_EQ(r.turning_points, 2u);  // down at x = 1, up again at x = 1.2
+  EXPECT_EQ(r.kinks, 2u);
+  bool on_the_middle_piece = false;
+  for (std::size_t k = 0; k < r.points.size(); ++k) {
+    Eigen::VectorXd R;
+    zigzag(r.points[k], R, nullptr);
+    EXPECT_LT(std::abs(R(0)), 1e-12);  // a piecewise-linear residual: Newton is exact
+    // Along the curve x only grows: no piece is traced twice.
+    if (k > 0) {
+      EXPECT_GT(r.points[k](0), r.points[k - 1](0));
+    }
+    on_the_middle_piece = on_the_middle_piece || (r.points[k](0) > 1.0 && r.points[k](0) < 1.2);
+  }
+  EXPECT_TRUE(on_the_middle_piece);
+  EXPECT_DOUBLE_EQ(r.points.back()(1), 2.0);
+}
+
 TEST(VibrationContinuation, NewtonConvergesQuadraticallyOnASmoothSystem) {
   // x^2 = 2 by Newton from 1: 1.5, 1.41667, 1.414216, ...: converged in at most 6.
   const SystemFunction f = [](const Eigen::VectorXd& y, Eigen::VectorXd& R, Eigen::MatrixXd* J) {

@@ -42,6 +42,8 @@ std::vector<std::shared_ptr<const Element>> all_elements() {
       make_coulomb_element(0.3, 5.0),
       make_elastic_dry_friction_2d_element({.k_t = 2.0, .k_n = 3.0, .mu = 0.4, .N0 = 0.2}),
       make_rough_flat_element(rough_flat_backbone(), {{"type", "rough_flat"}}),
+      make_polynomial_stiffness_element({.k1 = 0.5, .k2 = -0.3, .k3 = 2.0}),
+      make_cubic_damping_element(0.7),
   };
 }
 
@@ -348,6 +350,35 @@ TEST(VibrationAnalysis, EpmcOfLinearStructureIsItsMode) {
       EXPECT_NEAR(r.output_amplitude(i, 1), r.amplitude(i) * std::abs(phi(1)),
                   1e-9 * r.amplitude(i));
     }
+  }
+}
+
+// EPMC of a Duffing oscillator with cubic damping, x'' + c x' + x + gamma x^3 + c3 x'^3 = 0,
+// on one harmonic: x = a cos(w t) gives the first-harmonic balance w^2 = 1 + 3/4 gamma a^2
+// (the Duffing backbone) and, since x'^3 = -(a w)^3 (3/4 sin - 1/4 sin 3wt), the extra
+// damping xi = c + 3/4 c3 a^2 w^2 that makes the motion periodic. AFT is exact here
+// (harmonics up to 3 on 16 samples), so the agreement is to the solver tolerance.
+TEST(VibrationAnalysis, DuffingBackboneWithCubicDampingMatchesClosedForm) {
+  const double gamma = 0.8, c = 0.01, c3 = 0.05;
+  Structure s{Eigen::MatrixXd::Constant(1, 1, 1.0), Eigen::MatrixXd::Constant(1, 1, 1.0),
+              Eigen::MatrixXd::Constant(1, 1, c)};
+  const Eigen::MatrixXd T = Eigen::MatrixXd::Constant(1, 1, 1.0);
+  const HarmonicBalance hb(s,
+                           {{make_polynomial_stiffness_element({.k3 = gamma}), T, "duffing"},
+                            {make_cubic_damping_element(c3), T, "cubic damping"}},
+                           HarmonicBalanceOptions{{1}, 16});
+  NonlinearModeOptions opt;
+  opt.log10_amplitude_from = -2.0;
+  opt.log10_amplitude_to = 0.5;
+  const auto r = nonlinear_mode(hb, opt, {0});
+  ASSERT_TRUE(r.continuation.complete) << r.continuation.stop_reason;
+  for (Eigen::Index i = 0; i < r.omega.size(); ++i) {
+    const double a = r.amplitude(i);
+    const double w = std::sqrt(1.0 + 0.75 * gamma * a * a);
+    EXPECT_NEAR(r.omega(i), w, 1e-9 * w) << "a = " << a;
+    const double xi = c + 0.75 * c3 * a * a * w * w;
+    EXPECT_NEAR(r.xi(i), xi, 1e-9 * xi) << "a = " << a;
+    EXPECT_NEAR(r.output_amplitude(i, 0), a, 1e-9 * a);  // m = 1: modal = physical
   }
 }
 

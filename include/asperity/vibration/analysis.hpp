@@ -63,6 +63,24 @@ struct FrequencyResponseOptions {
   void validate(Eigen::Index unknowns) const;
 };
 
+/// A resonance peak of one output: a local maximum of its first-harmonic amplitude |X|
+/// along the curve (d|X|/ds = 0, so d|X|/d omega = 0 where the curve is not at a fold),
+/// located between the computed points to the solver tolerance.
+struct ResponsePeak {
+  std::size_t output = 0;  ///< index into output_dofs
+  double omega = 0.0;      ///< [rad/s]
+  double amplitude = 0.0;  ///< [m]
+  Eigen::VectorXd harmonics;
+};
+
+/// A turning point (fold) of the curve: a local extremum of omega along it
+/// (d omega/ds = 0), located to the solver tolerance.
+struct ResponseFold {
+  double omega = 0.0;                ///< [rad/s]
+  Eigen::VectorXd output_amplitude;  ///< first harmonic of each output [m]
+  Eigen::VectorXd harmonics;
+};
+
 struct FrequencyResponseCurve {
   double force_scale = 1.0;
   Eigen::VectorXd omega;                            ///< [rad/s]
@@ -70,6 +88,8 @@ struct FrequencyResponseCurve {
   Eigen::MatrixXd output_amplitude;                 ///< points x outputs: first harmonic [m]
   Eigen::MatrixXd max_displacement;                 ///< points x outputs: max_t |x(t)| [m]
   std::vector<Eigen::VectorXd> harmonics;           ///< U per point
+  std::vector<ResponsePeak> peaks;                  ///< in order along the curve, per output
+  std::vector<ResponseFold> folds;                  ///< in order along the curve
   ContinuationResult continuation;
   std::vector<std::string> warnings;
 };

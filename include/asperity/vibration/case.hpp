@@ -18,14 +18,19 @@
 //
 //   [[element]]                 # any number, each acting on u = T x
 //   type = "jenkins"            # rough_flat | jenkins | iwan4 | coulomb | elastic_dry_friction_2d
+//                               #   | polynomial_stiffness | cubic_damping
 //   name = "bolt 1"             # optional
 //   T = [[1.0]]                 # rows: element directions; columns: structure DOFs
 //                               #    (one direction may be written as a flat list)
 //     jenkins:   k_t [N/m], F_s [N]
 //     coulomb:   F_s [N], k_tan [s/m]              (f = F_s tanh(k_tan v), Eq. 7.3)
 //     iwan4:     F_S [N], K_T [N/m], chi, beta      (Segalman's four parameters)
-//     elastic_dry_friction_2d: k_t, k_n [N/m], mu, N0 [N] (optional, 0); T has 2 rows
+//     elastic_dry_friction_2d: k_t, k_n [N/m], mu, N0 [N] (optional, 0; < 0: a gap of
+//                               -N0/k_n); T has 2 rows
 //                               (tangential, normal)
+//     polynomial_stiffness: k1 [N/m], k2 [N/m^2], k3 [N/m^3] (each optional, not all
+//                               zero): f = k1 u + k2 u^2 + k3 u^3 (Duffing: k3)
+//     cubic_damping: c3 [N s^3/m^3]: f = c3 v^3
 //     rough_flat: the rough flat at one normal load, through Masing's rules, from
 //       backbone = "dimensional": E_star, G_star, H, sigma, R, eta, A0, P (quantities),
 //                                 nu, asperity_model (bke), mu_cfc (optional)
@@ -132,14 +137,21 @@ struct VibrationResult {
   /// turned back; its points are kept and `stop_reason` says why).
   bool complete = true;
   std::string stop_reason;
+  /// What helps, when a continuation stopped early (empty otherwise).
+  std::string remedy;
+  /// Frequency response curves that could not start, each "frequency_response[k] at force
+  /// scale s: reason"; the other curves are computed (complete is then false).
+  std::vector<std::string> failures;
   std::vector<std::string> warnings;
   /// summary.json: case, structure, elements, harmonic_balance, joint (if any),
   /// nonlinear_mode, frequency_response, quasi_static_mode, solver, warnings.
   SummaryObject summary;
 };
 
-/// Runs the analyses of the case. A continuation that cannot start (its first point does
-/// not converge) and a quasi-static push without equilibrium are bad input: InvalidInput
+/// Runs the analyses of the case. A frequency response curve that cannot start (its
+/// first point does not converge) is named in `failures` and the others run (complete =
+/// false); when nothing at all could be computed, and for a nonlinear mode that cannot
+/// start or a quasi-static push without equilibrium, the case is bad input: InvalidInput
 /// with what to change. A continuation that stops early is not an exception: the result
 /// has complete = false and every point computed.
 [[nodiscard]] VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress = {});

@@ -1,7 +1,11 @@
 #pragma once
 // Newton's method with a line search, and pseudo-arclength continuation with step-size
 // control that follows turning points (Keller 1977; Allgower & Georg, "Introduction to
-// Numerical Continuation Methods", 2003, ch. 2 and 6).
+// Numerical Continuation Methods", 2003, ch. 2 and 6), including folds at kinks of a
+// piecewise-smooth residual (AFT with contact and slip located at samples): where no
+// point on the corrector's plane continues the curve, the next piece's tangent, taken
+// from the Jacobian across the boundary and oriented by the sign of det [J S; t^T]
+// (ch. 2.1, and the piecewise-linear methods of ch. 12), gives the predictor.
 #include <functional>
 #include <string>
 #include <vector>
@@ -58,13 +62,25 @@ struct ContinuationProblem {
   double parameter_end = 0.0;
 };
 
+/// Why a continuation stopped.
+enum class StopCause {
+  end,          ///< the parameter end was reached
+  max_points,   ///< max_points converged points
+  stalled,      ///< no converged point on steps down to min_step
+  turned_back,  ///< the curve went back past the start of the range
+};
+
 struct ContinuationResult {
   std::vector<Eigen::VectorXd> points;  ///< converged solutions in order along the curve
   std::size_t newton_iterations = 0;
   std::size_t rejected_steps = 0;
   std::size_t turning_points = 0;  ///< sign changes of d parameter / d s
-  bool complete = false;           ///< the parameter end was reached
-  std::string stop_reason;         ///< why it stopped (for messages and summaries)
+  /// Points reached along the tangent of the next piece of a piecewise-smooth residual
+  /// (a fold or sharp turn at a kink of the curve).
+  std::size_t kinks = 0;
+  bool complete = false;  ///< the parameter end was reached
+  StopCause cause = StopCause::end;
+  std::string stop_reason;  ///< why it stopped (for messages and summaries)
 };
 
 /// Progress callback: fraction of the parameter range covered, in [0, 1].
@@ -76,5 +92,22 @@ using ProgressFunction = std::function<void(double)>;
                                                 const Eigen::VectorXd& y0,
                                                 const ContinuationOptions& options,
                                                 const ProgressFunction& progress = {});
+
+/// The maximum of value(y) along the curve between points[k-1] and points[k+1] (0 < k <
+/// points.size() - 1, points[k] the largest of the three): the curve is parametrised by
+/// sigma on the chord from points[k-1] to points[k+1] (in scaled unknowns), each point
+/// corrected by Newton on R(y) = 0 and the chord's plane, and Brent's method finds the
+/// maximum to sqrt(machine epsilon) of the chord (the value's error quadratic in that,
+/// where the curve is smooth). Returns points[k]
+/// where the chord does not parametrise the curve or Newton fails.
+[[nodiscard]] Eigen::VectorXd refine_curve_maximum(
+    const ContinuationProblem& problem, const std::vector<Eigen::VectorXd>& points, std::size_t k,
+    const NewtonOptions& newton, const std::function<double(const Eigen::VectorXd&)>& value);
+
+/// Interior local maxima of v whose topographic prominence (how far v falls on both sides
+/// before rising above the maximum again or reaching an end) is at least
+/// min_prominence(v_k), in order.
+[[nodiscard]] std::vector<std::size_t> prominent_maxima(
+    const std::vector<double>& v, const std::function<double(double)>& min_prominence);
 
 }  // namespace asperity::vibration

@@ -53,7 +53,8 @@ class Element {
   Element(const Element&) = default;
   Element& operator=(const Element&) = default;
 
-  /// "rough_flat", "jenkins", "iwan4", "coulomb", "elastic_dry_friction_2d".
+  /// "rough_flat", "jenkins", "iwan4", "coulomb", "elastic_dry_friction_2d",
+  /// "polynomial_stiffness", "cubic_damping".
   [[nodiscard]] virtual std::string type() const = 0;
   /// Number of directions (rows of T).
   [[nodiscard]] virtual std::size_t directions() const { return 1; }
@@ -156,14 +157,15 @@ class CoulombElement final : public Element {
 /// force f_n = max(N0 + k_n u_n, 0) (u_n > 0 presses the surfaces together; f_n = 0 is
 /// separation) and a tangential spring k_t in series with a slider that slips at
 /// mu f_n. In separation the tangential force is zero and the slider follows. The
-/// preload N0 is carried by the bolt (outside the model): the structure receives the
+/// preload N0 > 0 is carried by the bolt (outside the model): the structure receives the
 /// normal force's change f_n - N0, so that u = 0 is the equilibrium at rest; with N0 = 0
-/// (the default) the structure receives f_n itself.
+/// (the default) the structure receives f_n itself. N0 < 0 is a gap g = -N0 / k_n: the
+/// surfaces touch once u_n > g, and the structure receives f_n (zero at rest).
 struct ElasticDryFriction2dParameters {
   double k_t = 0.0;  ///< [N/m], > 0
   double k_n = 0.0;  ///< [N/m], > 0
   double mu = 0.0;   ///< > 0
-  double N0 = 0.0;   ///< [N], >= 0: normal force at u_n = 0 (a preload the structure carries)
+  double N0 = 0.0;   ///< [N], finite: normal force at u_n = 0 (> 0 a preload, < 0 a gap -N0/k_n)
   void validate() const;
 };
 class ElasticDryFriction2dElement final : public Element {
@@ -183,6 +185,52 @@ class ElasticDryFriction2dElement final : public Element {
   ElasticDryFriction2dParameters p_;
 };
 
+/// Polynomial stiffness (Duffing's when only k1 and k3 are given): f = sum_j k_j u^j,
+/// j = 1 .. 3. Memoryless and odd or not as its coefficients are.
+struct PolynomialStiffnessParameters {
+  double k1 = 0.0;        ///< [N/m]
+  double k2 = 0.0;        ///< [N/m^2]
+  double k3 = 0.0;        ///< [N/m^3]
+  void validate() const;  ///< finite, not all zero
+};
+class PolynomialStiffnessElement final : public Element {
+ public:
+  explicit PolynomialStiffnessElement(PolynomialStiffnessParameters p);
+  [[nodiscard]] std::string type() const override { return "polynomial_stiffness"; }
+  void periodic_response(const Eigen::MatrixXd& u, const Eigen::MatrixXd& v, bool tangent,
+                         PeriodicResponse& out) const override;
+  void static_response(const Eigen::VectorXd& u, Eigen::VectorXd& f,
+                       Eigen::MatrixXd& K) const override;
+  [[nodiscard]] Eigen::MatrixXd initial_stiffness() const override;
+  [[nodiscard]] double slip_force() const override;
+  [[nodiscard]] dynamics::SummaryObject describe() const override;
+
+ private:
+  PolynomialStiffnessParameters p_;
+};
+
+/// Cubic damping: f = c3 v^3.
+struct CubicDampingParameters {
+  double c3 = 0.0;  ///< [N s^3/m^3], finite, != 0
+  void validate() const;
+};
+class CubicDampingElement final : public Element {
+ public:
+  explicit CubicDampingElement(CubicDampingParameters p);
+  [[nodiscard]] std::string type() const override { return "cubic_damping"; }
+  [[nodiscard]] bool velocity_dependent() const override { return true; }
+  void periodic_response(const Eigen::MatrixXd& u, const Eigen::MatrixXd& v, bool tangent,
+                         PeriodicResponse& out) const override;
+  void static_response(const Eigen::VectorXd& u, Eigen::VectorXd& f,
+                       Eigen::MatrixXd& K) const override;
+  [[nodiscard]] Eigen::MatrixXd initial_stiffness() const override;
+  [[nodiscard]] double slip_force() const override;
+  [[nodiscard]] dynamics::SummaryObject describe() const override;
+
+ private:
+  CubicDampingParameters p_;
+};
+
 /// An element placed in a structure: u = T x (T: directions x dofs).
 struct PlacedElement {
   std::shared_ptr<const Element> element;
@@ -197,6 +245,9 @@ struct PlacedElement {
 [[nodiscard]] std::shared_ptr<const Element> make_coulomb_element(double F_s, double k_tan);
 [[nodiscard]] std::shared_ptr<const Element> make_elastic_dry_friction_2d_element(
     const ElasticDryFriction2dParameters& p);
+[[nodiscard]] std::shared_ptr<const Element> make_polynomial_stiffness_element(
+    const PolynomialStiffnessParameters& p);
+[[nodiscard]] std::shared_ptr<const Element> make_cubic_damping_element(double c3);
 /// The rough flat (or any SI backbone) as an element; `parameters` describe it.
 [[nodiscard]] std::shared_ptr<const Element> make_rough_flat_element(
     std::shared_ptr<const hysteresis::Backbone> backbone_si, dynamics::SummaryObject parameters);
