@@ -307,7 +307,7 @@ void bind_surface(nb::module_& m) {
       "The S-L surface of areal_parameters: (z[iy, ix], x of the first column, y of the\n"
       "first row); with end=\"discard\" ct*(lc+ls) is cropped at each edge.");
   m.def(
-      "power_spectrum",
+      "profile_power_spectrum",
       [](const Array1& z, double dx) { return spectrum_dict(power_spectrum(to_profile(z, dx))); },
       "z"_a, "dx"_a,
       "One-sided PSD of heights z [m] as given: {f [1/m], psd [m^3], df, profiles, direction},\n"

@@ -73,7 +73,7 @@ def test_areal_parameters_against_surfacetopography_and_numpy(surface):
 def test_psd_normalisation_and_numpy(surface):
     sl, dx, dy = surface
     row = sl[100]
-    s = asperity.power_spectrum(row, dx)
+    s = asperity.profile_power_spectrum(row, dx)
     # Parseval: sum psd * df = mean z^2 (one-sided, no window).
     assert np.sum(s["psd"]) * s["df"] == pytest.approx(np.mean(row**2), rel=1e-12)
     # numpy's rfft: psd = c |Z|^2 dx / n with c = 2 except at f = 0 and Nyquist.
