@@ -44,7 +44,7 @@ __all__ = [
     "Structure", "Element", "Jenkins", "Iwan4", "Coulomb", "ElasticDryFriction2d",
     "RoughFlat", "HarmonicBalance", "Result", "nonlinear_mode", "frequency_response",
     "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
-    "run_case_text", "plot_mode", "plot_response",
+    "run_case_text", "plot_mode", "plot_response", "fit_loops",
 ]
 
 
@@ -187,6 +187,40 @@ class Iwan4(Element):
     def __init__(self, F_S: float, K_T: float, chi: float, beta: float, T=1.0,
                  name: str | None = None):
         super().__init__(_v.iwan4(F_S, K_T, chi, beta), T, name)
+
+
+def fit_loops(loops, model: str = "iwan4", T=1.0, name: str | None = None) -> Result:
+    """Least-squares fit of measured or synthetic hysteresis loops by a Jenkins
+    (``model="jenkins"``: ``k_t``, ``F_s``) or Segalman four-parameter Iwan element
+    (``"iwan4"``: ``F_S``, ``K_T``, ``chi``, ``beta``), the same fit as
+    ``asperity analyze --fit``.
+
+    ``loops``: results of :func:`asperity.analyze_fretting` (their averaged loops
+    ``loop_delta``, ``loop_Q``) or ``(delta, Q)`` pairs, each a closed loop whose first half
+    is the unloading branch from the largest displacement. The parameters are shared, each
+    loop has its own force offset. Returns a :class:`Result` with ``parameters``
+    (``{name: {value, standard_error, unit}}``; an infinite standard error: not determined
+    by the loops), ``residual_rms`` [N], ``relative_residual``, ``Q_model`` (the fitted
+    loops), ``Q_offsets``, ``element_toml`` (the ``[[element]]`` table of a vibration case)
+    and ``element``, a :class:`Jenkins` or :class:`Iwan4` placed by ``T``."""
+    pairs = []
+    for loop in loops:
+        if isinstance(loop, Mapping):
+            pairs.append((np.asarray(loop["loop_delta"], float), np.asarray(loop["loop_Q"], float)))
+        else:
+            delta, Q = loop
+            pairs.append((np.asarray(delta, float), np.asarray(Q, float)))
+    r = _v.fit_loops(pairs, model)
+    p = {k: dict(v) for k, v in r["parameters"].items()}
+    value = {k: v["value"] for k, v in p.items()}
+    if r["model"] == "jenkins":
+        element = Jenkins(value["k_t"], value["F_s"], T, name)
+    else:
+        element = Iwan4(value["F_S"], value["K_T"], value["chi"], value["beta"], T, name)
+    return Result(model=r["model"], parameters=p, residual_rms=r["residual_rms"],
+                  relative_residual=r["relative_residual"], points=r["points"],
+                  Q_offsets=np.asarray(r["Q_offsets"]), Q_model=[np.asarray(q) for q in r["Q_model"]],
+                  element_toml=r["element_toml"], element=element)
 
 
 class Coulomb(Element):
