@@ -282,6 +282,49 @@ std::vector<vibration::MeasuredLoop> measured_loops(const std::vector<Run>& runs
   return loops;
 }
 
+// What the sensors' noise leaves in the averaged loops' forces, and the warnings of a fit.
+struct FitChecks {
+  double noise_floor = 0.0;  ///< rms over runs of sqrt(s_Q^2 + (k s_d)^2)/sqrt(cycles) [N]
+  std::vector<std::string> warnings;
+};
+
+FitChecks fit_checks(const vibration::LoopFit& f, const std::vector<Run>& runs) {
+  FitChecks c;
+  // The stiffness at the reversals: k_t or K_T.
+  const double k = f.model == vibration::LoopModel::jenkins ? f.value("k_t") : f.value("K_T");
+  double ss = 0.0, worst = 0.0;
+  for (const auto& r : runs) {
+    const double n = static_cast<double>(r.a.cycles.size());
+    const double sx = k * r.a.noise_delta;  // displacement noise as force
+    ss += (r.a.noise_Q * r.a.noise_Q + sx * sx) / n;
+    worst = std::max(worst, sx / std::max(r.a.noise_Q, 1e-300));
+  }
+  c.noise_floor = std::sqrt(ss / static_cast<double>(runs.size()));
+  std::string undetermined;
+  for (const auto& p : f.parameters) {
+    if (!std::isfinite(p.standard_error))
+      undetermined += (undetermined.empty() ? "" : ", ") + p.name;
+  }
+  if (!undetermined.empty()) {
+    c.warnings.push_back(fmt::format(
+        "fit: {} not determined by these loops (a parameter at its bound, or F_S of loops that "
+        "never reach macro-slip): fit loops over a wider range of amplitudes, or a model with "
+        "fewer parameters",
+        undetermined));
+  }
+  // Warned when the displacement noise dominates the force noise and is a sizeable part
+  // (a third) of the residual: then it, not the model, limits the fit.
+  if (worst > 1.0 && c.noise_floor > f.residual_rms / 3.0) {
+    c.warnings.push_back(fmt::format(
+        "fit: the displacement noise times the fitted stiffness ({:.3g} N/um) is up to {:.3g} "
+        "times the force noise: the loops' displacements are the noisier signal, which biases "
+        "the fitted stiffness low (errors in the regressor near the reversals; docs/joints.md); "
+        "a finer displacement sensor or more cycles reduce it",
+        k * 1e-6, worst));
+  }
+  return c;
+}
+
 Json fit_json(const vibration::LoopFit& f, const std::vector<Run>& runs) {
   Json params = Json::object(), element = Json::object();
   element["type"] = std::string(vibration::to_string(f.model));
@@ -305,6 +348,8 @@ Json fit_json(const vibration::LoopFit& f, const std::vector<Run>& runs) {
       {"Q_offsets", offsets},
       {"element", element},
       {"element_toml", f.case_toml()},
+      {"noise_floor", fit_checks(f, runs).noise_floor},
+      {"warnings", fit_checks(f, runs).warnings},
       {"method",
        "least squares (Levenberg-Marquardt, several starts) of the averaged loops of all runs "
        "at once by the element's steady Masing loop, Q = Q_c +- B(a) -+ 2 B(|x - x_rev|/2), "
@@ -313,7 +358,7 @@ Json fit_json(const vibration::LoopFit& f, const std::vector<Run>& runs) {
        "correlated), null when the loops do not determine the parameter"}};
 }
 
-std::string fit_text(const vibration::LoopFit& f) {
+std::string fit_text(const vibration::LoopFit& f, const std::vector<Run>& runs) {
   std::string s = fmt::format("{} fit of the averaged loop{}:\n", vibration::to_string(f.model),
                               f.loops == 1 ? "" : "s");
   for (const auto& p : f.parameters) {
@@ -323,10 +368,11 @@ std::string fit_text(const vibration::LoopFit& f) {
                                                      : std::string("(not determined)"));
   }
   s += fmt::format(
-      "  rms residual {:.4g} N ({:.3g} % of the mean half peak-to-peak force), {} points\n"
-      "as a vibration case element:\n",
-      f.residual_rms, 100.0 * f.relative_residual, f.points);
-  return s + f.case_toml();
+      "  rms residual {:.4g} N ({:.3g} % of the mean half peak-to-peak force), {} points; the "
+      "sensors' noise leaves {:.3g} N in the averaged loops\n",
+      f.residual_rms, 100.0 * f.relative_residual, f.points, fit_checks(f, runs).noise_floor);
+  for (const auto& w : fit_checks(f, runs).warnings) s += "warning: " + w + "\n";
+  return s + "as a vibration case element:\n" + f.case_toml();
 }
 
 // energy_vs_force.png of several runs: the runs (left-out ones marked), the fitted power
@@ -576,6 +622,10 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
         if (law) {
           for (const auto& w : law->warnings) std::cerr << "asperity: warning: " << w << "\n";
         }
+        if (fit) {
+          for (const auto& w : fit_checks(*fit, runs).warnings)
+            std::cerr << "asperity: warning: " << w << "\n";
+        }
         std::vector<std::string> written;
         if (kind == OutKind::file) write_file_atomically(*o->out, json_output(j));
         if (to_dir) {
@@ -706,7 +756,7 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
             }
             for (const auto& w : law->warnings) out += "warning: " + w + "\n";
           }
-          if (fit) out += fit_text(*fit);
+          if (fit) out += fit_text(*fit, runs);
         }
         if (fit && o->element_out) {
           write_output(*o->element_out, fit->case_toml(), out);

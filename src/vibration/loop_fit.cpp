@@ -350,6 +350,12 @@ LoopFit fit_loops(const std::vector<MeasuredLoop>& loops, LoopModel model) {
       }
     }
   }
+  if (model == LoopModel::iwan4) {
+    // At a bound of the domain (chi -> 0 or -1, beta -> 0) the optimum is on the boundary,
+    // where the Gauss-Newton covariance does not apply: not determined.
+    if (p[2] > -1e-9 || p[2] < -1.0 + 1e-9) se[2] = kInf;
+    if (p[3] < 1e-9) se[3] = kInf;
+  }
   if (model == LoopModel::jenkins) {
     fit.parameters = {{"k_t", "N/m", p[0], se[0]}, {"F_s", "N", p[1], se[1]}};
   } else {

@@ -43,7 +43,8 @@ struct FittedParameter {
   /// (the force offset of each loop is a nuisance parameter). Treats the residuals as
   /// independent: neighbouring points of an averaged loop are correlated, so this is a
   /// lower bound. Infinite when the data do not determine the parameter (a singular J^T J:
-  /// e.g. F_S of loops that never reach macro-slip).
+  /// e.g. F_S of loops that never reach macro-slip), and for chi or beta at a bound of
+  /// their domain (chi > -1e-9 or < -1 + 1e-9, beta < 1e-9).
   double standard_error = 0.0;
 };
 
