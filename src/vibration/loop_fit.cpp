@@ -9,26 +9,12 @@
 
 #include "asperity/core/error.hpp"
 #include "asperity/dynamics/friction_model.hpp"
+#include "asperity/hysteresis/backbones.hpp"
 
 namespace asperity::vibration {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// The Jenkins element's backbone: min(k_t x, F_s) (x >= 0).
-class JenkinsBackbone final : public hysteresis::Backbone {
- public:
-  JenkinsBackbone(double k, double F) : k_(k), F_(F) {}
-  [[nodiscard]] double force(double x) const override {
-    return x <= 0.0 ? 0.0 : std::min(k_ * x, F_);
-  }
-  [[nodiscard]] double displacement(double Q) const override { return Q / k_; }
-  [[nodiscard]] double limit() const override { return F_; }
-  [[nodiscard]] double initial_stiffness() const override { return k_; }
-
- private:
-  double k_, F_;
-};
 
 std::size_t parameter_count(LoopModel m) {
   return m == LoopModel::jenkins ? 2 : 4;
@@ -47,7 +33,7 @@ std::unique_ptr<hysteresis::Backbone> backbone_of(LoopModel m, const std::vector
     if (!std::isfinite(v)) return nullptr;
   if (m == LoopModel::jenkins) {
     if (!(p[0] > 0.0 && p[1] > 0.0)) return nullptr;
-    return std::make_unique<JenkinsBackbone>(p[0], p[1]);
+    return std::make_unique<hysteresis::JenkinsBackbone>(p[0], p[1]);
   }
   const dynamics::SegalmanIwanParameters s{.F_S = p[1], .K_T = p[0], .chi = p[2], .beta = p[3]};
   try {
