@@ -52,6 +52,6 @@ JointBackbone joint_backbone(const std::string& path, const std::string& base_di
 /// The [[element]] table number `index` (0-based) on a structure of `dofs` DOFs; `joint`
 /// is the backbone of a rough_flat element with backbone = "joint".
 PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Index dofs,
-                            const std::optional<JointBackbone>& joint);
+                            const std::optional<JointBackbone>& joint, const std::string& base_dir);
 
 }  // namespace asperity::vibration::detail
