@@ -479,6 +479,12 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
                                 a.imposed ? fmt::format("{:.12g}", *a.imposed * 1e6) : "");
     }
   }
+  const bool amplitudes = !lc[0].empty();
+  if (data && amplitudes) {
+    core::write_csv_table(file("loops.csv"), {"preload[N]", "delta_max[um]", "delta[um]", "Q[N]"},
+                          lc);
+    write_file_atomically(file("energy.csv"), energy_csv);
+  }
   // backbones.csv: each preload's virgin curve, for a masing_table vibration element.
   if (data) {
     std::vector<std::vector<double>> bc(3);
@@ -491,12 +497,6 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
       }
     }
     core::write_csv_table(file("backbones.csv"), {"preload[N]", "delta[um]", "Q[N]"}, bc);
-  }
-  const bool amplitudes = !lc[0].empty();
-  if (data && amplitudes) {
-    core::write_csv_table(file("loops.csv"), {"preload[N]", "delta_max[um]", "delta[um]", "Q[N]"},
-                          lc);
-    write_file_atomically(file("energy.csv"), energy_csv);
   }
   const bool patched = !p.loads.empty() && p.loads.front().patches.size() > 1;
   if (data && patched) write_patch_table(file("patches.csv"), p);
