@@ -447,6 +447,17 @@ void bind_vibration(nb::module_& parent) {
       "Least-squares fit of closed loops [(delta, Q), ...] (each: the unloading branch from the\n"
       "largest displacement, then the reloading branch, equal halves, as analyze_fretting's\n"
       "loop_delta, loop_Q) by \"jenkins\" or \"iwan4\" (vibration/loop_fit.hpp).");
+  m.def(
+      "masing_table",
+      [](const Vector& x, const Vector& Q, const std::string& source) {
+        return make_masing_table_element(std::vector<double>(x.data(), x.data() + x.size()),
+                                         std::vector<double>(Q.data(), Q.data() + Q.size()),
+                                         source);
+      },
+      "x"_a, "Q"_a, "source"_a = "table",
+      "Masing element on a backbone table: force Q [N] against displacement x [m], checked\n"
+      "monotone and through the origin, monotone cubic interpolation, constant beyond the\n"
+      "last point (hysteresis/table_backbone.hpp).");
   m.def("coulomb", &make_coulomb_element, "F_s"_a, "k_tan"_a,
         "Regularized Coulomb f = F_s tanh(k_tan v) (Eq. 7.3 in SI): F_s [N], k_tan [s/m].");
   m.def(
