@@ -451,6 +451,51 @@ points = 7
     return 0
 
 
+def masing_table_from_flat(exe):
+    # `asperity flat --backbone` (dimensional inputs) writes the rough flat's virgin curve in
+    # SI; as a masing_table element its slip force is flat's Q_max (to the 12 digits of the
+    # file) and its stiffness at rest, the first interval's secant, is within 1 % of flat's
+    # (the backbone bends over the first of 400 intervals by about half its curvature times
+    # the interval, 0.6 % here). Normalized inputs are refused.
+    flat = ["flat", "--E1", "200GPa", "--nu1", "0.24", "--G1", "80.7GPa", "--E2", "200GPa",
+            "--nu2", "0.24", "--G2", "80.7GPa", "--H", "5.8GPa", "--sigma", "2.677um",
+            "--eta", "2.91e-4um^-2", "--R", "30.14um", "--area", "170mm^2", "--P", "526N"]
+    with tempfile.TemporaryDirectory() as tmp:
+        f = subprocess.run([exe, *flat, "--backbone", os.path.join(tmp, "fb.csv"), "--json"],
+                           capture_output=True, text=True, timeout=300)
+        if f.returncode != 0:
+            return fail(f.stderr)
+        fj = json.loads(f.stdout)
+        r, out = run(exe, """[structure]
+mass = [[1.0]]
+stiffness = [[1e8]]
+damping = [[20.0]]
+[[element]]
+type = "masing_table"
+T = [[1.0]]
+table = "fb.csv"
+[harmonic_balance]
+max = 3
+time_points = 128
+[quasi_static_mode]
+amplitude = { from = 1e-8, to = 1e-6 }
+points = 3
+""", tmp)
+        if r.returncode != 0:
+            return fail(r.stderr)
+        e = json.load(open(os.path.join(out, "summary.json")))["elements"][0]
+        if abs(e["Q_max_N"] / fj["Q_max"] - 1) > 1e-11:
+            return fail(f"Q_max {e['Q_max_N']} vs flat's {fj['Q_max']}")
+        if abs(e["stiffness_N_per_m"] / fj["stiffness"] - 1) > 0.01:
+            return fail(f"stiffness {e['stiffness_N_per_m']} vs flat's {fj['stiffness']}")
+        n = subprocess.run([exe, "flat", "--beta", "0.04", "--psi", "0.5", "--nu", "0.3",
+                            "--P-star", "1e-3", "--backbone", os.path.join(tmp, "n.csv")],
+                           capture_output=True, text=True, timeout=60)
+        if n.returncode != 2 or "dimensional" not in n.stderr or os.path.exists(os.path.join(tmp, "n.csv")):
+            return fail(f"normalized --backbone: exit {n.returncode}: {n.stderr}")
+    return 0
+
+
 def base_excitation(exe):
     # A linear SDOF (m = 1, k = 1, c = 0.1) on a base moving as y = Y sin(omega t),
     # Y = 0.01: force_sin = k Y, force_per_omega_cos = c Y. Closed form (transmissibility):
@@ -581,6 +626,7 @@ def main():
         "out_refuses_a_foreign_directory": out_refuses_a_foreign_directory,
         "rough_flat_forms": rough_flat_forms,
         "masing_table_from_predict": masing_table_from_predict,
+        "masing_table_from_flat": masing_table_from_flat,
     }[case](exe)
 
 
