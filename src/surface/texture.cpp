@@ -82,7 +82,8 @@ std::size_t despike_run(double* z, std::size_t n, const SpikeRemoval& s) {
       ++count;
     }
   }
-  if (count == 0 || count == n) return count == n ? 0 : count;
+  // Nothing to replace, or nothing to replace it with (every point flagged: no scale).
+  if (count == 0 || count == n) return 0;
   std::size_t i = 0;
   while (i < n) {
     if (!spike[i]) {
