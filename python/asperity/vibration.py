@@ -42,10 +42,11 @@ from . import _core
 _v = _core._vibration
 
 __all__ = [
-    "Structure", "Element", "Jenkins", "Iwan4", "Coulomb", "ElasticDryFriction2d",
-    "PolynomialStiffness", "CubicDamping", "RoughFlat", "HarmonicBalance", "Result", "nonlinear_mode", "frequency_response",
+    "Structure", "Element", "Jenkins", "Iwan4", "MasingTable", "Coulomb", "ElasticDryFriction2d",
+    "PolynomialStiffness", "CubicDamping", "RoughFlat", "HarmonicBalance", "Result", "nonlinear_mode",
+    "frequency_response",
     "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
-    "run_case_text", "plot_mode", "plot_response",
+    "run_case_text", "plot_mode", "plot_response", "fit_loops",
 ]
 
 
@@ -188,6 +189,91 @@ class Iwan4(Element):
     def __init__(self, F_S: float, K_T: float, chi: float, beta: float, T=1.0,
                  name: str | None = None):
         super().__init__(_v.iwan4(F_S, K_T, chi, beta), T, name)
+
+
+class MasingTable(Element):
+    """A backbone given as a table, force ``Q`` [N] against displacement ``x`` [m] (checked
+    monotone and through the origin; monotone cubic interpolation, the force constant
+    beyond the last point), under Masing's rules: the ``masing_table`` element of a case
+    file. :meth:`from_csv` reads a table with units in its header, such as the
+    ``backbones.csv`` of ``asperity predict --out``."""
+
+    def __init__(self, x, Q, T=1.0, name: str | None = None, source: str = "table"):
+        super().__init__(_v.masing_table(np.asarray(x, float), np.asarray(Q, float), source), T,
+                         name)
+
+    @classmethod
+    def from_csv(cls, path: str | os.PathLike, preload: float | None = None, T=1.0,
+                 name: str | None = None) -> "MasingTable":
+        """From a CSV file with a displacement column (``delta``, ``x`` or
+        ``displacement``, unit in the header, e.g. ``delta[um]``) and a force column (``Q``
+        or ``force``, e.g. ``Q[N]``); a ``preload[N]`` column (predict's backbones.csv)
+        needs ``preload`` [N] when it holds several (matched to 1e-9)."""
+        import csv
+        units = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "nm": 1e-9, "N": 1.0, "kN": 1e3}
+        with open(path, newline="") as f:
+            rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")]
+        head = [h.strip() for h in rows[0]]
+        names = [h.split("[")[0].strip() for h in head]
+        scale = [units.get(h.split("[")[1].rstrip("]").strip(), None) if "[" in h else 1.0
+                 for h in head]
+
+        def col(*cands):
+            for c in cands:
+                if c in names:
+                    i = names.index(c)
+                    if scale[i] is None:
+                        raise _core.InvalidInput(f"{path}: unit of {head[i]} not known (m, mm, um, nm, N, kN)")
+                    return np.array([float(r[i]) for r in rows[1:]]) * scale[i]
+            raise _core.InvalidInput(f"{path}: needs a column {' or '.join(cands)}")
+
+        x, Q = col("delta", "x", "displacement"), col("Q", "force")
+        if "preload" in names:
+            P = col("preload")
+            levels = sorted(set(P))
+            if preload is None and len(levels) > 1:
+                raise _core.InvalidInput(f"{path} holds the backbones of preloads {levels} N: "
+                                         "choose one with preload=")
+            chosen = levels[0] if preload is None else preload
+            keep = np.abs(P - chosen) <= 1e-9 * abs(chosen)
+            if not keep.any():
+                raise _core.InvalidInput(f"preload = {chosen} N: {path} has {levels} N")
+            x, Q = x[keep], Q[keep]
+        return cls(x, Q, T, name, os.fspath(path))
+
+
+def fit_loops(loops, model: str = "iwan4", T=1.0, name: str | None = None) -> Result:
+    """Least-squares fit of measured or synthetic hysteresis loops by a Jenkins
+    (``model="jenkins"``: ``k_t``, ``F_s``) or Segalman four-parameter Iwan element
+    (``"iwan4"``: ``F_S``, ``K_T``, ``chi``, ``beta``), the same fit as
+    ``asperity analyze --fit``.
+
+    ``loops``: results of :func:`asperity.analyze_fretting` (their averaged loops
+    ``loop_delta``, ``loop_Q``) or ``(delta, Q)`` pairs, each a closed loop whose first half
+    is the unloading branch from the largest displacement. The parameters are shared, each
+    loop has its own force offset. Returns a :class:`Result` with ``parameters``
+    (``{name: {value, standard_error, unit}}``; an infinite standard error: not determined
+    by the loops), ``residual_rms`` [N], ``relative_residual``, ``Q_model`` (the fitted
+    loops), ``Q_offsets``, ``element_toml`` (the ``[[element]]`` table of a vibration case)
+    and ``element``, a :class:`Jenkins` or :class:`Iwan4` placed by ``T``."""
+    pairs = []
+    for loop in loops:
+        if isinstance(loop, Mapping):
+            pairs.append((np.asarray(loop["loop_delta"], float), np.asarray(loop["loop_Q"], float)))
+        else:
+            delta, Q = loop
+            pairs.append((np.asarray(delta, float), np.asarray(Q, float)))
+    r = _v.fit_loops(pairs, model)
+    p = {k: dict(v) for k, v in r["parameters"].items()}
+    value = {k: v["value"] for k, v in p.items()}
+    if r["model"] == "jenkins":
+        element = Jenkins(value["k_t"], value["F_s"], T, name)
+    else:
+        element = Iwan4(value["F_S"], value["K_T"], value["chi"], value["beta"], T, name)
+    return Result(model=r["model"], parameters=p, residual_rms=r["residual_rms"],
+                  relative_residual=r["relative_residual"], points=r["points"],
+                  Q_offsets=np.asarray(r["Q_offsets"]), Q_model=[np.asarray(q) for q in r["Q_model"]],
+                  element_toml=r["element_toml"], element=element)
 
 
 class Coulomb(Element):

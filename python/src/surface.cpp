@@ -10,6 +10,7 @@
 #include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/string_view.h>
+#include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
 #include <asperity/core/error.hpp>
@@ -17,6 +18,7 @@
 #include <asperity/surface/profile_io.hpp>
 #include <asperity/surface/roughness.hpp>
 #include <asperity/surface/scan_set.hpp>
+#include <asperity/surface/texture.hpp>
 #include <cmath>
 #include <string>
 
@@ -94,6 +96,47 @@ nb::dict profile_dict(const Profile& p) {
   d["dx"] = p.dx;
   d["x0"] = p.x0;
   d["source"] = p.source;
+  return d;
+}
+
+nb::dict parameters_dict(const ProfileParameters& p) {
+  nb::dict d;
+  d["Ra"] = p.Ra;
+  d["Rq"] = p.Rq;
+  d["Rz"] = p.Rz;
+  d["Rsk"] = p.Rsk;
+  d["Rku"] = p.Rku;
+  d["Rdq"] = p.Rdq;
+  d["sections"] = p.sections;
+  d["section_length"] = p.section_length;
+  return d;
+}
+
+nb::dict parameters_dict(const ArealParameters& a) {
+  nb::dict d;
+  d["Sa"] = a.Sa;
+  d["Sq"] = a.Sq;
+  d["Ssk"] = a.Ssk;
+  d["Sku"] = a.Sku;
+  d["Sdq"] = a.Sdq;
+  d["nx"] = a.nx;
+  d["ny"] = a.ny;
+  return d;
+}
+
+SpikeRemoval make_spikes(std::optional<double> threshold, std::size_t window) {
+  SpikeRemoval s{.threshold = threshold.value_or(0.0), .half_window = window};
+  s.validate();
+  return s;
+}
+
+nb::dict spectrum_dict(const PowerSpectrum& s) {
+  nb::dict d;
+  d["f"] = array_of(s.f);
+  d["psd"] = array_of(s.psd);
+  d["df"] = s.df;
+  d["profiles"] = s.profiles;
+  d["direction"] = s.direction;
   return d;
 }
 
@@ -210,16 +253,99 @@ void bind_surface(nb::module_& m) {
       "truncation"_a = 1.0, "end"_a = "discard",
       "Moments along x (rows of z[iy, ix]) and y (columns), each averaged over its profiles.");
   m.def(
+      "profile_parameters",
+      [](const Array1& z, double dx, const std::string& level_how, std::optional<double> lc,
+         std::optional<double> ls, double truncation, const std::string& end,
+         std::optional<double> spikes, std::size_t spike_window) {
+        auto p = to_profile(z, dx);
+        const auto f = make_filter(lc, ls, truncation, end);
+        remove_spikes(p, make_spikes(spikes, spike_window));
+        const auto r = process_profile(p, parse_levelling(level_how), f);
+        return parameters_dict(profile_parameters(r.filtered, f.lc));
+      },
+      "z"_a, "dx"_a, "level"_a = "line", "lc"_a = 0.8e-3, "ls"_a = 20e-6, "truncation"_a = 1.0,
+      "end"_a = "discard", "spikes"_a = nb::none(), "spike_window"_a = 2,
+      "ISO 21920-2 parameters of one scan through the CLI's pipeline (spike removal when\n"
+      "`spikes` is a threshold in robust standard deviations, level, Gaussian band-pass):\n"
+      "{Ra, Rq, Rz, Rsk, Rku, Rdq, sections, section_length} in SI; Rz over sections of lc,\n"
+      "Rdq from forward differences (= sqrt(m2)). lc=None, ls=None: no filter.");
+  m.def(
+      "texture_parameters",
+      [](const Array1& z, double dx, double section_length) {
+        return parameters_dict(profile_parameters(to_profile(z, dx), section_length));
+      },
+      "z"_a, "dx"_a, "section_length"_a = 0.0,
+      "ISO 21920-2 parameters of heights z [m] as given (already a roughness profile), with\n"
+      "sections of `section_length` [m] for Rz (0: one section).");
+  m.def(
+      "areal_parameters",
+      [](const Array2& z, double dx, double dy, const std::string& level_how,
+         std::optional<double> lc, std::optional<double> ls, double truncation,
+         const std::string& end, std::optional<double> spikes, std::size_t spike_window) {
+        auto map = to_map(z, dx, dy);
+        remove_spikes(map, make_spikes(spikes, spike_window));
+        const auto sl = scale_limited_surface(map, parse_levelling(level_how),
+                                              make_filter(lc, ls, truncation, end));
+        return parameters_dict(areal_parameters(sl));
+      },
+      "z"_a, "dx"_a, "dy"_a, "level"_a = "line", "lc"_a = 0.8e-3, "ls"_a = 20e-6,
+      "truncation"_a = 1.0, "end"_a = "discard", "spikes"_a = nb::none(), "spike_window"_a = 2,
+      "ISO 25178-2 parameters {Sa, Sq, Ssk, Sku, Sdq, nx, ny} of the S-L surface of z[iy, ix]:\n"
+      "least-squares plane (level=\"line\"), then the areal Gaussian filter (ISO 16610-61,\n"
+      "separable: the profile filter along x, then y). Needs every point valid (no NaN).");
+  m.def(
+      "scale_limited_surface",
+      [](const Array2& z, double dx, double dy, const std::string& level_how,
+         std::optional<double> lc, std::optional<double> ls, double truncation,
+         const std::string& end) {
+        const auto sl = scale_limited_surface(to_map(z, dx, dy), parse_levelling(level_how),
+                                              make_filter(lc, ls, truncation, end));
+        return std::make_tuple(map_array(sl), sl.x0, sl.y0);
+      },
+      "z"_a, "dx"_a, "dy"_a, "level"_a = "line", "lc"_a = 0.8e-3, "ls"_a = 20e-6,
+      "truncation"_a = 1.0, "end"_a = "discard",
+      "The S-L surface of areal_parameters: (z[iy, ix], x of the first column, y of the\n"
+      "first row); with end=\"discard\" ct*(lc+ls) is cropped at each edge.");
+  m.def(
+      "profile_power_spectrum",
+      [](const Array1& z, double dx) { return spectrum_dict(power_spectrum(to_profile(z, dx))); },
+      "z"_a, "dx"_a,
+      "One-sided PSD of heights z [m] as given: {f [1/m], psd [m^3], df, profiles, direction},\n"
+      "psd_k = c |Z_k|^2 dx/n (c = 2, 1 at f = 0 and Nyquist), so sum(psd) * df = mean(z**2).");
+  m.def(
+      "areal_power_spectrum",
+      [](const Array2& z, double dx, double dy, const std::string& axis) {
+        if (axis != "x" && axis != "y")
+          throw InvalidInput(fmt::format("axis = \"{}\" is not allowed: use x or y", axis));
+        return spectrum_dict(power_spectrum(to_map(z, dx, dy), axis == "x"));
+      },
+      "z"_a, "dx"_a, "dy"_a, "axis"_a = "x",
+      "Mean one-sided PSD of the rows (axis=\"x\") or columns of z[iy, ix] as given.");
+  m.def(
+      "remove_spikes",
+      [](const Array1& z, double threshold, std::size_t window) {
+        auto p = to_profile(z, 1.0);
+        const std::size_t n = remove_spikes(p, make_spikes(threshold, window));
+        return std::make_pair(array_of(p.z), n);
+      },
+      "z"_a, "threshold"_a, "window"_a = 2,
+      "Hampel spike removal: points farther than `threshold` robust standard deviations\n"
+      "(1.4826 MAD about the least-squares line) from the median of their 2w+1 neighbours\n"
+      "are replaced by the chord of their neighbours. Returns (heights, points replaced).");
+  m.def(
       "equivalent_isotropic_surface",
       [](const std::vector<std::string>& files, const std::string& level_how,
          std::optional<double> lc, std::optional<double> ls, double truncation,
-         const std::string& end, const std::string& rule, std::optional<double> dx) {
+         const std::string& end, const std::string& rule, std::optional<double> dx,
+         std::optional<double> spikes, std::size_t spike_window, bool psd) {
         std::vector<ScanFile> scans;
         for (const auto& f : files) scans.push_back(parse_scan_file(f));
         const ScanSettings settings{.level = parse_levelling(level_how),
                                     .filter = make_filter(lc, ls, truncation, end),
                                     .rule = parse_isotropic_rule(rule),
-                                    .text = {.dx = dx}};
+                                    .text = {.dx = dx},
+                                    .spikes = make_spikes(spikes, spike_window),
+                                    .psd = psd};
         IsotropicSurface r;
         {
           nb::gil_scoped_release release;  // reading and filtering: C++ only
@@ -234,19 +360,32 @@ void bind_surface(nb::module_& m) {
           d["profiles"] = sc.profiles;
           d["dx"] = sc.dx;
           d["moments"] = sc.moments;
+          d["parameters"] =
+              sc.parameters ? nb::object(parameters_dict(*sc.parameters)) : nb::none();
           per_scan.append(d);
         }
         nb::dict out;
         out["moments"] = r.moments;
         out["scans"] = per_scan;
         out["invalid_points"] = r.invalid_points;
+        out["areal_parameters"] =
+            r.areal_parameters ? nb::object(parameters_dict(*r.areal_parameters)) : nb::none();
+        if (r.areal && !r.areal_parameters) out["areal_parameters_note"] = r.areal_parameters_note;
+        if (r.areal) out["Sq_about_plane"] = r.Sq;
+        out["spikes_removed"] = r.spikes_removed;
+        nb::list spectra;
+        for (const auto& sp : r.psd) spectra.append(spectrum_dict(sp));
+        if (psd) out["psd"] = spectra;
         return out;
       },
       "files"_a, "level"_a = "line", "lc"_a = 0.8e-3, "ls"_a = 20e-6, "truncation"_a = 1.0,
-      "end"_a = "discard", "rule"_a = "geometric", "dx"_a = nb::none(),
+      "end"_a = "discard", "rule"_a = "geometric", "dx"_a = nb::none(), "spikes"_a = nb::none(),
+      "spike_window"_a = 2, "psd"_a = false,
       "The equivalent isotropic surface of scan files (\"FILE\", \"FILE@max\", \"FILE@min\", or\n"
       "one areal file), by the function `asperity roughness --surface` and the case files use:\n"
-      "{moments, scans: [{file, direction, points, profiles, dx, moments}], invalid_points}.");
+      "{moments, scans: [{file, direction, points, profiles, dx, moments, parameters}],\n"
+      "invalid_points, areal_parameters (an areal file's ISO 25178-2 parameters or None),\n"
+      "spikes_removed, psd (with psd=True: per scan, or x and y of an areal file)}.");
   m.def(
       "rms_height_about_plane",
       [](const Array2& z, double dx, double dy) {

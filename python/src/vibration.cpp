@@ -29,6 +29,7 @@
 #include "asperity/vibration/continuation.hpp"
 #include "asperity/vibration/elements.hpp"
 #include "asperity/vibration/harmonic_balance.hpp"
+#include "asperity/vibration/loop_fit.hpp"
 #include "asperity/vibration/structure.hpp"
 #include "bindings.hpp"
 
@@ -402,6 +403,63 @@ void bind_vibration(nb::module_& parent) {
       },
       "F_S"_a, "K_T"_a, "chi"_a, "beta"_a,
       "Segalman's four-parameter Iwan model (SI): F_S [N], K_T [N/m], chi in (-1, 0], beta >= 0.");
+  m.def(
+      "fit_loops",
+      [](const std::vector<std::pair<Vector, Vector>>& loops, const std::string& model) {
+        std::vector<MeasuredLoop> ml;
+        for (std::size_t k = 0; k < loops.size(); ++k) {
+          const auto& [d, q] = loops[k];
+          ml.push_back({.delta = std::vector<double>(d.data(), d.data() + d.size()),
+                        .Q = std::vector<double>(q.data(), q.data() + q.size()),
+                        .unloading = static_cast<std::size_t>(d.size()) / 2,
+                        .source = fmt::format("loop {}", k + 1)});
+        }
+        const auto kind = parse_loop_model(model, "model");
+        LoopFit f;
+        {
+          nb::gil_scoped_release release;
+          f = fit_loops(ml, kind);
+        }
+        nb::dict params;
+        for (const auto& p : f.parameters) {
+          nb::dict d;
+          d["value"] = p.value;
+          d["standard_error"] = p.standard_error;
+          d["unit"] = p.unit;
+          params[p.name.c_str()] = d;
+        }
+        nb::list qm;
+        for (const auto& q : f.Q_model) {
+          Vector v = Eigen::Map<const Vector>(q.data(), static_cast<Eigen::Index>(q.size()));
+          qm.append(v);
+        }
+        nb::dict out;
+        out["model"] = std::string(to_string(f.model));
+        out["parameters"] = params;
+        out["residual_rms"] = f.residual_rms;
+        out["relative_residual"] = f.relative_residual;
+        out["points"] = f.points;
+        out["Q_offsets"] = f.Q_offsets;
+        out["Q_model"] = qm;
+        out["element_toml"] = f.case_toml();
+        out["element"] = f.element();
+        return out;
+      },
+      "loops"_a, "model"_a,
+      "Least-squares fit of closed loops [(delta, Q), ...] (each: the unloading branch from the\n"
+      "largest displacement, then the reloading branch, equal halves, as analyze_fretting's\n"
+      "loop_delta, loop_Q) by \"jenkins\" or \"iwan4\" (vibration/loop_fit.hpp).");
+  m.def(
+      "masing_table",
+      [](const Vector& x, const Vector& Q, const std::string& source) {
+        return make_masing_table_element(std::vector<double>(x.data(), x.data() + x.size()),
+                                         std::vector<double>(Q.data(), Q.data() + Q.size()),
+                                         source);
+      },
+      "x"_a, "Q"_a, "source"_a = "table",
+      "Masing element on a backbone table: force Q [N] against displacement x [m], checked\n"
+      "monotone and through the origin, monotone cubic interpolation, constant beyond the\n"
+      "last point (hysteresis/table_backbone.hpp).");
   m.def("coulomb", &make_coulomb_element, "F_s"_a, "k_tan"_a,
         "Regularized Coulomb f = F_s tanh(k_tan v) (Eq. 7.3 in SI): F_s [N], k_tan [s/m].");
   m.def(

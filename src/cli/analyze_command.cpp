@@ -15,6 +15,7 @@
 #include "asperity/joint/fretting.hpp"
 #include "asperity/joint/output_dir.hpp"
 #include "asperity/joint/predict.hpp"
+#include "asperity/vibration/loop_fit.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 
@@ -32,6 +33,7 @@ struct AnalyzeOptions {
   bool stiffness_from_delta = false;
   bool json = false;
   bool no_plots = false;
+  std::optional<std::string> fit, element_out;
 };
 
 // NaN is not JSON: null.
@@ -268,6 +270,111 @@ PowerLaw power_law(const std::vector<Run>& runs) {
   return p;
 }
 
+// The averaged loops of the runs, as the loop fit takes them (unloading branch first).
+std::vector<vibration::MeasuredLoop> measured_loops(const std::vector<Run>& runs) {
+  std::vector<vibration::MeasuredLoop> loops;
+  for (const auto& r : runs) {
+    loops.push_back({.delta = r.a.loop_delta,
+                     .Q = r.a.loop_Q,
+                     .unloading = r.a.loop_delta.size() / 2,
+                     .source = r.file});
+  }
+  return loops;
+}
+
+// What the sensors' noise leaves in the averaged loops' forces, and the warnings of a fit.
+struct FitChecks {
+  double noise_floor = 0.0;  ///< rms over runs of sqrt(s_Q^2 + (k s_d)^2)/sqrt(cycles) [N]
+  std::vector<std::string> warnings;
+};
+
+FitChecks fit_checks(const vibration::LoopFit& f, const std::vector<Run>& runs) {
+  FitChecks c;
+  // The stiffness at the reversals: k_t or K_T.
+  const double k = f.model == vibration::LoopModel::jenkins ? f.value("k_t") : f.value("K_T");
+  double ss = 0.0, worst = 0.0;
+  for (const auto& r : runs) {
+    const double n = static_cast<double>(r.a.cycles.size());
+    const double sx = k * r.a.noise_delta;  // displacement noise as force
+    ss += (r.a.noise_Q * r.a.noise_Q + sx * sx) / n;
+    worst = std::max(worst, sx / std::max(r.a.noise_Q, 1e-300));
+  }
+  c.noise_floor = std::sqrt(ss / static_cast<double>(runs.size()));
+  std::string undetermined;
+  for (const auto& p : f.parameters) {
+    if (!std::isfinite(p.standard_error))
+      undetermined += (undetermined.empty() ? "" : ", ") + p.name;
+  }
+  if (!undetermined.empty()) {
+    c.warnings.push_back(fmt::format(
+        "fit: {} not determined by these loops (a parameter at its bound, or F_S of loops that "
+        "never reach macro-slip): fit loops over a wider range of amplitudes, or a model with "
+        "fewer parameters",
+        undetermined));
+  }
+  // Warned when the displacement noise dominates the force noise and is a sizeable part
+  // (a third) of the residual: then it, not the model, limits the fit.
+  if (worst > 1.0 && c.noise_floor > f.residual_rms / 3.0) {
+    c.warnings.push_back(fmt::format(
+        "fit: the displacement noise times the fitted stiffness ({:.3g} N/um) is up to {:.3g} "
+        "times the force noise: the loops' displacements are the noisier signal, which biases "
+        "the fitted stiffness low (errors in the regressor near the reversals; docs/joints.md); "
+        "a finer displacement sensor or more cycles reduce it",
+        k * 1e-6, worst));
+  }
+  return c;
+}
+
+Json fit_json(const vibration::LoopFit& f, const std::vector<Run>& runs) {
+  Json params = Json::object(), element = Json::object();
+  element["type"] = std::string(vibration::to_string(f.model));
+  for (const auto& p : f.parameters) {
+    params[p.name] =
+        Json{{"value", p.value}, {"standard_error", number(p.standard_error)}, {"unit", p.unit}};
+    element[p.name] = p.value;
+  }
+  Json offsets = Json::array(), files = Json::array();
+  for (std::size_t k = 0; k < f.Q_offsets.size(); ++k) {
+    offsets.push_back(f.Q_offsets[k]);
+    files.push_back(runs[k].file);
+  }
+  return Json{
+      {"model", std::string(vibration::to_string(f.model))},
+      {"parameters", params},
+      {"residual_rms", f.residual_rms},
+      {"relative_residual", f.relative_residual},
+      {"points", f.points},
+      {"loops", files},
+      {"Q_offsets", offsets},
+      {"element", element},
+      {"element_toml", f.case_toml()},
+      {"noise_floor", fit_checks(f, runs).noise_floor},
+      {"warnings", fit_checks(f, runs).warnings},
+      {"method",
+       "least squares (Levenberg-Marquardt, several starts) of the averaged loops of all runs "
+       "at once by the element's steady Masing loop, Q = Q_c +- B(a) -+ 2 B(|x - x_rev|/2), "
+       "with shared parameters and a force offset Q_c per loop; standard errors s^2 (J^T J)^-1 "
+       "treating the points as independent (a lower bound: neighbouring points are "
+       "correlated), null when the loops do not determine the parameter"}};
+}
+
+std::string fit_text(const vibration::LoopFit& f, const std::vector<Run>& runs) {
+  std::string s = fmt::format("{} fit of the averaged loop{}:\n", vibration::to_string(f.model),
+                              f.loops == 1 ? "" : "s");
+  for (const auto& p : f.parameters) {
+    s += fmt::format("  {:<5} = {:.6g}{} +- {}\n", p.name, p.value,
+                     p.unit.empty() ? "" : " " + p.unit,
+                     std::isfinite(p.standard_error) ? fmt::format("{:.3g}", p.standard_error)
+                                                     : std::string("(not determined)"));
+  }
+  s += fmt::format(
+      "  rms residual {:.4g} N ({:.3g} % of the mean half peak-to-peak force), {} points; the "
+      "sensors' noise leaves {:.3g} N in the averaged loops\n",
+      f.residual_rms, 100.0 * f.relative_residual, f.points, fit_checks(f, runs).noise_floor);
+  for (const auto& w : fit_checks(f, runs).warnings) s += "warning: " + w + "\n";
+  return s + "as a vibration case element:\n" + f.case_toml();
+}
+
 // energy_vs_force.png of several runs: the runs (left-out ones marked), the fitted power
 // law and the slope-2 and slope-3 guides of Fig. 6.12-6.14.
 PlotSpec energy_plot(const std::vector<Run>& runs, const PowerLaw& law) {
@@ -388,6 +495,13 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
                 "(without it, when Delta is given: Q(Delta) and the fitted apparatus compliance)");
   cmd->add_flag("--json", o->json, "print JSON instead of tables");
   cmd->add_flag("--no-plots", o->no_plots, "do not draw PNG plots");
+  cmd->add_option("--fit", o->fit,
+                  "fit the averaged loops of all runs by a vibration element: jenkins (k_t, F_s) "
+                  "or iwan4 (Segalman's F_S, K_T, chi, beta); least squares with standard errors "
+                  "and the residual, printed as a vibration case's [[element]] (element.toml "
+                  "with --out DIR)");
+  cmd->add_option("--element-out", o->element_out,
+                  "write the fitted [[element]] table (TOML) to this file (- for standard output)");
   cmd->callback([o, &action] {
     action = [o] {
       return run_guarded([o](std::string& out) {
@@ -399,6 +513,10 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
         if (o->degree < 1 || o->degree > 4) {
           throw InvalidInput(fmt::format("--degree = {}: must be 1, 2, 3 or 4", o->degree));
         }
+        std::optional<vibration::LoopModel> fit_model;
+        if (o->fit) fit_model = vibration::parse_loop_model(lowercase(*o->fit), "--fit");
+        if (o->element_out && !o->fit)
+          throw InvalidInput("--element-out writes the fitted element: give --fit jenkins|iwan4");
         const OutKind kind = out_kind(o->out, ".json");
         const bool to_dir = kind == OutKind::directory;
         if (kind == OutKind::standard_output && o->json)
@@ -415,6 +533,21 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
           } else {
             for (const auto& in : inputs)
               require_distinct_outputs({{in.what, in.path}, {"--out", *o->out}});
+          }
+        }
+        if (o->element_out) {
+          if (is_standard_output(*o->element_out) && stdout_is_data)
+            throw InvalidInput(
+                "--element-out - and the JSON both print to standard output: give "
+                "--element-out a file name");
+          if (!is_standard_output(*o->element_out)) {
+            for (const auto& f : o->files)
+              require_distinct_outputs({{"the data file", f}, {"--element-out", *o->element_out}});
+            if (o->model)
+              require_distinct_outputs(
+                  {{"the --model case file", *o->model}, {"--element-out", *o->element_out}});
+            if (o->out)
+              require_distinct_outputs({{"--out", *o->out}, {"--element-out", *o->element_out}});
           }
         }
         std::optional<joint::JointCase> model_case;  // its [interface], if any, applies
@@ -434,6 +567,8 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
           if (model_case) r.model = joint::predict_case_load(*model_case, P, {r.a.mean.delta_max});
           runs.push_back(std::move(r));
         }
+        std::optional<vibration::LoopFit> fit;
+        if (o->fit) fit = vibration::fit_loops(measured_loops(runs), *fit_model);
         std::optional<PowerLaw> law;
         if (runs.size() >= 2) law = power_law(runs);
         if (law && law->fit) {
@@ -478,6 +613,7 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
                     "cycle exceeds 3 times its noise floor; 95 % interval from Student's t"}};
           j["warnings"] = law->warnings;
         }
+        if (fit) j["fit"] = fit_json(*fit, runs);
         // Warnings go to stderr (and into the JSON).
         for (const auto& r : runs) {
           for (const auto& w : r.a.warnings)
@@ -486,12 +622,20 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
         if (law) {
           for (const auto& w : law->warnings) std::cerr << "asperity: warning: " << w << "\n";
         }
+        if (fit) {
+          for (const auto& w : fit_checks(*fit, runs).warnings)
+            std::cerr << "asperity: warning: " << w << "\n";
+        }
         std::vector<std::string> written;
         if (kind == OutKind::file) write_file_atomically(*o->out, json_output(j));
         if (to_dir) {
           joint::StagedDirectory dir(*o->out, "asperity analyze");
           written = {"analysis.json", "cycles.csv", "cycle_traces.csv", "averaged_loop.csv"};
           write_file_atomically(dir.file("analysis.json"), json_output(j));
+          if (fit) {
+            write_file_atomically(dir.file("element.toml"), fit->case_toml());
+            written.emplace_back("element.toml");
+          }
           std::vector<std::vector<double>> cc(9), lc(4), tc(6);
           for (std::size_t k = 0; k < runs.size(); ++k) {
             const auto& d = runs[k].data;
@@ -551,8 +695,8 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
                 false,
                 false,
                 {},
-                single && !runs.front().model ? "set key off"
-                                              : "set key inside left top box opaque"};
+                single && !runs.front().model && !fit ? "set key off"
+                                                      : "set key inside left top box opaque"};
             for (const auto& r : runs) {
               Series s{single ? "measured" : fmt::format("{} (measured)", base_name(r.file)),
                        {},
@@ -562,6 +706,17 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
               s.x.push_back(s.x.front());
               s.y.push_back(s.y.front());
               loops.series.push_back(s);
+              if (fit) {
+                const std::size_t k = static_cast<std::size_t>(&r - runs.data());
+                Series fs{single ? fmt::format("{} fit", vibration::to_string(fit->model))
+                                 : fmt::format("{} ({} fit)", base_name(r.file),
+                                               vibration::to_string(fit->model)),
+                          {},
+                          fit->Q_model[k],
+                          "lines dt 3"};
+                for (double x : r.a.loop_delta) fs.x.push_back(x * 1e6);
+                loops.series.push_back(fs);
+              }
               if (r.model) {
                 auto [x, Q] = joint::steady_loop(*r.model->backbone, r.a.mean.delta_max, 100);
                 Series m{single ? "model" : fmt::format("{} (model)", base_name(r.file)),
@@ -601,6 +756,12 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
             }
             for (const auto& w : law->warnings) out += "warning: " + w + "\n";
           }
+          if (fit) out += fit_text(*fit, runs);
+        }
+        if (fit && o->element_out) {
+          write_output(*o->element_out, fit->case_toml(), out);
+          if (!is_standard_output(*o->element_out))
+            report_written({*o->element_out}, stdout_is_data, out);
         }
         if (kind == OutKind::file) report_written({*o->out}, stdout_is_data, out);
         if (to_dir) report_written_directory(*o->out, written, stdout_is_data, out);

@@ -10,7 +10,9 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
 #include "asperity/core/validate.hpp"
+#include "asperity/hysteresis/backbones.hpp"
 #include "asperity/hysteresis/masing.hpp"
+#include "asperity/hysteresis/table_backbone.hpp"
 #include "asperity/joint/case.hpp"
 #include "asperity/joint/output_dir.hpp"
 #include "asperity/joint/predict.hpp"
@@ -35,7 +37,7 @@ struct FlatOptions {
   std::optional<std::string> mu_cfc, zeta;
   std::string slip_scaling = "elastic";
   bool json = false;
-  std::optional<std::string> history_csv, out_csv, loop_csv, plot_png;
+  std::optional<std::string> history_csv, out_csv, loop_csv, plot_png, backbone_csv;
   std::size_t points = 201;
   std::optional<std::string> case_file;  // --case: a joint case's (patched) backbone
 };
@@ -202,17 +204,20 @@ void run_flat(const FlatOptions& o, std::string& out) {
     throw InvalidInput("--out writes the force history of --history: give both");
   if (is_standard_output(o.plot_png))
     throw InvalidInput("--plot - is not allowed: a PNG goes to a file, give its name");
-  require_one_stdout(o.json, {{"--loop", o.loop_csv}, {"--out", o.out_csv}});
-  const bool stdout_is_data =
-      o.json || is_standard_output(o.loop_csv) || is_standard_output(o.out_csv);
+  require_one_stdout(
+      o.json, {{"--loop", o.loop_csv}, {"--out", o.out_csv}, {"--backbone", o.backbone_csv}});
+  const bool stdout_is_data = o.json || is_standard_output(o.loop_csv) ||
+                              is_standard_output(o.out_csv) || is_standard_output(o.backbone_csv);
   require_distinct_outputs({{"--loop", o.loop_csv.value_or("")},
                             {"--plot", o.plot_png.value_or("")},
                             {"--out", o.out_csv.value_or("")},
+                            {"--backbone", o.backbone_csv.value_or("")},
                             {"--history", o.history_csv.value_or("")}});
   // Every output's directory must exist before anything is written (no output is left
   // behind by a later one that cannot be written).
-  for (const auto& [flag, path] : {std::pair{"--loop", o.loop_csv}, std::pair{"--plot", o.plot_png},
-                                   std::pair{"--out", o.out_csv}}) {
+  for (const auto& [flag, path] :
+       {std::pair{"--loop", o.loop_csv}, std::pair{"--plot", o.plot_png},
+        std::pair{"--out", o.out_csv}, std::pair{"--backbone", o.backbone_csv}}) {
     if (!path || is_standard_output(*path)) continue;
     const auto dir = std::filesystem::absolute(*path).parent_path();
     if (!std::filesystem::is_directory(dir)) {
@@ -221,6 +226,11 @@ void run_flat(const FlatOptions& o, std::string& out) {
     }
   }
   const auto& scales = flat->scales();
+  if (o.backbone_csv && !scales) {
+    throw InvalidInput(
+        "--backbone writes the backbone in SI (N against m) for a masing_table element: give the "
+        "dimensional inputs (--sigma, --eta, --R, --area, --P and the materials)");
+  }
   std::vector<double> history_star;
   bool history_si = false;
   if (o.history_csv) {
@@ -256,9 +266,9 @@ void run_flat(const FlatOptions& o, std::string& out) {
   const double Q_max = flat->static_friction_star(d);
   const double k = flat->stiffness_star(d);
   // The table (one load case) only when a displacement needs it.
-  const bool need_table = amplitude_star || o.history_csv;
+  const bool need_table = amplitude_star || o.history_csv || o.backbone_csv;
   if (need_table && !(Q_max > 0.0)) {
-    if (o.loop_csv || o.plot_png || o.history_csv) {
+    if (o.loop_csv || o.plot_png || o.history_csv || o.backbone_csv) {
       throw InvalidInput(
           fmt::format("the {} model carries no friction force here (Q*_max = 0)", model_name));
     }
@@ -424,10 +434,17 @@ void run_flat(const FlatOptions& o, std::string& out) {
       });
     }
   }
+  if (o.backbone_csv) {
+    // The virgin curve in SI, as predict --out's backbones.csv (hysteresis::tabulate).
+    const hysteresis::ScaledBackbone si(table, scales->sigma, scales->force);
+    auto [x, Q] = hysteresis::tabulate(si);
+    for (auto& v : x) v *= 1e6;  // um, as backbones.csv
+    write_output(outputs, *o.backbone_csv, csv_text({"delta[um]", "Q[N]"}, {x, Q}), out);
+  }
   outputs.commit();
   std::vector<std::string> written;
-  for (const auto& f : {o.loop_csv, o.plot_png, o.out_csv}) {
-    if (f) written.push_back(*f);
+  for (const auto& f : {o.loop_csv, o.plot_png, o.out_csv, o.backbone_csv}) {
+    if (f && !is_standard_output(*f)) written.push_back(*f);
   }
   report_written(written, stdout_is_data, out);
   for (const auto& text : warnings) fmt::print(stderr, "warning: {}\n", text);
@@ -468,6 +485,10 @@ void add_flat_command(CLI::App& app, std::function<int()>& action) {
                   "displacement history CSV (column delta_star, or delta[unit])");
   cmd->add_option("--out", o->out_csv,
                   "where --history writes the force history (CSV file; - for standard output)");
+  cmd->add_option("--backbone", o->backbone_csv,
+                  "write the backbone Q[N] against delta[um] (401 points to where Q is within 1e-9 "
+                  "of Q_max, one on the plateau) for a masing_table vibration element; needs the "
+                  "dimensional inputs (- for standard output)");
   cmd->add_option("--loop", o->loop_csv,
                   "write the fretting loop to this CSV file (- for standard output)");
   cmd->add_option("--plot", o->plot_png, "draw the fretting loop into this PNG file");

@@ -16,6 +16,7 @@
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
+#include "asperity/hysteresis/table_backbone.hpp"
 #include "asperity/joint/case.hpp"
 #include "asperity/joint/output_dir.hpp"
 #include "asperity/joint/predict.hpp"
@@ -483,6 +484,19 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
     core::write_csv_table(file("loops.csv"), {"preload[N]", "delta_max[um]", "delta[um]", "Q[N]"},
                           lc);
     write_file_atomically(file("energy.csv"), energy_csv);
+  }
+  // backbones.csv: each preload's virgin curve, for a masing_table vibration element.
+  if (data) {
+    std::vector<std::vector<double>> bc(3);
+    for (const auto& l : p.loads) {
+      const auto [x, Q] = hysteresis::tabulate(*l.backbone);
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        bc[0].push_back(l.preload);
+        bc[1].push_back(x[i] * 1e6);
+        bc[2].push_back(Q[i]);
+      }
+    }
+    core::write_csv_table(file("backbones.csv"), {"preload[N]", "delta[um]", "Q[N]"}, bc);
   }
   const bool patched = !p.loads.empty() && p.loads.front().patches.size() > 1;
   if (data && patched) write_patch_table(file("patches.csv"), p);

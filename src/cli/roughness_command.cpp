@@ -9,12 +9,14 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
+#include <tuple>
 
 #include "asperity/contact/material.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/surface/profile_io.hpp"
 #include "asperity/surface/roughness.hpp"
 #include "asperity/surface/scan_set.hpp"
+#include "asperity/surface/texture.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 
@@ -39,6 +41,9 @@ struct RoughnessOptions {
   std::string truncation = "1";
   std::string rule = "geometric";
   std::optional<std::string> dx;
+  std::optional<std::string> spikes;
+  std::size_t spike_window = 2;
+  std::optional<std::string> psd, psd_plot;
   std::optional<std::string> E, nu, E1, nu1, E2, nu2, H, H1, H2;
   bool json = false;
   std::optional<std::string> plot;
@@ -64,6 +69,10 @@ struct AnalysedSurface {
   double Sq = 0.0;
   std::size_t invalid_points = 0;
   std::optional<PlotTrace> trace;
+  std::optional<surface::ArealParameters> areal_parameters;
+  std::string areal_parameters_note;
+  std::vector<surface::PowerSpectrum> psd;
+  std::size_t spikes_removed = 0;
 };
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -100,22 +109,35 @@ double cutoff(const std::string& text, const std::string& flag) {
 // Before anything is read or computed: an output must not be a directory, must not
 // overwrite an input file (a --surface file), and outputs must not share a file.
 void check_output_paths(const RoughnessOptions& o) {
-  if (!o.plot) return;
-  const std::string& plot = *o.plot;
-  if (is_standard_output(plot))
-    throw InvalidInput("--plot - is not allowed: a PNG goes to a file, give its name");
-  std::error_code ec;
-  if (std::filesystem::is_directory(plot, ec)) {
-    throw InvalidInput(fmt::format(
-        "--plot = \"{}\" is a directory: give the PNG file to write, e.g. --plot roughness.png",
-        plot));
+  std::vector<std::pair<std::string, std::string>> outputs;
+  for (const auto& [flag, path, example] :
+       {std::tuple{"--plot", o.plot, "roughness.png"}, std::tuple{"--psd", o.psd, "psd.csv"},
+        std::tuple{"--psd-plot", o.psd_plot, "psd.png"}}) {
+    if (!path) continue;
+    if (is_standard_output(*path) && std::string_view(flag) != "--psd")
+      throw InvalidInput(
+          fmt::format("{} - is not allowed: a PNG goes to a file, give its name", flag));
+    if (is_standard_output(*path)) {
+      if (o.json)
+        throw InvalidInput(
+            "--psd - and --json both write to standard output: give "
+            "--psd a file name");
+      continue;
+    }
+    std::error_code ec;
+    if (std::filesystem::is_directory(*path, ec)) {
+      throw InvalidInput(
+          fmt::format("{} = \"{}\" is a directory: give the file to write, e.g. {} {}", flag, *path,
+                      flag, example));
+    }
+    if (std::filesystem::path(*path).filename().empty()) {
+      throw InvalidInput(
+          fmt::format("{} = \"{}\" names no file: give the file to write, e.g. {} {}", flag, *path,
+                      flag, example));
+    }
+    outputs.emplace_back(flag, *path);
   }
-  if (std::filesystem::path(plot).filename().empty()) {
-    throw InvalidInput(fmt::format(
-        "--plot = \"{}\" names no file: give the PNG file to write, e.g. --plot roughness.png",
-        plot));
-  }
-  const std::vector<std::pair<std::string, std::string>> outputs = {{"--plot", plot}};
+  if (outputs.empty()) return;
   require_distinct_outputs(outputs);
   for (std::size_t k = 0; k < o.surfaces.size(); ++k) {
     for (auto f : split(o.surfaces[k], ',')) {
@@ -177,7 +199,9 @@ struct Settings {
   GaussianFilter filter;
   surface::IsotropicRule rule = surface::IsotropicRule::geometric;
   surface::TextReadOptions text;
+  surface::SpikeRemoval spikes;
   bool plot = false;
+  bool psd = false;
 };
 
 AnalysedSurface analyse_files(const std::string& list, std::size_t index, const Settings& s) {
@@ -197,7 +221,9 @@ AnalysedSurface analyse_files(const std::string& list, std::size_t index, const 
                                                       .filter = s.filter,
                                                       .rule = s.rule,
                                                       .text = s.text,
-                                                      .keep_processed = s.plot});
+                                                      .keep_processed = s.plot,
+                                                      .spikes = s.spikes,
+                                                      .psd = s.psd});
   } catch (const InvalidInput& e) {
     throw InvalidInput(fmt::format("--surface #{}: {}", index + 1, e.what()));
   }
@@ -206,12 +232,20 @@ AnalysedSurface analyse_files(const std::string& list, std::size_t index, const 
   out.areal = r.areal;
   out.Sq = r.Sq;
   out.invalid_points = r.invalid_points;
+  out.areal_parameters = r.areal_parameters;
+  out.areal_parameters_note = r.areal_parameters_note;
+  out.psd = r.psd;
+  out.spikes_removed = r.spikes_removed;
+  if (s.psd && out.psd.empty()) {
+    throw InvalidInput(fmt::format("--psd: surface {}: {}", index + 1, out.areal_parameters_note));
+  }
   if (!s.plot) return out;
   if (r.areal) {
     // The first row is drawn; the histogram holds the filtered heights of every row and
     // column used for the moments (the rows and columns share points, so each point
     // counts about twice).
-    const auto map = surface::read_height_file(files.front().path, s.text);
+    auto map = surface::read_height_file(files.front().path, s.text);
+    (void)surface::remove_spikes(map, s.spikes);
     const std::size_t min_x = s.filter.is_none() ? 3 : s.filter.min_points(map.dx);
     const std::size_t min_y = s.filter.is_none() ? 3 : s.filter.min_points(map.dy);
     for (const auto& [profiles, min_pts] :
@@ -284,6 +318,72 @@ Json moments_json(const SpectralMoments& m, const std::optional<contact::Contact
   return j;
 }
 
+std::string base_name(const std::string& path);
+
+Json profile_parameters_json(const surface::ProfileParameters& p) {
+  return Json{{"Ra", p.Ra},
+              {"Rq", p.Rq},
+              {"Rz", p.Rz},
+              {"Rsk", p.Rsk},
+              {"Rku", p.Rku},
+              {"Rdq", p.Rdq},
+              {"sections", p.sections},
+              {"section_length", p.section_length}};
+}
+
+Json areal_parameters_json(const surface::ArealParameters& a) {
+  return Json{{"Sa", a.Sa},   {"Sq", a.Sq}, {"Ssk", a.Ssk}, {"Sku", a.Sku},
+              {"Sdq", a.Sdq}, {"nx", a.nx}, {"ny", a.ny}};
+}
+
+// A spectrum's label: "surface 1 file.csv" or "surface 1 x (rows)".
+std::string psd_label(std::size_t k, const AnalysedSurface& a, std::size_t j) {
+  const auto& sp = a.psd[j];
+  if (sp.direction == "profile" && j < a.scans.size())
+    return fmt::format("surface {} {}", k + 1, base_name(a.scans[j].file));
+  return fmt::format("surface {} {}", k + 1, sp.direction);
+}
+
+// The PSD table: one row per frequency of each spectrum (one-sided; texture.hpp states the
+// normalisation: the sum of psd * df is the mean-square height).
+std::string psd_csv(const std::vector<AnalysedSurface>& surfaces) {
+  std::string t = "surface,spectrum,profiles,f[1/m],psd[m^3]\n";
+  for (std::size_t k = 0; k < surfaces.size(); ++k) {
+    for (std::size_t j = 0; j < surfaces[k].psd.size(); ++j) {
+      const auto& sp = surfaces[k].psd[j];
+      std::string label = psd_label(k, surfaces[k], j);
+      std::replace(label.begin(), label.end(), '"', '\'');
+      for (std::size_t i = 0; i < sp.f.size(); ++i)
+        t += fmt::format("{},\"{}\",{},{:.12g},{:.12g}\n", k + 1, label, sp.profiles, sp.f[i],
+                         sp.psd[i]);
+    }
+  }
+  return t;
+}
+
+void draw_psd_plot(const std::string& path, const std::vector<AnalysedSurface>& surfaces) {
+  PlotSpec spec{.title = "Power spectral density (one-sided, sum of PSD df = mean square height)",
+                .xlabel = "spatial frequency f [1/mm]",
+                .ylabel = "PSD [µm^2 mm]",
+                .logx = true,
+                .logy = true};
+  for (std::size_t k = 0; k < surfaces.size(); ++k) {
+    for (std::size_t j = 0; j < surfaces[k].psd.size(); ++j) {
+      const auto& sp = surfaces[k].psd[j];
+      Series se{.title = psd_label(k, surfaces[k], j)};
+      for (std::size_t i = 1; i < sp.f.size(); ++i) {  // f = 0 has no place on a log axis
+        if (!(sp.psd[i] > 0.0)) continue;
+        se.x.push_back(sp.f[i] * 1e-3);          // 1/m -> 1/mm
+        se.y.push_back(sp.psd[i] * 1e12 * 1e3);  // m^3 -> um^2 mm
+      }
+      if (!se.x.empty()) spec.series.push_back(std::move(se));
+    }
+  }
+  if (spec.series.empty())
+    throw InvalidInput("--psd-plot: no spectrum has a positive value to draw");
+  plot_png(path, spec);
+}
+
 Json filter_json(const Settings& s) {
   Json f;
   f["lc"] = s.filter.lc > 0.0 ? Json(s.filter.lc) : Json(nullptr);
@@ -292,6 +392,9 @@ Json filter_json(const Settings& s) {
   f["truncation"] = s.filter.truncation;
   f["end"] = surface::to_string(s.filter.end);
   f["level"] = surface::to_string(s.level);
+  f["spikes"] = s.spikes.is_off() ? Json(nullptr)
+                                  : Json{{"threshold", s.spikes.threshold},
+                                         {"half_window", s.spikes.half_window}};
   return f;
 }
 
@@ -546,6 +649,16 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
   }
   const auto pair = material_pair(o);
   s.plot = o.plot.has_value();
+  s.psd = o.psd.has_value() || o.psd_plot.has_value();
+  if (o.spikes && lowercase(*o.spikes) != "off") {
+    s.spikes.threshold = core::parse_quantity(*o.spikes, dim::dimensionless, "--spikes");
+  }
+  s.spikes.half_window = o.spike_window;
+  try {
+    s.spikes.validate();
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format("--spikes / --spike-window: {}", e.what()));
+  }
 
   const std::size_t n = o.surfaces.size() + o.params.size();
   if (n == 0) {
@@ -603,10 +716,12 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
           x["m0"] = sc.moments.m0;
           x["m2"] = sc.moments.m2;
           x["m4"] = sc.moments.m4;
+          x["parameters"] = sc.parameters ? profile_parameters_json(*sc.parameters) : Json(nullptr);
           scans.push_back(x);
         }
         js["scans"] = scans;
         js["invalid_points"] = a.invalid_points;
+        js["spikes_removed"] = a.spikes_removed;
       }
       if (a.areal) {
         js["size"] = {{"nx", a.areal->nx},
@@ -615,6 +730,9 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
                       {"y", a.areal->dy * static_cast<double>(a.areal->ny - 1)}};
         js["spacing"] = {{"dx", a.areal->dx}, {"dy", a.areal->dy}};
         js["Sq"] = a.Sq;
+        js["areal_parameters"] =
+            a.areal_parameters ? areal_parameters_json(*a.areal_parameters) : Json(nullptr);
+        if (!a.areal_parameters) js["areal_parameters_note"] = a.areal_parameters_note;
       }
       arr.push_back(js);
     }
@@ -658,6 +776,18 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
         out += fmt::format(
             "  surface {} scan {} [{}]: m0 = {:.4g} m^2, m2 = {:.4g}, m4 = {:.4g} m^-2\n", k + 1,
             sc.file, sc.direction, sc.moments.m0, sc.moments.m2, sc.moments.m4);
+        if (sc.parameters) {
+          const auto& p = *sc.parameters;
+          out += fmt::format(
+              "    ISO 21920-2: Ra = {:.4g} um, Rq = {:.4g} um, Rz = {:.4g} um ({} section{} of "
+              "{:.4g} mm), Rsk = {:.4g}, Rku = {:.4g}, Rdq = {:.4g}\n",
+              p.Ra * 1e6, p.Rq * 1e6, p.Rz * 1e6, p.sections, p.sections == 1 ? "" : "s",
+              p.section_length * 1e3, p.Rsk, p.Rku, p.Rdq);
+        }
+      }
+      if (surfaces[k].spikes_removed > 0) {
+        out += fmt::format("  surface {}: {} spike points replaced (--spikes)\n", k + 1,
+                           surfaces[k].spikes_removed);
       }
       if (surfaces[k].areal) {
         const auto& a = *surfaces[k].areal;
@@ -665,13 +795,33 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
             "  surface {}: areal {} x {} points, dx = {:.4g} um, dy = {:.4g} um, "
             "Sq = {:.4g} um\n",
             k + 1, a.nx, a.ny, a.dx * 1e6, a.dy * 1e6, surfaces[k].Sq * 1e6);
+        if (const auto& ap = surfaces[k].areal_parameters) {
+          out += fmt::format(
+              "    ISO 25178-2 (S-L surface, {} x {} points): Sa = {:.4g} um, Sq = {:.4g} um, "
+              "Ssk = {:.4g}, Sku = {:.4g}, Sdq = {:.4g}\n",
+              ap->nx, ap->ny, ap->Sa * 1e6, ap->Sq * 1e6, ap->Ssk, ap->Sku, ap->Sdq);
+        } else {
+          out += fmt::format("    {}\n", surfaces[k].areal_parameters_note);
+        }
       }
     }
   }
+  std::vector<std::string> written;
   if (o.plot) {
     draw_plot(*o.plot, surfaces, s);
-    report_written({*o.plot}, o.json, out);
+    written.push_back(*o.plot);
   }
+  if (s.psd) {
+    if (o.psd) {
+      write_output(*o.psd, psd_csv(surfaces), out);
+      if (!is_standard_output(*o.psd)) written.push_back(*o.psd);
+    }
+    if (o.psd_plot) {
+      draw_psd_plot(*o.psd_plot, surfaces);
+      written.push_back(*o.psd_plot);
+    }
+  }
+  report_written(written, o.json || is_standard_output(o.psd), out);
 }
 
 }  // namespace
@@ -721,9 +871,21 @@ void add_roughness_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--H", o->H, "hardness of the softer half (e.g. 5.8GPa)");
   cmd->add_option("--H1", o->H1, "hardness of half 1");
   cmd->add_option("--H2", o->H2, "hardness of half 2");
+  cmd->add_option("--spikes", o->spikes,
+                  "spike removal before levelling, off by default: replace points farther than "
+                  "this many robust standard deviations (1.4826 MAD) from the median of their "
+                  "2w+1 neighbours (Hampel), in [3, 1000], e.g. --spikes 6; off to disable");
+  cmd->add_option("--spike-window", o->spike_window,
+                  "w, the half-width of the spike window in points, in [1, 50] (default: 2)");
+  cmd->add_option("--psd", o->psd,
+                  "write the power spectral density (one-sided; sum of psd*df = mean square "
+                  "height) of each filtered scan, or of an areal file's rows and columns, to this "
+                  "CSV file (- for standard output)");
+  cmd->add_option("--psd-plot", o->psd_plot, "draw the PSDs into this PNG file (log-log)");
   cmd->add_flag("--json", o->json,
                 "print JSON (SI units): surfaces[] and combined, each with sigma, eta, R, beta, "
-                "alpha, m0, m2, m4, sigma_a (psi with a material), filter {lc, ls}");
+                "alpha, m0, m2, m4, sigma_a (psi with a material), filter {lc, ls}; per scan "
+                "the ISO 21920-2 parameters, per areal file the ISO 25178-2 parameters");
   cmd->add_option("--plot", o->plot,
                   "draw into this PNG file four panels: the raw, levelled and filtered profile "
                   "(first scan of each half, each panel with its own height scale) and the "

@@ -37,6 +37,17 @@ std::string case_file_hint(std::string msg) {
     for (auto at = msg.find(flag); at != std::string::npos; at = msg.find(flag, at + key.size()))
       msg.replace(at, flag.size(), key);
   }
+  // "--lc 395um --ls 5um" (a cut-off pair that fits) -> lc = "395um", ls = "5um" in [profiles].
+  for (const std::string_view key : {"lc", "ls"}) {
+    const std::string flag = fmt::format("--{} ", key);
+    for (auto at = msg.find(flag); at != std::string::npos; at = msg.find(flag, at + 1)) {
+      const auto begin = at + flag.size();
+      const auto end = std::min(msg.find_first_of(" ;", begin), msg.size());
+      const std::string value = msg.substr(begin, end - begin);
+      msg.replace(at, end - at,
+                  fmt::format("{} = \"{}\"{}", key, value, key == "lc" ? "," : " in [profiles]"));
+    }
+  }
   return msg;
 }
 

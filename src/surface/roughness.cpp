@@ -10,6 +10,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/parallel.hpp"
 #include "asperity/core/validate.hpp"
+#include "asperity/surface/texture.hpp"
 #include "detail/convolution.hpp"
 
 namespace asperity::surface {
@@ -389,17 +390,20 @@ Profile GaussianFilter::apply(const Profile& profile) const {
     throw InvalidInput(fmt::format(
         "{}: the short-wave cut-off ls = {:.6g} um is below 5 sample spacings (dx = {:.6g} um): "
         "the sampled Gaussian would not filter as specified; use ls >= {:.6g} um or no "
-        "short-wave filter",
-        name, ls * 1e6, profile.dx * 1e6, 5.0 * profile.dx * 1e6));
+        "short-wave filter; {}",
+        name, ls * 1e6, profile.dx * 1e6, 5.0 * profile.dx * 1e6,
+        cutoff_pair_advice(*this, profile.z.size(), profile.dx)));
   }
   const std::size_t need = min_points(profile.dx);
   if (profile.z.size() < need) {
     throw InvalidInput(fmt::format(
         "{}: the profile ({} points, {:.6g} mm) is shorter than the filter needs ({} points, "
-        "{:.6g} mm for lc = {:.6g} mm, ls = {:.6g} um, end effects '{}'): use a longer scan or {}",
+        "{:.6g} mm for lc = {:.6g} mm, ls = {:.6g} um, end effects '{}'): use a longer scan or {}; "
+        "{}",
         name, profile.z.size(), profile.length() * 1e3, need,
         static_cast<double>(need - 1) * profile.dx * 1e3, lc * 1e3, ls * 1e6, to_string(end),
-        shorter_lc_advice(profile.z.size(), profile.dx)));
+        shorter_lc_advice(profile.z.size(), profile.dx),
+        cutoff_pair_advice(*this, profile.z.size(), profile.dx)));
   }
   // The roughness profile is written over the mean line (memory: the input, the mean
   // line and, with ls, the smoothed profile).
@@ -511,7 +515,8 @@ ProcessedProfile process_profile(const Profile& raw, Levelling levelling,
   return p;
 }
 
-ProfileMoments profile_moments(Profile raw, Levelling levelling, const GaussianFilter& filter) {
+ProfileMoments profile_moments(Profile raw, Levelling levelling, const GaussianFilter& filter,
+                               const std::function<void(const Profile& filtered)>& inspect) {
   const std::string name = source_name(raw);
   raw.validate();
   const double scale = rms_about_zero(raw.z, name);
@@ -522,14 +527,17 @@ ProfileMoments profile_moments(Profile raw, Levelling levelling, const GaussianF
     out.moments = spectral_moments(raw);
     out.points = raw.z.size();
     out.length = raw.length();
+    refuse_round_off(name, scale, dx, out.moments, levelling, filter);
+    if (inspect) inspect(raw);
   } else {
     Profile filtered = filter.apply(raw);
     raw = Profile{};  // freed before the moments' pass
     out.moments = spectral_moments(filtered);
     out.points = filtered.z.size();
     out.length = filtered.length();
+    refuse_round_off(name, scale, dx, out.moments, levelling, filter);
+    if (inspect) inspect(filtered);
   }
-  refuse_round_off(name, scale, dx, out.moments, levelling, filter);
   out.moments.validate(name);
   return out;
 }
@@ -546,6 +554,14 @@ DirectionalMoments areal_moments(const HeightMap& map, Levelling levelling,
   if (invalid == map.z.size()) {
     throw InvalidInput(fmt::format("{}: the file holds no valid points (all {} x {} are invalid)",
                                    map.source, map.nx, map.ny));
+  }
+  const double coarser = std::max(map.dx, map.dy);
+  if (filter.ls > 0.0 && filter.ls < 5.0 * coarser * (1.0 - 1e-9)) {
+    throw InvalidInput(fmt::format(
+        "{}: the short-wave cut-off ls = {:.6g} um is below 5 sample spacings of the map (dx = "
+        "{:.6g} um, dy = {:.6g} um): the sampled Gaussian would not filter as specified; {}",
+        map.source, filter.ls * 1e6, map.dx * 1e6, map.dy * 1e6,
+        cutoff_pair_advice(filter, map.nx, map.dx, map.ny, map.dy)));
   }
   DirectionalMoments out;
   auto run = [&](const std::vector<Profile>& profiles, double spacing, const char* axis,
@@ -583,10 +599,13 @@ DirectionalMoments areal_moments(const HeightMap& map, Levelling levelling,
       }
       throw InvalidInput(fmt::format(
           "{}: no profile along {} is long enough for the filter: {} consecutive valid points "
-          "({:.6g} mm at {:.6g} um) needed, {}{}; use {}",
+          "({:.6g} mm at {:.6g} um) needed, {}{}; use {}{}",
           map.source, axis, min_pts, static_cast<double>(min_pts - 1) * spacing * 1e3,
           spacing * 1e6, runs, cut,
-          longest >= 2 ? filter.shorter_lc_advice(longest, spacing) : "another file"));
+          longest >= 2 ? filter.shorter_lc_advice(longest, spacing) : "another file",
+          longest >= 2 && invalid == 0
+              ? "; " + cutoff_pair_advice(filter, map.nx, map.dx, map.ny, map.dy)
+              : std::string()));
     }
     count = m.size();
     return average_moments(m, w);

@@ -74,15 +74,29 @@ IsotropicSurface equivalent_isotropic_surface(const std::vector<ScanFile>& files
           "an areal file must be the only file of its surface (its rows and columns give both "
           "directions)");
     }
-    const auto& map = maps.front();
+    auto& map = maps.front();
+    out.spikes_removed = remove_spikes(map, s.spikes);
     const auto d = areal_moments(map, s.level, s.filter);
     const bool x_is_max = d.x.m2 >= d.y.m2;
     const double len_x = map.dx * static_cast<double>(map.nx - 1);
     const double len_y = map.dy * static_cast<double>(map.ny - 1);
     out.scans.push_back({map.source, x_is_max ? "x (max_slope)" : "x (min_slope)", 0, d.x_profiles,
-                         map.dx, len_x, 0.0, d.x});
+                         map.dx, len_x, 0.0, d.x, std::nullopt});
     out.scans.push_back({map.source, x_is_max ? "y (min_slope)" : "y (max_slope)", 0, d.y_profiles,
-                         map.dy, len_y, 0.0, d.y});
+                         map.dy, len_y, 0.0, d.y, std::nullopt});
+    if (map.invalid_count() > 0) {
+      out.areal_parameters_note = fmt::format(
+          "no ISO 25178-2 parameters: the areal filter needs every point, and {} of the {} "
+          "points are invalid",
+          map.invalid_count(), map.z.size());
+    } else {
+      const auto sl = scale_limited_surface(map, s.level, s.filter);
+      out.areal_parameters = areal_parameters(sl);
+      if (s.psd) {
+        out.psd.push_back(power_spectrum(sl, true));
+        out.psd.push_back(power_spectrum(sl, false));
+      }
+    }
     out.moments =
         x_is_max ? equivalent_isotropic(d.x, d.y, s.rule) : equivalent_isotropic(d.y, d.x, s.rule);
     out.Sq = map.rms_height_about_plane();
@@ -98,17 +112,25 @@ IsotropicSurface equivalent_isotropic_surface(const std::vector<ScanFile>& files
     const std::size_t invalid = map.invalid_count();
     out.invalid_points += invalid;
     auto profile = take_profile(map, invalid);
+    out.spikes_removed += remove_spikes(profile, s.spikes);
     const std::string source = profile.source;
     const double dx = profile.dx, length = profile.length();
+    std::optional<ProfileParameters> params;
+    auto inspect = [&](const Profile& filtered) {
+      params = profile_parameters(filtered, s.filter.lc);
+      if (s.psd) out.psd.push_back(power_spectrum(filtered));
+    };
     if (!s.keep_processed) {
       // Only the moments: the profile is levelled in place and freed once filtered.
-      const auto m = profile_moments(std::move(profile), s.level, s.filter);
-      out.scans.push_back({source, "isotropic", m.points, 1, dx, length, m.length, m.moments});
+      const auto m = profile_moments(std::move(profile), s.level, s.filter, inspect);
+      out.scans.push_back(
+          {source, "isotropic", m.points, 1, dx, length, m.length, m.moments, params});
       continue;
     }
     auto p = process_profile(profile, s.level, s.filter);
-    out.scans.push_back(
-        {source, "isotropic", p.filtered.z.size(), 1, dx, length, p.filtered.length(), p.moments});
+    inspect(p.filtered);
+    out.scans.push_back({source, "isotropic", p.filtered.z.size(), 1, dx, length,
+                         p.filtered.length(), p.moments, params});
     out.raw.push_back(std::move(profile));
     out.processed.push_back(std::move(p));
   }

@@ -3,12 +3,15 @@
 #include <fmt/format.h>
 
 #include <toml++/toml.h>
+#include <algorithm>
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <set>
 
 #include "../core/toml_case.hpp"
 #include "asperity/contact/material.hpp"
+#include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/core/units.hpp"
 #include "asperity/core/validate.hpp"
@@ -171,6 +174,96 @@ std::shared_ptr<const Element> rough_flat_element(const toml::table& t, const st
                   at_line(t)));
 }
 
+// A masing_table element: the backbone from `table` (a CSV file with columns delta or x
+// [length] and Q or force [force], units in the header, as `asperity predict --out` writes
+// backbones.csv; with a preload column, `preload` selects its rows) or from inline
+// `displacement` [m] and `force` [N] arrays.
+std::shared_ptr<const Element> masing_table_element(const toml::table& t, const std::string& w,
+                                                    const std::string& base_dir) {
+  const bool file = t.get("table") != nullptr;
+  const bool inline_table = t.get("displacement") || t.get("force");
+  if (file == inline_table) {
+    throw InvalidInput(fmt::format(
+        "{}: a masing_table element needs its backbone: table = \"backbone.csv\" (columns "
+        "delta[um],Q[N]) or displacement = [...] (m) and force = [...] (N), not both{}",
+        w, at_line(t)));
+  }
+  if (!file) {
+    std::vector<double> x, Q;
+    for (const auto& [key, out] : {std::pair{"displacement", &x}, std::pair{"force", &Q}}) {
+      const auto* a = t.get(key) ? t.get(key)->as_array() : nullptr;
+      if (!a) {
+        throw InvalidInput(fmt::format("{}.{}: needs an array of numbers (SI: {}){}", w, key,
+                                       std::string_view(key) == "force" ? "N" : "m", at_line(t)));
+      }
+      for (std::size_t i = 0; i < a->size(); ++i) {
+        const auto v = plain_number(*a->get(i));
+        if (!v) {
+          throw InvalidInput(
+              fmt::format("{}.{}[{}]: not a number{}", w, key, i, at_line(*a->get(i))));
+        }
+        out->push_back(*v);
+      }
+    }
+    return make_masing_table_element(std::move(x), std::move(Q), w);
+  }
+  std::filesystem::path path(text(t, "table", w, ""));
+  if (path.is_relative()) path = std::filesystem::path(base_dir) / path;
+  const auto table = core::read_csv_table(path.string());
+  auto column = [&](std::initializer_list<const char*> names) -> const core::CsvColumn* {
+    for (const char* n : names)
+      if (const auto* c = table.find(n)) return c;
+    return nullptr;
+  };
+  const auto* cx = column({"delta", "x", "displacement"});
+  const auto* cq = column({"Q", "force"});
+  if (!cx || !cq) {
+    throw InvalidInput(fmt::format(
+        "{}.table: {} needs a displacement column (delta, x or displacement, with a length unit) "
+        "and a force column (Q or force){}",
+        w, path.string(), at_line(t)));
+  }
+  auto x = table.si_values(*cx, dim::length);
+  auto Q = table.si_values(*cq, dim::force);
+  const auto* cp = table.find("preload");
+  const auto want = si(t, "preload", w, dim::force);
+  if (cp) {
+    const auto P = table.si_values(*cp, dim::force);
+    std::vector<double> preloads;
+    for (double p : P)
+      if (std::find(preloads.begin(), preloads.end(), p) == preloads.end()) preloads.push_back(p);
+    if (!want && preloads.size() > 1) {
+      std::string list;
+      for (double p : preloads) list += fmt::format("{}{:.6g} N", list.empty() ? "" : ", ", p);
+      throw InvalidInput(fmt::format(
+          "{}: {} holds the backbones of {} preloads ({}): choose one with preload = \"...\"{}", w,
+          path.string(), preloads.size(), list, at_line(t)));
+    }
+    // A table holds at least one row (read_csv_table), so preloads is not empty.
+    const double chosen = want.value_or(preloads.empty() ? 0.0 : preloads[0]);
+    std::vector<double> xs, Qs;
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      // The file prints 12 digits: a preload typed back matches to 1e-9.
+      if (std::abs(P[i] - chosen) <= 1e-9 * std::abs(chosen)) {
+        xs.push_back(x[i]);
+        Qs.push_back(Q[i]);
+      }
+    }
+    if (xs.empty()) {
+      std::string list;
+      for (double p : preloads) list += fmt::format("{}{:.6g} N", list.empty() ? "" : ", ", p);
+      throw InvalidInput(fmt::format("{}.preload = {:.6g} N: {} has the preloads {}{}", w, chosen,
+                                     path.string(), list, at_line(t)));
+    }
+    x = std::move(xs);
+    Q = std::move(Qs);
+  } else if (want) {
+    throw InvalidInput(
+        fmt::format("{}.preload: {} has no preload column{}", w, path.string(), at_line(t)));
+  }
+  return make_masing_table_element(std::move(x), std::move(Q), path.string());
+}
+
 }  // namespace
 
 JointBackbone joint_backbone(const std::string& path, const std::string& base_dir,
@@ -197,12 +290,13 @@ JointBackbone joint_backbone(const std::string& path, const std::string& base_di
 
 PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Index dofs,
                             const std::optional<JointBackbone>& joint,
-                            const fem::ReducedModel* model) {
+                            const std::string& base_dir, const fem::ReducedModel* model) {
   const std::string w = fmt::format("element[{}]", index);
   if (!t.get("type")) {
     throw InvalidInput(
-        fmt::format("{}: needs type = \"rough_flat\" | \"jenkins\" | \"iwan4\" | \"coulomb\" | "
-                    "\"elastic_dry_friction_2d\" | \"polynomial_stiffness\" | \"cubic_damping\"{}",
+        fmt::format("{}: needs type = \"rough_flat\" | \"jenkins\" | \"iwan4\" | \"masing_table\" | "
+                    "\"coulomb\" | \"elastic_dry_friction_2d\" | \"polynomial_stiffness\" | "
+                    "\"cubic_damping\"{}",
                     w, at_line(t)));
   }
   const std::string type = text(t, "type", w, "");
@@ -263,10 +357,13 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
         need_si(t, "c3", w, Dimension{-2, 1, 1}, "a cubic_damping element (f = c3 v^3)"));
   } else if (type == "rough_flat") {
     e = rough_flat_element(t, w, joint);
+  } else if (type == "masing_table") {
+    check_keys(t, w, keys({"table", "preload", "displacement", "force"}));
+    e = masing_table_element(t, w, base_dir);
   } else {
     throw InvalidInput(
-        fmt::format("{}.type = \"{}\" is not known: use rough_flat, jenkins, iwan4, coulomb, "
-                    "elastic_dry_friction_2d, polynomial_stiffness or cubic_damping{}",
+        fmt::format("{}.type = \"{}\" is not known: use rough_flat, jenkins, iwan4, masing_table, "
+                    "coulomb, elastic_dry_friction_2d, polynomial_stiffness or cubic_damping{}",
                     w, type, at_line(t)));
   }
   PlacedElement pe;

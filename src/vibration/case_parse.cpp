@@ -359,8 +359,8 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
           fmt::format("element must be an array of tables: write [[element]]{}", at_line(*en)));
     }
     for (std::size_t k = 0; k < arr->size(); ++k) {
-      c.elements.push_back(
-          parse_element(*arr->get(k)->as_table(), k, n, joint, model ? &*model : nullptr));
+      c.elements.push_back(parse_element(*arr->get(k)->as_table(), k, n, joint, base_dir,
+                                         model ? &*model : nullptr));
     }
   }
   if (joint) {

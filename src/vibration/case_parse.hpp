@@ -56,7 +56,7 @@ JointBackbone joint_backbone(const std::string& path, const std::string& base_di
 /// (`[structure] model`), T may name one of its interface elements instead of a matrix:
 /// T = { interface_element = 12, directions = ["t1", "n"] } takes those rows of Q.
 PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Index dofs,
-                            const std::optional<JointBackbone>& joint,
+                            const std::optional<JointBackbone>& joint, const std::string& base_dir,
                             const fem::ReducedModel* model = nullptr);
 
 }  // namespace asperity::vibration::detail

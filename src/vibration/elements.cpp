@@ -9,6 +9,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
 #include "asperity/hysteresis/backbones.hpp"
+#include "asperity/hysteresis/table_backbone.hpp"
 
 namespace asperity::vibration {
 
@@ -523,6 +524,20 @@ std::shared_ptr<const Element> make_iwan4_element(const dynamics::SegalmanIwanPa
                                                                  {"K_T_N_per_m", p.K_T},
                                                                  {"chi", p.chi},
                                                                  {"beta", p.beta}});
+}
+
+std::shared_ptr<const Element> make_masing_table_element(std::vector<double> x,
+                                                         std::vector<double> Q,
+                                                         const std::string& source) {
+  const std::size_t n = x.size();
+  auto b = std::make_shared<hysteresis::TableBackbone>(std::move(x), std::move(Q), source);
+  dynamics::SummaryObject d{{"type", "masing_table"},
+                            {"source", source},
+                            {"points", n},
+                            {"Q_max_N", b->limit()},
+                            {"stiffness_N_per_m", b->initial_stiffness()},
+                            {"x_last_m", b->x().back()}};
+  return std::make_shared<MasingElement>(std::move(b), "masing_table", std::move(d));
 }
 
 std::shared_ptr<const Element> make_coulomb_element(double F_s, double k_tan) {

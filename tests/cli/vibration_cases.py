@@ -430,6 +430,106 @@ T = [[1.0]]
     return 0
 
 
+def masing_table_from_predict(exe):
+    # The backbone `asperity predict --out` exports (backbones.csv, 401 points to the slip
+    # displacement) as a masing_table element in the rig of examples/vibration/
+    # steel420_sdof.toml, against that case's rough_flat element (the same joint and
+    # preload): Q_max to the file's 12 digits; quasi-static frequency to 1e-5 and damping
+    # to 1 % from 10 nm up. The table's intervals are x_s/400 = 6 nm wide, so at 10 nm a
+    # loop spans a few of them and the cubic's curvature error shows in the damping
+    # (0.65 %; 4e-4 at 32 nm, falling as h^3 once a loop spans many intervals).
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+    sdof = open(os.path.join(root, "examples", "vibration", "steel420_sdof.toml")).read()
+    head = sdof.split("[harmonic_balance]")[0]
+    qs = """[harmonic_balance]
+harmonics = [0, 1, 2, 3]
+time_points = 256
+
+[quasi_static_mode]
+mode = 1
+amplitude = { from = 1e-8, to = 1e-5 }
+points = 7
+"""
+    with tempfile.TemporaryDirectory() as tmp:
+        pr = subprocess.run([exe, "predict", os.path.join(root, "examples", "joints",
+                                                          "steel420_two_bolts.toml"),
+                             "--out", os.path.join(tmp, "pr"), "--no-plots"],
+                            capture_output=True, text=True, timeout=300)
+        if pr.returncode != 0:
+            return fail(pr.stderr)
+        r, out = run(exe, head + qs, tmp, name="physics.toml")
+        if r.returncode != 0:
+            return fail(r.stderr)
+        a = json.load(open(os.path.join(out, "summary.json")))
+        P = a["joint"]["preload_N"]
+        struct = head[head.index("[structure]"):head.index("[[element]]")]
+        table = (f'[[element]]\ntype = "masing_table"\nT = [[1.0]]\ntable = "pr/backbones.csv"\n'
+                 f'preload = "{P!r} N"\n')
+        r, out = run(exe, struct + table + qs, tmp, name="table.toml")
+        if r.returncode != 0:
+            return fail(r.stderr)
+        b = json.load(open(os.path.join(out, "summary.json")))
+        ea, eb = a["elements"][0], b["elements"][0]
+        if eb["type"] != "masing_table" or abs(eb["Q_max_N"] / ea["Q_max_N"] - 1) > 1e-11:
+            return fail(f"elements {ea} {eb}")
+        qa, qb = a["quasi_static_mode"], b["quasi_static_mode"]
+        for wa, wb, za, zb in zip(qa["omega_rad_s"], qb["omega_rad_s"], qa["damping_ratio"],
+                                  qb["damping_ratio"]):
+            if abs(wb / wa - 1) > 1e-5 or abs(zb / za - 1) > 0.01:
+                return fail(f"omega {wa} vs {wb}, damping {za} vs {zb}")
+        # Without `preload`, a file of several preloads is refused naming them.
+        r, out = run(exe, struct + table.replace(f'preload = "{P!r} N"\n', "") + qs, tmp,
+                     name="noP.toml")
+        if r.returncode != 2 or "preload" not in r.stderr or "525.964 N" not in r.stderr:
+            return fail(f"several preloads: exit {r.returncode}: {r.stderr}")
+    return 0
+
+
+def masing_table_from_flat(exe):
+    # `asperity flat --backbone` (dimensional inputs) writes the rough flat's virgin curve in
+    # SI; as a masing_table element its slip force is flat's Q_max (to the 12 digits of the
+    # file) and its stiffness at rest, the first interval's secant, is within 1 % of flat's
+    # (the backbone bends over the first of 400 intervals by about half its curvature times
+    # the interval, 0.6 % here). Normalized inputs are refused.
+    flat = ["flat", "--E1", "200GPa", "--nu1", "0.24", "--G1", "80.7GPa", "--E2", "200GPa",
+            "--nu2", "0.24", "--G2", "80.7GPa", "--H", "5.8GPa", "--sigma", "2.677um",
+            "--eta", "2.91e-4um^-2", "--R", "30.14um", "--area", "170mm^2", "--P", "526N"]
+    with tempfile.TemporaryDirectory() as tmp:
+        f = subprocess.run([exe, *flat, "--backbone", os.path.join(tmp, "fb.csv"), "--json"],
+                           capture_output=True, text=True, timeout=300)
+        if f.returncode != 0:
+            return fail(f.stderr)
+        fj = json.loads(f.stdout)
+        r, out = run(exe, """[structure]
+mass = [[1.0]]
+stiffness = [[1e8]]
+damping = [[20.0]]
+[[element]]
+type = "masing_table"
+T = [[1.0]]
+table = "fb.csv"
+[harmonic_balance]
+max = 3
+time_points = 128
+[quasi_static_mode]
+amplitude = { from = 1e-8, to = 1e-6 }
+points = 3
+""", tmp)
+        if r.returncode != 0:
+            return fail(r.stderr)
+        e = json.load(open(os.path.join(out, "summary.json")))["elements"][0]
+        if abs(e["Q_max_N"] / fj["Q_max"] - 1) > 1e-11:
+            return fail(f"Q_max {e['Q_max_N']} vs flat's {fj['Q_max']}")
+        if abs(e["stiffness_N_per_m"] / fj["stiffness"] - 1) > 0.01:
+            return fail(f"stiffness {e['stiffness_N_per_m']} vs flat's {fj['stiffness']}")
+        n = subprocess.run([exe, "flat", "--beta", "0.04", "--psi", "0.5", "--nu", "0.3",
+                            "--P-star", "1e-3", "--backbone", os.path.join(tmp, "n.csv")],
+                           capture_output=True, text=True, timeout=60)
+        if n.returncode != 2 or "dimensional" not in n.stderr or os.path.exists(os.path.join(tmp, "n.csv")):
+            return fail(f"normalized --backbone: exit {n.returncode}: {n.stderr}")
+    return 0
+
+
 def base_excitation(exe):
     # A linear SDOF (m = 1, k = 1, c = 0.1) on a base moving as y = Y sin(omega t),
     # Y = 0.01: force_sin = k Y, force_per_omega_cos = c Y. Closed form (transmissibility):
@@ -515,6 +615,17 @@ continuation = { max_iterations = 2, target_iterations = 1 }
                     ['"kt"', "line 10", "element[0]"]),
     "unknown_table": (JENKINS + EPMC + "[solver]\nx = 1\n", ['"solver"', "line"]),
     "unknown_element_type": (JENKINS.replace('"jenkins"', '"jenkin"') + EPMC, ["jenkin", "use"]),
+    "masing_table_not_monotone": (
+        JENKINS.replace('type = "jenkins"', 'type = "masing_table"').replace(
+            "k_t = 0.25\nF_s = 0.2\n", "displacement = [0.0, 1.0, 2.0]\nforce = [0.0, 0.2, 0.1]\n")
+        + EPMC, ["element[0]", "monotone", "point 3"]),
+    "masing_table_not_through_origin": (
+        JENKINS.replace('type = "jenkins"', 'type = "masing_table"').replace(
+            "k_t = 0.25\nF_s = 0.2\n", "displacement = [0.5, 1.0]\nforce = [0.0, 0.2]\n")
+        + EPMC, ["element[0]", "origin"]),
+    "masing_table_without_backbone": (
+        JENKINS.replace('type = "jenkins"', 'type = "masing_table"').replace(
+            "k_t = 0.25\nF_s = 0.2\n", "") + EPMC, ["masing_table", "table ="]),
     "missing_parameter": (JENKINS.replace("F_s = 0.2\n", "") + EPMC, "F_s"),
     "wrong_units": (JENKINS.replace("k_t = 0.25", 'k_t = "0.25 N"') + EPMC, "k_t"),
     "omega_ambiguous_units": (JENKINS + FRF.replace("from = 0.7", 'from = "0.7 s^-1"'), ["Hz", "rad/s"]),
@@ -549,6 +660,8 @@ def main():
         "base_excitation": base_excitation,
         "out_refuses_a_foreign_directory": out_refuses_a_foreign_directory,
         "rough_flat_forms": rough_flat_forms,
+        "masing_table_from_predict": masing_table_from_predict,
+        "masing_table_from_flat": masing_table_from_flat,
     }[case](exe)
 
 

@@ -68,7 +68,7 @@ if case == "predict_example":
     out = os.path.join(tmp, "out")
     p = run("predict", os.path.join(ex, "steel420_two_bolts.toml"), "--out", out)
     check("0.34" in p.stdout and "partial slip" in p.stdout and "gross slip" in p.stdout, p.stdout)
-    files = ["summary.json", "loops.csv", "energy.csv", "loops.png", "energy_vs_force.png",
+    files = ["summary.json", "loops.csv", "energy.csv", "backbones.csv", "loops.png", "energy_vs_force.png",
              "mu_vs_preload.png", "stiffness_vs_preload.png"]
     for f in files:
         check(os.path.getsize(os.path.join(out, f)) > 0, f"missing {f}")
@@ -86,7 +86,8 @@ elif case == "out_dir_safety":
     run("predict", os.path.join(ex, "steel420_two_bolts.toml"), "--out", out)
     check(os.path.exists(os.path.join(out, "loops.png")), "first run wrote no plots")
     run("predict", os.path.join(ex, "steel420_two_bolts.toml"), "--out", out, "--no-plots")
-    check(sorted(os.listdir(out)) == [".asperity-output", "energy.csv", "loops.csv", "summary.json"],
+    check(sorted(os.listdir(out)) == [".asperity-output", "backbones.csv", "energy.csv", "loops.csv",
+                                      "summary.json"],
           f"not replaced: {sorted(os.listdir(out))}")
     # A nonexistent directory is created; an empty one is taken.
     new = os.path.join(tmp, "new")

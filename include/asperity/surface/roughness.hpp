@@ -4,6 +4,7 @@
 // parameters sigma, eta, R, the equivalent isotropic surface of an anisotropic scan
 // pair, the combination of two surfaces, and the plasticity index.
 // All quantities in SI units.
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -180,8 +181,11 @@ struct ProfileMoments {
   std::size_t points = 0;  ///< of the filtered profile
   double length = 0.0;     ///< of the filtered profile [m]
 };
-[[nodiscard]] ProfileMoments profile_moments(Profile raw, Levelling levelling,
-                                             const GaussianFilter& filter);
+/// `inspect`, when given, is called with the filtered profile before it is freed (for the
+/// texture parameters and the PSD of the same profile).
+[[nodiscard]] ProfileMoments profile_moments(
+    Profile raw, Levelling levelling, const GaussianFilter& filter,
+    const std::function<void(const Profile& filtered)>& inspect = {});
 
 /// Moments of an areal map along its two axes: each row (x) and column (y) is
 /// levelled, filtered and analysed as a profile; the moments of each direction are

@@ -12,6 +12,7 @@
 
 #include "asperity/surface/profile_io.hpp"
 #include "asperity/surface/roughness.hpp"
+#include "asperity/surface/texture.hpp"
 
 namespace asperity::surface {
 
@@ -33,6 +34,11 @@ struct ScanSettings {
   TextReadOptions text{};
   /// Keep each line scan's levelled and filtered profile in the result (for plots).
   bool keep_processed = false;
+  /// Spike removal on the raw heights, before levelling (off by default; texture.hpp).
+  SpikeRemoval spikes{};
+  /// Compute the PSD of each line scan's filtered profile, or of the rows and columns of an
+  /// areal file's S-L surface.
+  bool psd = false;
 };
 
 /// One scan's (or, for an areal file, one axis's) moments.
@@ -46,6 +52,8 @@ struct ScanMoments {
   double length = 0.0;             ///< of the raw profile [m]
   double evaluation_length = 0.0;  ///< of the filtered profile [m] (0 for an areal axis)
   SpectralMoments moments;
+  /// ISO 21920-2 parameters of the filtered profile (line scans; none for an areal axis).
+  std::optional<ProfileParameters> parameters;
 };
 
 struct IsotropicSurface {
@@ -56,6 +64,12 @@ struct IsotropicSurface {
   std::size_t invalid_points = 0;           ///< invalid points in the files
   std::vector<Profile> raw;                 ///< per line scan, with keep_processed
   std::vector<ProcessedProfile> processed;  ///< per line scan, with keep_processed
+  /// An areal file's ISO 25178-2 parameters of its S-L surface (scale_limited_surface with
+  /// the same levelling and filter); none when the map has invalid points.
+  std::optional<ArealParameters> areal_parameters;
+  std::string areal_parameters_note;  ///< why there are none (for an areal file)
+  std::vector<PowerSpectrum> psd;     ///< with settings.psd: per line scan, or x and y
+  std::size_t spikes_removed = 0;     ///< points replaced by the spike removal
 };
 
 /// The equivalent isotropic surface of `scans`:
@@ -66,7 +80,10 @@ struct IsotropicSurface {
 ///    direction averaged with the points as weights (average_moments);
 ///  - one areal file (alone): its rows and columns, the axis with the larger m2 the
 ///    max-slope direction (areal_moments);
-/// then equivalent_isotropic(max, min, settings.rule). Throws InvalidInput (without a
+/// then equivalent_isotropic(max, min, settings.rule). Spikes are removed first (when
+/// settings.spikes is on); each line scan's ISO 21920-2 parameters (sections of lc for
+/// Rz) and an areal file's ISO 25178-2 parameters are computed on the same filtered data
+/// as the moments. Throws InvalidInput (without a
 /// prefix: callers name their flag or key) for a mix of tagged and untagged scans, more
 /// than two untagged scans, an areal file among others, and any reader's error.
 [[nodiscard]] IsotropicSurface equivalent_isotropic_surface(const std::vector<ScanFile>& scans,

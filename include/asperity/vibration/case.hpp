@@ -14,17 +14,29 @@
 //   stiffness = [[1.0]]         #    case file); same for stiffness / stiffness_file
 //   damping = [[0.01]]          # or damping_file, or rayleigh = { alpha = .., beta = .. }
 //                               #    (C = alpha M + beta K); none of them: C = 0
-//   output_dofs = [0]           # 0-based; default: every DOF
+//   output_dofs = [0]           # 0-based; default: every DOF ([0] with a model)
+//   # or: model = "reduced_model.mat"  a reduced model of `asperity structure` (or the
+//   #    published Brake-Reuss beam layout M, K, Fv, L, Qm, Tm): M and K from it, and an
+//   #    element's T may name one of its interface elements:
+//   #    T = { interface_element = 12, directions = ["t1", "n"] }  (rows of Q; t1, t2, n)
 //
 //   [[element]]                 # any number, each acting on u = T x
-//   type = "jenkins"            # rough_flat | jenkins | iwan4 | coulomb | elastic_dry_friction_2d
-//                               #   | polynomial_stiffness | cubic_damping
+//   type = "jenkins"            # rough_flat | jenkins | iwan4 | masing_table | coulomb |
+//                               #   elastic_dry_friction_2d | polynomial_stiffness | cubic_damping
 //   name = "bolt 1"             # optional
 //   T = [[1.0]]                 # rows: element directions; columns: structure DOFs
 //                               #    (one direction may be written as a flat list)
 //     jenkins:   k_t [N/m], F_s [N]
 //     coulomb:   F_s [N], k_tan [s/m]              (f = F_s tanh(k_tan v), Eq. 7.3)
 //     iwan4:     F_S [N], K_T [N/m], chi, beta      (Segalman's four parameters)
+//     masing_table: a backbone table under Masing's rules, from
+//       table = "backbones.csv"   columns delta|x|displacement and Q|force with units in the
+//                                 header (relative to the case file); with a preload
+//                                 column (predict --out's backbones.csv) preload = "526 N"
+//                                 chooses the rows; or
+//       displacement = [...] (m) and force = [...] (N) inline.
+//       Checked: through the origin, x increasing, Q non-decreasing; monotone cubic
+//       interpolation, constant beyond the last point (hysteresis/table_backbone.hpp).
 //     elastic_dry_friction_2d: k_t, k_n [N/m], mu, N0 [N] (optional, 0; < 0: a gap of
 //                               -N0/k_n); T has 2 rows
 //                               (tangential, normal)

@@ -53,7 +53,7 @@ class Element {
   Element(const Element&) = default;
   Element& operator=(const Element&) = default;
 
-  /// "rough_flat", "jenkins", "iwan4", "coulomb", "elastic_dry_friction_2d",
+  /// "rough_flat", "jenkins", "iwan4", "masing_table", "coulomb", "elastic_dry_friction_2d",
   /// "polynomial_stiffness", "cubic_damping".
   [[nodiscard]] virtual std::string type() const = 0;
   /// Number of directions (rows of T).
@@ -243,6 +243,11 @@ struct PlacedElement {
 [[nodiscard]] std::shared_ptr<const Element> make_iwan4_element(
     const dynamics::SegalmanIwanParameters& p);
 [[nodiscard]] std::shared_ptr<const Element> make_coulomb_element(double F_s, double k_tan);
+/// "masing_table": a backbone given as a table of force Q [N] against displacement x [m]
+/// (hysteresis::TableBackbone: checked monotone and through the origin, monotone cubic
+/// interpolation, constant beyond the last point) under Masing's rules.
+[[nodiscard]] std::shared_ptr<const Element> make_masing_table_element(
+    std::vector<double> x, std::vector<double> Q, const std::string& source = "table");
 [[nodiscard]] std::shared_ptr<const Element> make_elastic_dry_friction_2d_element(
     const ElasticDryFriction2dParameters& p);
 [[nodiscard]] std::shared_ptr<const Element> make_polynomial_stiffness_element(
