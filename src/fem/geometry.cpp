@@ -539,7 +539,7 @@ std::string gmsh_script(const Geometry& g) {
         next + 1, next, num(g.size.interface), num(g.size.global), num(0.5 * g.size.interface),
         num(2.5 * g.size.interface));
     s += "Else\n";
-    s += fmt::format("  Field[{0}] = Constant;\n  Field[{0}].VIn = {1};\n", next + 1,
+    s += fmt::format("  Field[{0}] = MathEval;\n  Field[{0}].F = \"{1}\";\n", next + 1,
                      num(g.size.global));
     s += "EndIf\n";
     fields.push_back(next + 1);

@@ -142,7 +142,10 @@ TEST(FemGeometry, ScriptFragmentsTheBodies) {
   EXPECT_CONTAINS(s, "all[] = {b0[], b1[]};");
   EXPECT_CONTAINS(s, "BooleanFragments{ Volume{all[]}; Delete; }{};");
   EXPECT_CONTAINS(s, "= Cylinder;");
-  EXPECT_CONTAINS(s, "= Box;");
+  // The interface size on the faces the bodies share, found after the fragments.
+  EXPECT_CONTAINS(s, "= Distance;");
+  EXPECT_CONTAINS(s, ".FacesList = {shared[]};");
+  EXPECT_CONTAINS(s, "= Threshold;");
   EXPECT_EQ(s.find("left"), std::string::npos);  // names stay out of the script
 }
 
