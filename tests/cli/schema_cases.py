@@ -37,6 +37,7 @@ INVOCATIONS = {
     "validate": [["--json"]],
     "dynamics": [[f"examples/dynamics/{n}.toml", "--json"] for n in ["impulse_dankowicz", "ramp_dankowicz_soft", "harmonic_mindlin", "impulse_joint_steel420", "impulse_none"]],
     "vibration": [[f"examples/vibration/{n}.toml", "--json"] for n in ["jenkins_sdof", "steel420_sdof", "steel420_2dof"]],
+    "structure": [["examples/structures/two_blocks.toml", "--json"]],
 }
 
 schema_path = os.path.join(src, "docs", "schema", f"{command}.schema.json")

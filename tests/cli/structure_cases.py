@@ -1,0 +1,224 @@
+#!/usr/bin/env python3
+"""Behaviour of `asperity structure` (issue 19): the summary.json contract on the shipped
+two-block example, the files of --out (the reduced model read back by scipy and by
+`asperity vibration`), and bad input (exit 2, one line naming the item, nothing written).
+
+Usage: structure_cases.py ASPERITY_EXE CASE. Needs gmsh (scripts/setup.sh) and scipy
+(python/requirements.txt): without them the test fails, it does not skip.
+Registered in tests/cli/CMakeLists.txt, one CTest per case (cli.structure.<case>).
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import scipy.io
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+EXAMPLE = os.path.join(HERE, "..", "..", "examples", "structures", "two_blocks.toml")
+with open(EXAMPLE) as f:
+    TWO_BLOCKS = f.read()
+
+
+def fail(msg):
+    print("FAIL:", msg, file=sys.stderr)
+    return 1
+
+
+def run(exe, args, cwd=None):
+    return subprocess.run([exe, *args], capture_output=True, text=True, timeout=900, cwd=cwd)
+
+
+def write(tmp, name, text):
+    path = os.path.join(tmp, name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def case_summary_keys(exe, tmp):
+    p = run(exe, ["structure", EXAMPLE, "--json"])
+    if p.returncode != 0:
+        return fail(f"exit {p.returncode}: {p.stderr}")
+    s = json.loads(p.stdout)
+    for key in ["mesh", "rigid_body_modes", "linear_modes", "reduced_model", "prestress"]:
+        if key not in s:
+            return fail(f"summary has no {key}")
+    if not (s["mesh"]["nodes"] > 1000 and s["mesh"]["elements"] > 500):
+        return fail(f"mesh {s['mesh']}")
+    if s["rigid_body_modes"] != 6:
+        return fail(f"rigid_body_modes {s['rigid_body_modes']}, a free-free structure has 6")
+    for name in ["open", "frictionless", "stuck"]:
+        f = s["linear_modes"][name]["frequency_hz"]
+        if len(f) != 8 or any(x <= 0 for x in f) or f != sorted(f):
+            return fail(f"{name}: frequencies {f} must be 8 elastic ones, ascending")
+    # Contact adds stiffness: each mode of (c) is at least the same-index mode of (b), and
+    # (b) of (a) (Courant-Fischer: adding a positive semi-definite stiffness).
+    lm = s["linear_modes"]
+    for lo, hi in [("open", "frictionless"), ("frictionless", "stuck")]:
+        for a, b in zip(lm[lo]["frequency_hz"], lm[hi]["frequency_hz"]):
+            if b < a * (1 - 1e-9):
+                return fail(f"{hi} mode {b} Hz below {lo} mode {a} Hz")
+    r = s["reduced_model"]
+    if r["interface_elements"] != 24 or r["dofs"] != 3 * 24 + 20 + 6 + 1:
+        return fail(f"reduced_model {r}: 72 interface DOFs, 20 + 6 tied modes, 1 bolt vector")
+    pre = s["prestress"]
+    # Equilibrium: the interface carries the bolt's tension (load-dependent Ritz vector).
+    if abs(pre["interface_normal_force_N"] / pre["bolt_load_N"] - 1) > 1e-6:
+        return fail(f"prestress {pre}")
+    return 0
+
+
+def case_out_files(exe, tmp):
+    out = os.path.join(tmp, "out")
+    p = run(exe, ["structure", EXAMPLE, "--out", out])
+    if p.returncode != 0:
+        return fail(f"exit {p.returncode}: {p.stderr}")
+    for name in ["summary.json", "reduced_model.mat", "structure.vtu", "mesh.png", "mode_1.png"]:
+        if not os.path.getsize(os.path.join(out, name)) > 0:
+            return fail(f"{name} missing or empty")
+    m = scipy.io.loadmat(os.path.join(out, "reduced_model.mat"))
+    M, K = m["M"], m["K"]
+    if M.shape != K.shape or M.shape[0] != 99:
+        return fail(f"M {M.shape}, K {K.shape}")
+    if np.abs(M - M.T).max() > 1e-12 * np.abs(M).max() or np.abs(K - K.T).max() > 1e-12 * np.abs(K).max():
+        return fail("M or K not symmetric")
+    if m["Q"].shape != (72, 99) or m["element_area"].shape != (24, 1):
+        return fail(f"Q {m['Q'].shape}, element_area {m['element_area'].shape}")
+    if abs(m["element_area"].sum() - json.load(open(os.path.join(out, "summary.json")))["interfaces"][0]["area_m2"]) > 1e-12:
+        return fail("element areas do not sum to the interface area")
+    root = ET.parse(os.path.join(out, "structure.vtu")).getroot()
+    names = [a.get("Name") for a in root.iter("DataArray")]
+    if "prestress_pressure_Pa" not in names or not any(n.startswith("stuck_mode_1") for n in names):
+        return fail(f"VTU fields {names}")
+    # The reduced model in a vibration case: the quasi-static estimate of the first elastic
+    # mode (modes 1-6 of a free-free model are rigid) with one Jenkins element on interface
+    # element 0 (t1) runs on the model's 99 DOFs.
+    case = write(tmp, "vib.toml", f"""[structure]
+model = "{os.path.join(out, 'reduced_model.mat')}"
+rayleigh = {{ alpha = 0.0, beta = 1e-7 }}
+output_dofs = [0, 1]
+[[element]]
+type = "jenkins"
+T = {{ interface_element = 0, directions = ["t1"] }}
+k_t = 1e8
+F_s = 100.0
+[harmonic_balance]
+max = 1
+time_points = 64
+[quasi_static_mode]
+mode = 7
+amplitude = {{ from = 1e-6, to = 1e-3 }}
+points = 5
+""")
+    p = run(exe, ["vibration", case, "--json"])
+    if p.returncode != 0:
+        return fail(f"vibration on the model: exit {p.returncode}: {p.stderr}")
+    if "quasi_static_mode" not in json.loads(p.stdout):
+        return fail("no quasi_static_mode")
+    return 0
+
+
+def bad(exe, tmp, text, needle, name="case.toml"):
+    path = write(tmp, name, text)
+    out = os.path.join(tmp, "bad_out")
+    p = run(exe, ["structure", path, "--out", out])
+    if p.returncode != 2:
+        return fail(f"exit {p.returncode}, expected 2: {p.stderr}")
+    if needle not in p.stderr:
+        return fail(f"message does not name {needle!r}: {p.stderr}")
+    if p.stdout or os.path.exists(out):
+        return fail("output written on bad input")
+    return 0
+
+
+def case_bad_input_bolt_outside(exe, tmp):
+    return bad(exe, tmp, TWO_BLOCKS.replace("head = [30, 10, 20]", "head = [90, 10, 20]").replace(
+        "nut = [30, 10, 0]", "nut = [90, 10, 0]"), 'bolt "m6": the head footprint')
+
+
+def case_bad_input_interface_not_touching(exe, tmp):
+    return bad(exe, tmp, TWO_BLOCKS.replace('bodies = ["lower", "upper"]',
+                                            'bodies = ["lower", "upper"]\nnormal = [1, 0, 0]'),
+               'interface "joint": the surfaces of bodies "lower" and "upper" do not touch')
+
+
+def case_bad_input_prism_does_not_close(exe, tmp):
+    return bad(exe, tmp, TWO_BLOCKS.replace(
+        'add = [{ box = { corner = [0, 0, 10], size = [60, 20, 10] } }]',
+        'add = [{ prism = { polygon = [[0, 0, 10], [60, 0, 10]], extrusion = [0, 0, 10] } }]'),
+        "does not close")
+
+
+def case_bad_input_unknown_key(exe, tmp):
+    return bad(exe, tmp, TWO_BLOCKS.replace("patches = 24", "patches = 24\npatchez = 3"),
+               'unknown key "patchez"')
+
+
+def case_bad_input_held_by_nothing(exe, tmp):
+    # No bolt: with the interface open the blocks are two free bodies (12 rigid-body modes).
+    text = TWO_BLOCKS[:TWO_BLOCKS.index("[[bolt]]")] + TWO_BLOCKS[TWO_BLOCKS.index("[[output]]"):]
+    return bad(exe, tmp, text, "more than a free-free structure allows (6)")
+
+
+def case_bad_input_too_many_patches(exe, tmp):
+    return bad(exe, tmp, TWO_BLOCKS.replace("patches = 24", "patches = 5000"),
+               "`patches` = 5000 but the interface has only")
+
+
+def vib_on(exe, tmp, mat):
+    path = os.path.join(tmp, "m.mat")
+    scipy.io.savemat(path, mat)
+    case = write(tmp, "v.toml", f'[structure]\nmodel = "{path}"\n[harmonic_balance]\nmax = 1\n'
+                 '[quasi_static_mode]\nmode = 1\namplitude = { from = 1e-3, to = 1.0 }\n')
+    return run(exe, ["vibration", case, "--json"])
+
+
+def case_bad_input_model_missing_matrix(exe, tmp):
+    p = vib_on(exe, tmp, {"M": np.eye(3)})
+    if p.returncode != 2 or "has no matrix named K" not in p.stderr:
+        return fail(f"exit {p.returncode}: {p.stderr}")
+    return 0
+
+
+def case_bad_input_model_not_symmetric(exe, tmp):
+    K = np.eye(3)
+    K[0, 1] = 0.5
+    p = vib_on(exe, tmp, {"M": np.eye(3), "K": K, "L": np.eye(3), "Qm": np.ones((1, 1)),
+                          "Tm": np.ones((1, 1)), "Fv": np.zeros((3, 1))})
+    if p.returncode != 2 or "K is not symmetric" not in p.stderr:
+        return fail(f"exit {p.returncode}: {p.stderr}")
+    return 0
+
+
+def case_bad_input_model_wrong_size(exe, tmp):
+    p = vib_on(exe, tmp, {"M": np.eye(3), "K": np.eye(4), "L": np.eye(3), "Qm": np.ones((1, 1)),
+                          "Tm": np.ones((1, 1)), "Fv": np.zeros((3, 1))})
+    if p.returncode != 2 or "K is 4 x 4, expected 3 x 3" not in p.stderr:
+        return fail(f"exit {p.returncode}: {p.stderr}")
+    return 0
+
+
+def case_bad_input_inverted_element(exe, tmp):
+    # One C3D10 with two corners swapped: negative Jacobian.
+    nodes = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+    mids = [(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]
+    pts = nodes + [tuple((a + b) / 2 for a, b in zip(nodes[i], nodes[j])) for i, j in mids]
+    lines = ["*NODE"] + [f"{k + 1}, {x}, {y}, {z}" for k, (x, y, z) in enumerate(pts)]
+    conn = [2, 1, 3, 4, 5, 7, 6, 9, 8, 10]  # corners 1 and 2 swapped (mid-edges to match)
+    lines += ["*ELEMENT, TYPE=C3D10, ELSET=BLOCK", "1, " + ", ".join(map(str, conn))]
+    write(tmp, "one.inp", "\n".join(lines) + "\n")
+    text = ('[mesh]\nfile = "one.inp"\nunit = "mm"\n[[material]]\nname = "s"\nE = "200 GPa"\n'
+            'nu = 0.3\nrho = "7800 kg/m^3"\n[[body]]\nname = "BLOCK"\nmaterial = "s"\n')
+    return bad(exe, tmp, text, "is inverted")
+
+
+CASES = {name[len("case_"):]: fn for name, fn in globals().items() if name.startswith("case_")}
+
+if __name__ == "__main__":
+    exe, case = sys.argv[1], sys.argv[2]
+    with tempfile.TemporaryDirectory(prefix="asperity-structure-") as tmp:
+        sys.exit(CASES[case](exe, tmp))
