@@ -127,10 +127,11 @@ std::string text_summary(const StructureCase& c, const StructureResult& r) {
   return out;
 }
 
-// Side view (x, z) of the outer edges of the mesh, displaced by `u` (mesh DOFs) when given.
+// A view of the outer edges of the mesh on the axes (h, v), displaced by `u` (mesh DOFs)
+// when given.
 Series mesh_edges(const StructureResult& r, const std::vector<BoundaryFace>& faces,
                   const Eigen::VectorXd* u, double scale, const std::string& title,
-                  const std::string& style) {
+                  const std::string& style, int h = 0, int v = 2) {
   Series s{.title = title, .style = style};
   auto at = [&](std::int32_t node) {
     Eigen::Vector3d x = r.mesh.nodes.col(node);
@@ -141,8 +142,8 @@ Series mesh_edges(const StructureResult& r, const std::vector<BoundaryFace>& fac
     const int nc = f.node_count == 6 ? 3 : 4;
     for (int i = 0; i <= nc; ++i) {
       const Eigen::Vector3d x = at(f.nodes[i % nc]);
-      s.x.push_back(x.x() * 1e3);
-      s.y.push_back(x.z() * 1e3);
+      s.x.push_back(x[h] * 1e3);
+      s.y.push_back(x[v] * 1e3);
     }
     s.x.push_back(std::nan(""));
     s.y.push_back(std::nan(""));
@@ -185,12 +186,25 @@ void write_files(const StructureCase& c, const StructureResult& r, joint::Staged
   written.push_back("structure.vtu");
   if (!plots) return;
   const auto faces = boundary_faces(r.mesh);
-  PlotSpec m{.title = fmt::format("{}: mesh, side view ({} nodes, {} elements)", c.name,
+  // The longest extent horizontal; the view's vertical axis: for the mesh the shortest
+  // extent, for a mode the axis it moves most along.
+  const Eigen::Vector3d extent3 = r.mesh.nodes.rowwise().maxCoeff() - r.mesh.nodes.rowwise().minCoeff();
+  int h = 0;
+  extent3.maxCoeff(&h);
+  auto other = [&](const Eigen::Vector3d& w) {
+    int best = -1;
+    for (int k = 0; k < 3; ++k)
+      if (k != h && (best < 0 || w[k] > w[best])) best = k;
+    return best;
+  };
+  const char* axis = "xyz";
+  const int vm = h != 2 ? 2 : 1;  // a side view, z up, unless z is the longest
+  PlotSpec m{.title = fmt::format("{}: mesh ({} nodes, {} elements)", c.name,
                                   r.mesh.node_count(), r.mesh.element_count()),
-             .xlabel = "x [mm]",
-             .ylabel = "z [mm]",
+             .xlabel = fmt::format("{} [mm]", axis[h]),
+             .ylabel = fmt::format("{} [mm]", axis[vm]),
              .extra = "set size ratio -1\nunset key"};
-  m.series.push_back(mesh_edges(r, faces, nullptr, 0, "mesh", "lines lc rgb '#4060a0'"));
+  m.series.push_back(mesh_edges(r, faces, nullptr, 0, "mesh", "lines lc rgb '#4060a0'", h, vm));
   plot_png(dir.file("mesh.png"), m);
   written.push_back("mesh.png");
   const double extent =
@@ -200,16 +214,22 @@ void write_files(const StructureCase& c, const StructureResult& r, joint::Staged
     for (Eigen::Index k = 0; k < std::min<Eigen::Index>(3, a.modes.frequency_hz.size()); ++k) {
       const Eigen::VectorXd u = r.reduction.expand(a.modes.shapes.col(k));
       double umax = 0;
-      for (Eigen::Index i = 0; i < nn; ++i) umax = std::max(umax, u.segment<3>(3 * i).norm());
+      Eigen::Vector3d moved = Eigen::Vector3d::Zero();
+      for (Eigen::Index i = 0; i < nn; ++i) {
+        umax = std::max(umax, u.segment<3>(3 * i).norm());
+        moved += u.segment<3>(3 * i).cwiseAbs();
+      }
+      const int v = other(moved);
       const double scale = umax > 0 ? 0.08 * extent / umax : 0.0;
-      PlotSpec p{.title = fmt::format("{}: mode {} of the stuck interface, {:.2f} Hz (side view, "
+      PlotSpec p{.title = fmt::format("{}: mode {} of the stuck interface, {:.2f} Hz ({}-{} view, "
                                       "displacement exaggerated)",
-                                      c.name, k + 1, a.modes.frequency_hz[k]),
-                 .xlabel = "x [mm]",
-                 .ylabel = "z [mm]",
+                                      c.name, k + 1, a.modes.frequency_hz[k], axis[h], axis[v]),
+                 .xlabel = fmt::format("{} [mm]", axis[h]),
+                 .ylabel = fmt::format("{} [mm]", axis[v]),
                  .extra = "set size ratio -1\nset key bottom right"};
-      p.series.push_back(mesh_edges(r, faces, nullptr, 0, "undeformed", "lines lc rgb '#c0c0c0'"));
-      p.series.push_back(mesh_edges(r, faces, &u, scale, "mode shape", "lines lc rgb '#b02020'"));
+      p.series.push_back(
+          mesh_edges(r, faces, nullptr, 0, "undeformed", "lines lc rgb '#c0c0c0'", h, v));
+      p.series.push_back(mesh_edges(r, faces, &u, scale, "mode shape", "lines lc rgb '#b02020'", h, v));
       const auto name = fmt::format("mode_{}.png", k + 1);
       plot_png(dir.file(name), p);
       written.push_back(name);

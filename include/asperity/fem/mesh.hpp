@@ -53,7 +53,7 @@ struct Mesh {
   [[nodiscard]] std::size_t element_count() const;
   /// Throws InvalidInput naming the item: a node index out of range, a body index out of
   /// range, a non-finite coordinate, an element whose Jacobian determinant is <= 0 or
-  /// whose volume is below 1e-12 of its bounding box's (inverted or degenerate), a
+  /// whose volume is below 1e-12 of the cube of its largest extent (inverted or degenerate), a
   /// node used by no element.
   void validate() const;
 };
