@@ -5,7 +5,10 @@
 # GoogleTest suite, the C++ example and the pytest suite (against the compiled module of that
 # build) again under AddressSanitizer and UndefinedBehaviorSanitizer (the `debug` preset), a
 # short libFuzzer smoke run of the profile readers, the Python package installed with pip into
-# .venv (with the `asperity` command) and its pytest suite against it.
+# .venv (with the `asperity` command) and its pytest suite against it, and the wheel built
+# and installed by pip into a virtual environment made from the system's Python with Debian's
+# numpy present, where the code blocks of README.md and docs/*.md and the packaging tests
+# (signatures, stubs, the command) run.
 set -euo pipefail
 source "$(dirname "$0")/test-common.sh"
 
@@ -46,4 +49,16 @@ stage "Python: pip install . (into .venv) and pytest"
 "$py" -m pip install --quiet --disable-pip-version-check --no-build-isolation .
 "$py" -m pytest tests/python -q
 
+stage "The wheel in a virtual environment of the system's Python, Debian's numpy installed"
+# As a user on Debian/Ubuntu installs it (issue 21): python3-numpy puts numpy 1.x headers in
+# Python's include directory; pip builds the wheel in isolation against the numpy of
+# pyproject.toml's build requirements, and the venv gets numpy from PyPI. The README's and
+# the docs' blocks run there with the installed `asperity` command, and the signatures.
+dpkg -s python3-numpy >/dev/null  # scripts/setup.sh installs it
+system_venv="$(mktemp -d)/venv"
+trap 'rm -rf "$(dirname "$system_venv")"' EXIT
+/usr/bin/python3 -m venv "$system_venv"
+"$system_venv/bin/python" -m pip install --quiet --disable-pip-version-check ".[test]"
+"$system_venv/bin/python" -m pytest -q -p no:cacheprovider tests/python/test_docs.py \
+  tests/python/test_packaging.py
 stage "all tests passed"
