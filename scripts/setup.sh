@@ -27,6 +27,7 @@ apt_packages=(
   clang-format
   clang libclang-rt-14-dev    # libFuzzer targets under fuzz/ (ASPERITY_BUILD_FUZZ)
   python3 python3-dev python3-pip python3-venv   # the Python package, in .venv
+  python3-numpy               # Debian's numpy: scripts/test-full.sh installs the wheel beside it
 )
 
 missing=()

@@ -1,59 +1,23 @@
 #!/usr/bin/env bash
-# Sets everything up on a fresh Debian machine and runs every test: a clang-format check,
-# the C++ suite
-# (GoogleTest, CLI checks, examples, the downstream find_package checks of the static and the
-# shared library, tests/package) with warnings as
-# errors, the GoogleTest suite, the C++ example and the pytest suite (against the compiled
-# module of that build) again under AddressSanitizer and UndefinedBehaviorSanitizer (the
-# `debug` preset), a short libFuzzer smoke run of the
-# profile readers, then the Python package installed with pip into .venv (with the `asperity`
-# command) and its pytest suite, which also runs every code block of README.md and docs/*.md
-# through that command and package (tests/python/test_docs.py). Every Python step runs
-# .venv/bin/python (scripts/setup.sh makes it).
+# The quick test command (README "Quick start"): sets everything up on a fresh Debian machine,
+# checks that the C++ sources are formatted as .clang-format says, builds the `ci` preset once
+# (Release, warnings as errors, with the Python module; the benchmarks are left to
+# scripts/test-full.sh) and runs its ctest suite: GoogleTest, the CLI checks, the examples, the
+# downstream find_package check of the static library (tests/package) and the
+# pytest suite against that build's module and `asperity` command, which also runs every code
+# block of README.md and docs/*.md (tests/python/test_docs.py). Every Python step runs
+# .venv/bin/python (scripts/setup.sh makes it). scripts/test-full.sh runs this and then the
+# sanitizer, fuzz, benchmark-build and installed-wheel stages.
 set -euo pipefail
-cd "$(dirname "$0")/.."
-
-bash scripts/setup.sh
-py="$PWD/.venv/bin/python"
-started=$SECONDS
-stage() { echo "== [$((SECONDS - started)) s] $*"; }
+source "$(dirname "$0")/test-common.sh"
 
 stage "C++ sources formatted as .clang-format says"
 git ls-files -z -- '*.cpp' '*.hpp' | xargs -0 clang-format --dry-run -Werror
 
-stage "C++: configure, build (warnings as errors), test"
+stage "C++ and Python (ci preset): configure, build (warnings as errors), ctest"
 # The CLI tests run Python drivers: with the venv's interpreter, like everything else.
-cmake --preset ci -DPython3_EXECUTABLE="$py"
+cmake --preset ci -DPython3_EXECUTABLE="$py" -DASPERITY_BUILD_BENCH=OFF
 cmake --build --preset ci -j 2
-ctest --preset ci -j 2
-
-stage "C++ under ASan + UBSan (debug preset): GoogleTest suite and the C++ example"
-# The CLI-script tests are left out here: the same code paths run in the GoogleTest
-# suite, and the Python drivers under ASan would only add time.
-cmake --preset debug -DPython3_EXECUTABLE="$py" -DASPERITY_BUILD_PYTHON=ON
-cmake --build --preset debug -j 2 --target asperity_tests sphere_example rough_flat_hysteresis
-ctest --preset debug -j 2 -L 'unit|example'
-
-stage "Python bindings under ASan + UBSan: the pytest suite against the debug preset's module"
-# The bindings' own code (numpy arrays read and written in place, the method forwarders)
-# checked like the library. The sanitizer runtime must come first in the process, and the
-# C++ runtime with it (ASan intercepts __cxa_throw; Python does not link libstdc++).
-# Leak checking is off: the interpreter keeps its objects until exit by design. The
-# command line the tests call is the same build's, sanitized too.
-cmake --build --preset debug -j 2 --target _core asperity_core_stub asperity_cli
-LD_PRELOAD="$(g++ -print-file-name=libasan.so) $(g++ -print-file-name=libstdc++.so.6)" \
-  ASAN_OPTIONS=detect_leaks=0 \
-  UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$PWD/tests/python/ubsan.supp" \
-  PYTHONPATH="$PWD/build/debug/python" ASPERITY_CLI="$PWD/build/debug/src/cli/asperity" \
-  MPLBACKEND=Agg "$py" -m pytest tests/python -q -p no:cacheprovider
-
-stage "Fuzz smoke run of the profile readers (libFuzzer, clang, ASan + UBSan)"
-cmake -S . -B build/fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DASPERITY_BUILD_FUZZ=ON \
-  -DASPERITY_BUILD_TESTS=OFF -DASPERITY_BUILD_CLI=OFF -DASPERITY_BUILD_EXAMPLES=OFF >/dev/null
-cmake --build build/fuzz --target fuzz_targets -j 2
-ctest --test-dir build/fuzz -L fuzz --output-on-failure
-
-stage "Python: pip install . (into .venv) and pytest"
-"$py" -m pip install --quiet --disable-pip-version-check --no-build-isolation .
-"$py" -m pytest tests/python -q
-stage "all tests passed"
+# The shared library's package checks compile the library a second time: in test-full.sh.
+ctest --preset ci -j 2 -LE second_build
+stage "quick tests passed"

@@ -142,12 +142,17 @@ def add_method_signatures(cls: type, module: str = "asperity") -> None:
         setattr(cls, name, wrapper)
 
 
-def add_class_signature(cls: type) -> None:
-    """Sets ``cls.__signature__`` from its constructor (when it has exactly one)."""
+def add_class_signature(cls: type, module: str = "asperity") -> None:
+    """Sets ``cls.__signature__`` from its constructor (when it has exactly one), and
+    replaces ``cls.__init__`` (a nanobind method, which ``inspect`` cannot read) by a
+    forwarder carrying the same signature with ``self``. Constructing an instance does not
+    go through that attribute (nanobind's type calls the constructor it was made with), so
+    it costs the same; ``super().__init__(...)`` of a Python subclass goes through it."""
     init = cls.__dict__.get("__init__")
     sig = signature_of(init, drop_first=True) if init is not None else None
     if sig is not None:
         cls.__signature__ = sig.replace(return_annotation=inspect.Signature.empty)
+        cls.__init__ = _signed(init, True, module, f"{cls.__name__}.__init__")
 
 
 def is_compiled_function(obj: Any) -> bool:

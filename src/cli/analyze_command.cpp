@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
@@ -805,7 +806,9 @@ void add_synthesize_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--k-pzt", o->k_pzt,
                   "stiffness of the PZT side of the apparatus (default: 38N/um)");
   cmd->add_option("--k-lc", o->k_lc, "stiffness of the load-cell side (default: 1462N/um)");
-  cmd->add_option("--seed", o->seed, "random seed (default: 1)");
+  // Checked on the text: CLI11 would read "-1" as 2^64 - 1.
+  cmd->add_option("--seed", o->seed, "random seed (default: 1)")
+      ->check(whole_number_in(0, std::numeric_limits<std::size_t>::max()));
   cmd->add_flag("--no-imposed", o->no_imposed, "leave out the Delta column");
   cmd->add_option("--out", o->out, "output CSV file (- for standard output)")->required();
   cmd->add_flag("--json", o->json,

@@ -6,6 +6,9 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "asperity/contact/asperity_model.hpp"
 #include "asperity/core/error.hpp"
@@ -146,6 +149,47 @@ ModelResult evaluate(const contact::ContactPair& pair, ModelName m, const Sphere
     }
   }
   return r;
+}
+
+// CEB's c1 (B.11), through which zeta enters: mu_CEB's surface branch grows as 1/|c1|.
+double ceb_c1(double zeta) {
+  return -1.0 + 1.5 * zeta * std::atan(1.0 / zeta) - zeta * zeta / (2.0 * (1.0 + zeta * zeta));
+}
+
+// Inputs that the equations accept but no contact of the thesis resembles: each a warning
+// with its physical reason (the numbers are still what the equations give).
+std::vector<std::string> plausibility_warnings(const SphereOptions& o, double R1, double R2,
+                                               const contact::FrictionParameters& params) {
+  std::vector<std::string> w;
+  // Spheres of the thesis's comparisons: 1.55 um (Table 3.3) and 2.5 mm (Table 3.1).
+  for (const auto& [flag, R] : {std::pair{"--R1", R1}, std::pair{"--R2", R2}}) {
+    if (std::isfinite(R) && R > 1.0) {
+      w.push_back(fmt::format(
+          "{} = {} m is a sphere larger than 1 m: the laws of chapter 3 were compared with "
+          "spheres of 1.55 um (Table 3.3) and 2.5 mm (Table 3.1); check the unit",
+          flag, core::format_value(R)));
+    }
+  }
+  // Blau's metal-on-metal friction coefficients: 0.2 to 1.5 (thesis, after Eq. 4.14).
+  if (o.mu_cfc && params.mu_cfc > 1.5) {
+    w.push_back(fmt::format(
+        "--mu-cfc = {} is above 1.5, the largest metal-on-metal friction coefficient that the "
+        "thesis cites (Blau: 0.2-1.5); CFC's mu = s/H (B.10), the softer material's shear "
+        "strength over its hardness, is 0.284 for the steel of Table 3.2 and 0.259 for silica",
+        core::format_value(params.mu_cfc)));
+  }
+  // zeta enters CEB's mu through 1/|c1| (B.11); a factor 2 either way from the thesis's
+  // zeta = 0.48 (nu = 0.3, under B.13) is no longer that yield depth.
+  const double ratio = std::abs(ceb_c1(0.48)) / std::abs(ceb_c1(params.zeta));
+  if (o.zeta && !(ratio >= 0.5 && ratio <= 2.0)) {
+    w.push_back(fmt::format(
+        "--zeta = {} (depth of first yield over the contact radius) makes CEB's |c1| (B.11) "
+        "{:.3g} times that of the thesis's zeta = 0.48 (nu = 0.3), so CEB's friction coefficient "
+        "{:.3g} times as large; first yield under a Hertz contact lies at about half the contact "
+        "radius",
+        core::format_value(params.zeta), 1.0 / ratio, ratio));
+  }
+  return w;
 }
 
 void run_sphere(const SphereOptions& o, std::string& out) {
@@ -298,6 +342,7 @@ void run_sphere(const SphereOptions& o, std::string& out) {
   // The laws of chapter 3 are small-strain contact mechanics: a << R. Say so when a load
   // pushes a model past it (the numbers are still what the equations give).
   std::vector<std::string> warnings = contact::hardness_warnings(pair.H, pair.E_star);
+  for (auto& text : plausibility_warnings(o, R1, R2, params)) warnings.push_back(std::move(text));
   for (const auto& r : results) {
     if (r.model.a() > 0.3 * pair.R) {
       warnings.push_back(fmt::format(

@@ -36,6 +36,26 @@ inline std::string at_line(const toml::node& n) {
   return line_of(n) > 0 ? fmt::format(" (line {})", line_of(n)) : std::string();
 }
 
+/// t[key], a name read by `parse` (which throws InvalidInput listing the allowed names), or
+/// `dflt` when absent. A wrong name or type is InvalidInput "FILE:LINE: WHERE.KEY = VALUE: "
+/// followed by `parse`'s message.
+template <class Parse>
+auto named_choice(const toml::table& t, const std::string& key, const std::string& where,
+                  const std::string& dflt, Parse parse) {
+  const auto* n = t.get(key);
+  if (!n) return parse(dflt);
+  const auto& src = n->source();
+  const std::string place =
+      src.path ? fmt::format("{}:{}: ", *src.path, line_of(*n)) : std::string();
+  const auto name = n->value<std::string>();
+  if (!name) throw InvalidInput(fmt::format("{}{}.{} must be a string", place, where, key));
+  try {
+    return parse(*name);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format("{}{}.{} = \"{}\": {}", place, where, key, *name, e.what()));
+  }
+}
+
 /// Throws InvalidInput naming the first key of `t` not in `allowed`, its line, and the
 /// allowed keys.
 inline void check_keys(const toml::table& t, const std::string& where,

@@ -225,7 +225,8 @@ std::unique_ptr<FrictionModel> rough_flat_friction(const toml::table& t, const C
                .eta = eta,
                .A0 = A0,
                .P = P,
-               .model = contact::parse_model_name(text(t, "asperity_model", where, "bke"))};
+               .model = core::toml_case::named_choice(t, "asperity_model", where, "bke",
+                                                      contact::parse_model_name)};
   if (t.get("mu_cfc")) c.friction.mu_cfc = number(t, "mu_cfc", where, 0.3);
   const auto si = epb_backbone(c);
   f = {{"model", "physics"},  {"backbone", "rough_flat"},

@@ -79,7 +79,8 @@ void BackboneTabulation::validate() const {
   }
   if (!(rel_tol >= 1e-12 && rel_tol <= 1e-3)) {
     throw InvalidInput(
-        fmt::format("table tolerance {} is not allowed: it must lie in [1e-12, 1e-3]",
+        fmt::format("rel_tol = {} (the backbone table's relative tolerance) is not allowed: it "
+                    "must lie in [1e-12, 1e-3]",
                     core::format_value(rel_tol)));
   }
   for (double k : knots) {

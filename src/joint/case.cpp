@@ -16,9 +16,14 @@ double bolt_preload(double torque, double nut_factor, double diameter) {
   if (!(torque > 0.0) || !std::isfinite(torque)) {
     throw InvalidInput(fmt::format("bolt torque = {} N*m must be > 0", torque));
   }
-  if (!(nut_factor > 0.0) || !std::isfinite(nut_factor)) {
-    throw InvalidInput(
-        fmt::format("nut factor = {} must be > 0 (0.2 for steel bolts)", nut_factor));
+  // Eq. 5.2's nut factor k lumps the thread and bearing-face friction: about 0.1 lubricated
+  // to 0.3 dry (Shigley's Mechanical Engineering Design, Table 8-15); k = 1 would need
+  // friction coefficients of several there.
+  if (!(nut_factor > 0.0 && nut_factor <= 1.0)) {
+    throw InvalidInput(fmt::format(
+        "nut factor = {} must lie in (0, 1]: k of T = k F D (Eq. 5.2) is about 0.1 (lubricated) "
+        "to 0.3 (dry), 0.2 for steel bolts",
+        nut_factor));
   }
   if (!(diameter > 0.0) || !std::isfinite(diameter)) {
     throw InvalidInput(fmt::format("bolt diameter = {} m must be > 0", diameter));

@@ -10,6 +10,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
+#include "asperity/core/validate.hpp"
 #include "asperity/joint/case.hpp"
 #include "asperity/surface/profile.hpp"
 #include "asperity/surface/roughness.hpp"
@@ -66,6 +67,14 @@ contact::Material parse_material(const Reader& r, const toml::node& n, const std
   if (t->get("G") && !(m.G > 0.0)) r.fail_value(t->get("G"), where + ".G", "must be > 0");
   m.H = r.optional_quantity(*t, "H", dim::pressure, where).value_or(0.0);
   if (t->get("H") && !(m.H > 0.0)) r.fail_value(t->get("H"), where + ".H", "must be > 0");
+  // Hardness is about 3 times the yield stress (Tabor), which lies far below E: H/E runs
+  // from about 1e-3 (lead) to 0.1 (diamond-like coatings).
+  if (m.H > 0.0 && !(m.H < m.E)) {
+    r.fail_value(t->get("H"), where + ".H",
+                 fmt::format("must be below the Young's modulus E = {} Pa of the same material "
+                             "(hardness is about 3 times the yield stress; H/E is 1e-3 to 0.1)",
+                             core::format_value(m.E)));
+  }
   return m;
 }
 
@@ -293,9 +302,11 @@ JointCase parse_case(std::string_view text, const std::string& source,
     }
     bolts.nut_factor =
         r.optional_quantity(*b, "nut_factor", dim::dimensionless, "load.bolts").value_or(0.2);
-    if (!(bolts.nut_factor > 0.0))
+    // Shigley's Mechanical Engineering Design, Table 8-15: k = 0.1 (lubricated) to 0.3 (dry).
+    if (!(bolts.nut_factor > 0.0 && bolts.nut_factor <= 1.0))
       r.fail_value(b->get("nut_factor"), "load.bolts.nut_factor",
-                   "must be > 0 (0.2 for steel bolts, Eq. 5.2)");
+                   "must lie in (0, 1]: the nut factor k of T = k F D (Eq. 5.2) is about 0.1 "
+                   "(lubricated) to 0.3 (dry), 0.2 for steel bolts");
     bolts.diameter = r.positive(*b, "diameter", dim::length, "load.bolts");
     const int nt = (b->get("torque") ? 1 : 0) + (b->get("torques") ? 1 : 0) +
                    (b->get("total_torque") ? 1 : 0) + (b->get("total_torques") ? 1 : 0);

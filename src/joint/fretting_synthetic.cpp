@@ -34,9 +34,17 @@ double Eq53Excitation::operator()(double t) const {
 
 FrettingData synthetic_experiment(std::shared_ptr<const hysteresis::Backbone> backbone,
                                   const SyntheticOptions& o) {
-  if (!(o.excitation.amplitude > 0.0) || !(o.excitation.frequency > 0.0) ||
-      o.excitation.cycles < 1) {
-    throw InvalidInput("synthetic experiment: amplitude and frequency must be > 0, cycles >= 1");
+  if (!(o.excitation.amplitude > 0.0) || !std::isfinite(o.excitation.amplitude)) {
+    throw InvalidInput(fmt::format(
+        "synthetic experiment: amplitude (imposed) = {} m is not allowed: the half peak-to-peak "
+        "motion of the PZT tip (0.5 A of Eq. 5.3) must be a finite number > 0",
+        core::format_value(o.excitation.amplitude)));
+  }
+  core::require_positive("synthetic experiment: frequency [Hz]", o.excitation.frequency);
+  if (o.excitation.cycles < 1) {
+    throw InvalidInput(fmt::format(
+        "synthetic experiment: cycles = {} is not allowed: it must be a whole number >= 1",
+        o.excitation.cycles));
   }
   core::require_positive("synthetic experiment: sample_rate", o.sample_rate);
   core::require_positive("synthetic experiment: pzt_stiffness", o.pzt_stiffness);

@@ -235,6 +235,14 @@ std::vector<std::string> RoughFlat::warnings() const {
         "mu growing as the load falls; read mu with care",
         params_.psi, omega_c_star_));
   }
+  if (params_.psi > 4.7) {
+    w.push_back(fmt::format(
+        "plasticity index psi = {:.4g} is above 4.7, the largest of the thesis (Table 5.4): "
+        "omega_c/sigma = {:.4g}, so the asperities in contact are deformed far beyond first "
+        "yield, where the CEB and KE predictions lose validity (thesis, ch. 5); read mu and "
+        "the stiffness with care",
+        params_.psi, omega_c_star_));
+  }
   if (params_.beta > 0.06) {
     w.push_back(fmt::format(
         "roughness parameter beta = sigma R eta = {:.4g} is above 0.06, the top of the range of "

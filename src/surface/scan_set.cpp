@@ -110,6 +110,7 @@ IsotropicSurface equivalent_isotropic_surface(const std::vector<ScanFile>& files
 
   for (auto& map : maps) {
     const std::size_t invalid = map.invalid_count();
+    const std::size_t total = map.z.size();
     out.invalid_points += invalid;
     auto profile = take_profile(map, invalid);
     out.spikes_removed += remove_spikes(profile, s.spikes);
@@ -120,14 +121,29 @@ IsotropicSurface equivalent_isotropic_surface(const std::vector<ScanFile>& files
       params = profile_parameters(filtered, s.filter.lc);
       if (s.psd) out.psd.push_back(power_spectrum(filtered));
     };
+    const std::size_t run = profile.z.size();
+    // With invalid points the profile is their longest valid run: say so when it is too
+    // short, not only that "the profile" is.
+    auto processed = [&](auto&& process) {
+      try {
+        return process();
+      } catch (const InvalidInput& e) {
+        if (invalid == 0) throw;
+        throw InvalidInput(fmt::format(
+            "{} ({} of the file's {} points are invalid (NaN or masked); the profile is their "
+            "longest run of consecutive valid points, {} points)",
+            e.what(), invalid, total, run));
+      }
+    };
     if (!s.keep_processed) {
       // Only the moments: the profile is levelled in place and freed once filtered.
-      const auto m = profile_moments(std::move(profile), s.level, s.filter, inspect);
+      const auto m = processed(
+          [&] { return profile_moments(std::move(profile), s.level, s.filter, inspect); });
       out.scans.push_back(
           {source, "isotropic", m.points, 1, dx, length, m.length, m.moments, params});
       continue;
     }
-    auto p = process_profile(profile, s.level, s.filter);
+    auto p = processed([&] { return process_profile(profile, s.level, s.filter); });
     inspect(p.filtered);
     out.scans.push_back({source, "isotropic", p.filtered.z.size(), 1, dx, length,
                          p.filtered.length(), p.moments, params});

@@ -106,7 +106,8 @@ std::shared_ptr<const Element> rough_flat_element(const toml::table& t, const st
                            .eta = need_si(t, "eta", w, dim::inverse_area, what),
                            .A0 = need_si(t, "A0", w, dim::area, what),
                            .P = need_si(t, "P", w, dim::force, what),
-                           .model = contact::parse_model_name(text(t, "asperity_model", w, "bke")),
+                           .model = core::toml_case::named_choice(t, "asperity_model", w, "bke",
+                                                                  contact::parse_model_name),
                            .friction = {}};
     if (!t.get("nu")) throw InvalidInput(fmt::format("{}: {} needs nu{}", w, what, at_line(t)));
     c.nu = number(t, "nu", w, 0.3);
@@ -139,7 +140,8 @@ std::shared_ptr<const Element> rough_flat_element(const toml::table& t, const st
       }
     }
     surface::RoughFlatParameters rp;
-    rp.model = contact::parse_model_name(text(t, "asperity_model", w, "bke"));
+    rp.model =
+        core::toml_case::named_choice(t, "asperity_model", w, "bke", contact::parse_model_name);
     rp.beta = number(t, "beta", w, 0.0);
     rp.psi = number(t, "psi", w, 0.0);
     rp.nu = number(t, "nu", w, 0.3);

@@ -124,3 +124,13 @@ def test_mindlin_loading_force_rejects_nan():
         mindlin.loading_force_tilde(math.nan)
     with pytest.raises(asperity.InvalidInput, match="delta~"):
         mindlin.loading_force_tilde(np.array([0.5, math.nan]))
+
+
+def test_backbone_tolerance_named_as_the_argument():
+    # Issue 21: the message named a "table tolerance", not the argument the caller gave.
+    flat = asperity.RoughFlat(model="bke", beta=0.04, psi=0.5, nu=0.3, G_over_E=0.7 / 3.4)
+    d_star = flat.separation_star(1e-3)
+    for bad in (0.0, 0.1):
+        with pytest.raises(asperity.InvalidInput,
+                           match=r"^rel_tol = .* is not allowed: it must lie in \[1e-12, 1e-3\]"):
+            flat.backbone(d_star, rel_tol=bad)

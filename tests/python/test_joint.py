@@ -158,3 +158,15 @@ def test_predict_bolt_field_patches_and_slip_map():
         assert np.all(ld["exponent"][~gross] > 3.0)  # the model's n, never below 3
         for a, e in zip(ld["delta_max"], ld["energy"]):
             assert e == pytest.approx(ld["backbone"].energy_per_cycle(a), rel=1e-12)
+
+
+def test_synthetic_experiment_names_the_bad_value():
+    # Issue 21: "amplitude and frequency must be > 0, cycles >= 1" said neither which nor what.
+    case = os.path.join(EX, "steel420_two_bolts.toml")
+    with pytest.raises(asperity.InvalidInput,
+                       match=r"amplitude \(imposed\) = -1e-06 m is not allowed.*> 0"):
+        asperity.synthetic_experiment(case, 526.0, -1e-6)
+    with pytest.raises(asperity.InvalidInput, match=r"frequency \[Hz\] = -1 is not allowed"):
+        asperity.synthetic_experiment(case, 526.0, 6.75e-6, frequency=-1.0)
+    with pytest.raises(asperity.InvalidInput, match=r"cycles = 0 is not allowed"):
+        asperity.synthetic_experiment(case, 526.0, 6.75e-6, cycles=0)

@@ -4,6 +4,7 @@ import json
 import os
 import subprocess
 
+import numpy as np
 import pytest
 
 import asperity
@@ -58,3 +59,23 @@ preloads = ["526 N"]
     assert half["eta"] == pytest.approx(m.eta, rel=1e-12)
     assert half["R"] == pytest.approx(m.R, rel=1e-12)
     assert half["directions"] == ["min_slope", "max_slope"]
+
+
+def test_profile_cut_by_invalid_points_says_so(tmp_path):
+    # Issue 21: a profile X3P with every third point NaN was refused as "the profile (2
+    # points) is shorter than the filter needs", without a word of the invalid points that
+    # made it so short.
+    z = asperity.read_profile(PZT_MAX)["z"].copy()
+    dx = asperity.read_profile(PZT_MAX)["dx"]
+    z[::3] = np.nan
+    path = str(tmp_path / "holes.x3p")
+    asperity.write_x3p(path, z.reshape(1, -1), dx, dx)
+    n = z.size
+    with pytest.raises(asperity.InvalidInput,
+                       match=(rf"shorter than the filter needs.*\({len(z[::3])} of the file's {n} "
+                              r"points are invalid \(NaN or masked\); the profile is their longest "
+                              r"run of consecutive valid points, 2 points\)")):
+        asperity.equivalent_isotropic_surface([path])
+    # The same file without holes: the moments of the whole profile.
+    asperity.write_x3p(path, asperity.read_profile(PZT_MAX)["z"].reshape(1, -1), dx, dx)
+    assert asperity.equivalent_isotropic_surface([path])["scans"][0]["points"] > 2

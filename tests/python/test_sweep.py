@@ -257,7 +257,7 @@ def test_dynamics_cases_sweep(tmp_path):
     ({"load.bolts.nut_facter": "uniform(0.158, 0.267)"}, ["load.bolts.nut_facter", "unknown key"]),
     ({"joint.half[3].material.H": "normal(5.8 GPa, 5 %)"}, ["joint.half[3]", "2 elements"]),
     ({"load.bolts.nut_factor": "uniform(0.267, 0.158)"}, ["load.bolts.nut_factor", "LOW < HIGH"]),
-    ({"load.bolts.nut_factor": "uniform(-0.1, 0.2)"}, ["load.bolts.nut_factor", "must be > 0"]),
+    ({"load.bolts.nut_factor": "uniform(-0.1, 0.2)"}, ["load.bolts.nut_factor", "must lie in (0, 1]"]),
     ({"joint.half[1].material.nu": "uniform(0.3, 0.6)"}, ["material.nu", "[0, 0.5)"]),
     ({"joint.half[*].material.H": "normal(5.8 GPa, -5 %)"}, ["material.H", "SD > 0"]),
     ({"joint.half[*].material.H": "normal(5.8 GPa, 40 %)"}, ["material.H", "MEAN +-"]),

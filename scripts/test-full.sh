@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# The full test command (.ci/run): scripts/test.sh (format check, the `ci` build and its ctest
+# suite with the pytest suite), then the benchmarks built with warnings as errors, the
+# downstream find_package check of the library built shared (tests/package), the
+# GoogleTest suite, the C++ example and the pytest suite (against the compiled module of that
+# build) again under AddressSanitizer and UndefinedBehaviorSanitizer (the `debug` preset), a
+# short libFuzzer smoke run of the profile readers, the Python package installed with pip into
+# .venv (with the `asperity` command) and its pytest suite against it, and the wheel built
+# and installed by pip into a virtual environment made from the system's Python with Debian's
+# numpy present, where the code blocks of README.md and docs/*.md and the packaging tests
+# (signatures, stubs, the command) run.
+set -euo pipefail
+source "$(dirname "$0")/test-common.sh"
+
+bash scripts/test.sh
+
+stage "ci preset: the benchmarks built (warnings as errors), the shared library's package checks"
+cmake --preset ci -DPython3_EXECUTABLE="$py"
+cmake --build --preset ci -j 2
+ctest --preset ci -j 2 -L second_build
+
+stage "C++ under ASan + UBSan (debug preset): GoogleTest suite and the C++ example"
+# The CLI-script tests are left out here: the same code paths run in the GoogleTest
+# suite, and the Python drivers under ASan would only add time.
+cmake --preset debug -DPython3_EXECUTABLE="$py" -DASPERITY_BUILD_PYTHON=ON
+cmake --build --preset debug -j 2 --target asperity_tests sphere_example rough_flat_hysteresis
+ctest --preset debug -j 2 -L 'unit|example'
+
+stage "Python bindings under ASan + UBSan: the pytest suite against the debug preset's module"
+# The bindings' own code (numpy arrays read and written in place, the method forwarders)
+# checked like the library. The sanitizer runtime must come first in the process, and the
+# C++ runtime with it (ASan intercepts __cxa_throw; Python does not link libstdc++).
+# Leak checking is off: the interpreter keeps its objects until exit by design. The
+# command line the tests call is the same build's, sanitized too.
+cmake --build --preset debug -j 2 --target _core asperity_core_stub asperity_cli
+LD_PRELOAD="$(g++ -print-file-name=libasan.so) $(g++ -print-file-name=libstdc++.so.6)" \
+  ASAN_OPTIONS=detect_leaks=0 \
+  UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$PWD/tests/python/ubsan.supp" \
+  PYTHONPATH="$PWD/build/debug/python" ASPERITY_CLI="$PWD/build/debug/src/cli/asperity" \
+  MPLBACKEND=Agg "$py" -m pytest tests/python -q -p no:cacheprovider
+
+stage "Fuzz smoke run of the profile readers (libFuzzer, clang, ASan + UBSan)"
+cmake -S . -B build/fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DASPERITY_BUILD_FUZZ=ON \
+  -DASPERITY_BUILD_TESTS=OFF -DASPERITY_BUILD_CLI=OFF -DASPERITY_BUILD_EXAMPLES=OFF >/dev/null
+cmake --build build/fuzz --target fuzz_targets -j 2
+ctest --test-dir build/fuzz -L fuzz --output-on-failure
+
+stage "Python: pip install . (into .venv) and pytest"
+"$py" -m pip install --quiet --disable-pip-version-check --no-build-isolation .
+"$py" -m pytest tests/python -q
+
+stage "The wheel in a virtual environment of the system's Python, Debian's numpy installed"
+# As a user on Debian/Ubuntu installs it (issue 21): python3-numpy puts numpy 1.x headers in
+# Python's include directory; pip builds the wheel in isolation against the numpy of
+# pyproject.toml's build requirements, and the venv gets numpy from PyPI. The README's and
+# the docs' blocks run there with the installed `asperity` command, and the signatures.
+dpkg -s python3-numpy >/dev/null  # scripts/setup.sh installs it
+system_venv="$(mktemp -d)/venv"
+trap 'rm -rf "$(dirname "$system_venv")"' EXIT
+/usr/bin/python3 -m venv "$system_venv"
+"$system_venv/bin/python" -m pip install --quiet --disable-pip-version-check ".[test]"
+"$system_venv/bin/python" -m pytest -q -p no:cacheprovider tests/python/test_docs.py \
+  tests/python/test_packaging.py
+stage "all tests passed"

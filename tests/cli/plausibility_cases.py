@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""Issue 21's reliability cases: inputs that the equations accept but no contact of the
+thesis resembles are warned with their physical reason, impossible ones refused (exit 2)
+naming the value and the limit, and wrong names in case files named with file, line and key.
+
+Usage: plausibility_cases.py ASPERITY_EXE SOURCE_DIR CASE. Standard library only.
+Exit 0 = pass, 1 = fail.
+"""
+import math
+import os
+import sys
+
+from case_runner import check, main  # tests/cli/case_runner.py
+from reliability_cases import expect_exit2, json_of, run
+
+SPHERE = ["sphere", "--E1=207GPa", "--nu1=0.3", "--E2=207GPa", "--nu2=0.3", "--H=6.83GPa",
+          "--R1=2.5mm", "--P=35N"]  # Table 3.1-3.2, experiment 1
+STEEL420 = "examples/joints/steel420_two_bolts.toml"
+
+
+def warnings_of(exe, argv, tmp):
+    j, err = json_of(exe, argv, tmp)
+    return j["warnings"], err
+
+
+def case_sphere_mu_cfc_above_blau(exe, src, tmp):
+    w, err = warnings_of(exe, SPHERE + ["--model=cfc", "--mu-cfc=50"], tmp)
+    check(any("--mu-cfc = 50 is above 1.5" in x and "Blau" in x for x in w), w)
+    check("warning: --mu-cfc = 50" in err, err)
+    # Table 3.2's own value: no warning (the list can be non-empty: see above).
+    w, err = warnings_of(exe, SPHERE + ["--model=cfc", "--mu-cfc=0.284"], tmp)
+    check(w == [] and "warning" not in err, f"{w} {err}")
+
+
+def case_sphere_radius_of_a_kilometre(exe, src, tmp):
+    argv = [a for a in SPHERE if not a.startswith("--R1")] + ["--model=ke", "--R1=1km"]
+    w, _ = warnings_of(exe, argv, tmp)
+    check(any("--R1 = 1000 m is a sphere larger than 1 m" in x and "check the unit" in x
+              for x in w), w)
+    w, _ = warnings_of(exe, SPHERE + ["--model=ke", "--R2=2m"], tmp)
+    check(any("--R2 = 2 m is a sphere larger than 1 m" in x for x in w), w)
+
+
+def case_sphere_zeta_far_from_first_yield(exe, src, tmp):
+    w, _ = warnings_of(exe, SPHERE + ["--model=ceb", "--zeta=2"], tmp)
+
+    def c1(zeta):  # B.11
+        return -1 + 1.5 * zeta * math.atan(1 / zeta) - zeta**2 / (2 * (1 + zeta**2))
+
+    ratio = c1(0.48) / c1(2)  # 31.45: -0.28487 / -0.0090572
+    check(any("--zeta = 2" in x and f"{1 / ratio:.3g} times" in x
+              and f"{ratio:.3g} times as large" in x for x in w), w)
+    w, err = warnings_of(exe, SPHERE + ["--model=ceb", "--zeta=0.48"], tmp)
+    check(w == [] and "warning" not in err, f"{w} {err}")
+
+
+def case_flat_psi_above_the_thesis(exe, src, tmp):
+    argv = ["flat", "--beta=0.04", "--psi=1000", "--nu=0.3", "--P-star=1e-3", "--model=ke"]
+    w, err = warnings_of(exe, argv, tmp)
+    check(any("plasticity index psi = 1000 is above 4.7" in x for x in w), w)
+    check("warning: plasticity index psi = 1000" in err, err)
+    w, _ = warnings_of(exe, [a.replace("1000", "4.7") for a in argv], tmp)
+    check(not any("plasticity index" in x for x in w), w)
+
+
+def modified_case(src, tmp, old, new):
+    with open(os.path.join(src, STEEL420)) as f:
+        text = f.read()
+    check(text.count(old) >= 1, f"the example changed: no {old!r}")
+    path = os.path.join(tmp, "case.toml")
+    with open(path, "w") as f:
+        f.write(text.replace(old, new, 1))
+    return path
+
+
+def case_predict_hardness_above_young_modulus(exe, src, tmp):
+    path = modified_case(src, tmp, 'H = "5.8 GPa"', 'H = "300 GPa"')
+    r = run(exe, ["predict", path, "--out", "o"], tmp)
+    expect_exit2(r, "joint.half[1].material.H", "300 GPa",
+                 "must be below the Young's modulus E = 2e+11 Pa")
+    check(not os.path.exists(os.path.join(tmp, "o")), "an output was written")
+
+
+def case_predict_nut_factor_of_five(exe, src, tmp):
+    path = modified_case(src, tmp, "nut_factor = 0.2", "nut_factor = 5")
+    r = run(exe, ["predict", path, "--out", "o"], tmp)
+    expect_exit2(r, "load.bolts.nut_factor = 5", "must lie in (0, 1]")
+
+
+def case_synthesize_negative_seed(exe, src, tmp):
+    r = run(exe, ["synthesize", os.path.join(src, STEEL420), "--imposed=6.75um", "--out=s.csv",
+                  "--seed=-1"], tmp)
+    expect_exit2(r, "--seed", "-1 is not allowed: it must be a whole number in [0, ")
+    check("18446744073709551615" not in r.stderr.split("[0, ")[0], r.stderr)
+    check(not os.path.exists(os.path.join(tmp, "s.csv")), "an output was written")
+
+
+def case_unknown_asperity_model_names_file_line_key(exe, src, tmp):
+    with open(os.path.join(src, "examples/dynamics/harmonic_physics_rough.toml")) as f:
+        lines = f.read().split("\n")
+    line = next(i for i, s in enumerate(lines, 1) if s.startswith('asperity_model = "bke"'))
+    lines[line - 1] = 'asperity_model = "xyz"'
+    path = os.path.join(tmp, "xyz.toml")
+    with open(path, "w") as f:
+        f.write("\n".join(lines))
+    r = run(exe, ["dynamics", path, "--out", "o", "--no-plots"], tmp)
+    expect_exit2(r, f"xyz.toml:{line}: dynamics.friction.asperity_model = \"xyz\"",
+                 "allowed are cfc, ceb, ke, bke")
+
+
+if __name__ == "__main__":
+    sys.exit(main(globals()))
