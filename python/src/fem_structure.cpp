@@ -30,9 +30,9 @@ nb::dict mesh_dict(const Mesh& m) {
   nb::list blocks;
   for (const auto& b : m.blocks) {
     const auto npe = nodes_per_element(b.type);
-    Eigen::Matrix<std::int32_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> conn =
-        Eigen::Map<const Eigen::Matrix<std::int32_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-            b.connectivity.data(), static_cast<Eigen::Index>(b.size()), npe);
+    Eigen::Matrix<std::int32_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> conn = Eigen::Map<
+        const Eigen::Matrix<std::int32_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+        b.connectivity.data(), static_cast<Eigen::Index>(b.size()), npe);
     nb::dict bd;
     bd["type"] = element_type_name(b.type);
     bd["connectivity"] = nb::cast(conn, nb::rv_policy::move);
@@ -117,8 +117,9 @@ void bind_fem_structure(nb::module_& m) {
   m.def("fem_run_structure", &run, "path"_a, "gmsh"_a = "gmsh",
         "Runs a structure case file (asperity structure): mesh, reduced model, linear modes.");
   m.def(
-      "fem_read_reduced_model", [](const std::string& path) { return model_dict(read_reduced_model(path)); },
-      "path"_a, "Reads a reduced model (.mat: asperity's or the published BRB layout).");
+      "fem_read_reduced_model",
+      [](const std::string& path) { return model_dict(read_reduced_model(path)); }, "path"_a,
+      "Reads a reduced model (.mat: asperity's or the published BRB layout).");
   m.def(
       "fem_read_mesh",
       [](const std::string& path) {
@@ -129,7 +130,8 @@ void bind_fem_structure(nb::module_& m) {
   m.def(
       "fem_reduced_linear_modes",
       [](const std::string& path, const Eigen::VectorXd& element_stiffness, int count) {
-        const auto r = reduced_linear_modes(read_reduced_model(path), element_stiffness, count, "modes");
+        const auto r =
+            reduced_linear_modes(read_reduced_model(path), element_stiffness, count, "modes");
         nb::dict d;
         d["frequency_hz"] = array(r.frequency_hz);
         d["shapes"] = array(r.shapes);

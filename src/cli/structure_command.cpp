@@ -48,8 +48,9 @@ Json summary(const StructureCase& c, const StructureResult& r) {
   for (std::size_t i = 0; i < r.interfaces.size(); ++i) {
     const auto& itf = r.interfaces[i];
     itfs.push_back({{"name", itf.name},
-                    {"bodies", {r.mesh.bodies[static_cast<std::size_t>(itf.body_a)],
-                                r.mesh.bodies[static_cast<std::size_t>(itf.body_b)]}},
+                    {"bodies",
+                     {r.mesh.bodies[static_cast<std::size_t>(itf.body_a)],
+                      r.mesh.bodies[static_cast<std::size_t>(itf.body_b)]}},
                     {"faces", itf.face_pairs.size()},
                     {"elements", itf.patches.size()},
                     {"area_m2", itf.area},
@@ -77,12 +78,13 @@ Json summary(const StructureCase& c, const StructureResult& r) {
     double force = 0.0;
     for (Eigen::Index e = 0; e < r.prestress.pressure.size(); ++e)
       force += r.prestress.pressure[e] * r.model.elements[static_cast<std::size_t>(e)].area;
-    j["prestress"] = {{"model", "linear normal penalty, frictionless, contact set by active set"},
-                      {"bolt_load_N", r.bolt_load_total},
-                      {"interface_normal_force_N", force},
-                      {"contact_area_m2", r.prestress.contact_area},
-                      {"max_pressure_Pa", r.prestress.pressure.size() ? r.prestress.pressure.maxCoeff() : 0.0},
-                      {"active_set_iterations", r.prestress.iterations}};
+    j["prestress"] = {
+        {"model", "linear normal penalty, frictionless, contact set by active set"},
+        {"bolt_load_N", r.bolt_load_total},
+        {"interface_normal_force_N", force},
+        {"contact_area_m2", r.prestress.contact_area},
+        {"max_pressure_Pa", r.prestress.pressure.size() ? r.prestress.pressure.maxCoeff() : 0.0},
+        {"active_set_iterations", r.prestress.iterations}};
   }
   j["reduced_model"] = {{"dofs", r.model.dofs()},
                         {"interface_elements", r.model.elements.size()},
@@ -98,9 +100,9 @@ Json summary(const StructureCase& c, const StructureResult& r) {
 }
 
 std::string text_summary(const StructureCase& c, const StructureResult& r) {
-  std::string out = fmt::format("{}: {} nodes, {} quadratic elements, {} bodies, {:.4g} kg\n", c.path,
-                                r.mesh.node_count(), r.mesh.element_count(), r.mesh.bodies.size(),
-                                r.total_mass);
+  std::string out =
+      fmt::format("{}: {} nodes, {} quadratic elements, {} bodies, {:.4g} kg\n", c.path,
+                  r.mesh.node_count(), r.mesh.element_count(), r.mesh.bodies.size(), r.total_mass);
   for (const auto& itf : r.interfaces)
     out += fmt::format("interface {}: {} face pairs, {:.4g} mm^2, {} zero-thickness elements\n",
                        itf.name, itf.face_pairs.size(), itf.area * 1e6, itf.patches.size());
@@ -111,9 +113,10 @@ std::string text_summary(const StructureCase& c, const StructureResult& r) {
     double force = 0.0;
     for (Eigen::Index e = 0; e < r.prestress.pressure.size(); ++e)
       force += r.prestress.pressure[e] * r.model.elements[static_cast<std::size_t>(e)].area;
-    out += fmt::format("prestress: bolts {:.6g} N, interface normal force {:.6g} N, contact area "
-                       "{:.4g} mm^2\n",
-                       r.bolt_load_total, force, r.prestress.contact_area * 1e6);
+    out += fmt::format(
+        "prestress: bolts {:.6g} N, interface normal force {:.6g} N, contact area "
+        "{:.4g} mm^2\n",
+        r.bolt_load_total, force, r.prestress.contact_area * 1e6);
   }
   for (const auto& a : r.analyses) {
     std::string f;
@@ -123,7 +126,8 @@ std::string text_summary(const StructureCase& c, const StructureResult& r) {
                        a.modes.rigid_body_modes, f);
   }
   for (const auto& s : r.costs)
-    out += fmt::format("  {:<28} {:7.2f} s, peak memory {:.0f} MiB\n", s.step, s.seconds, s.peak_rss_mib);
+    out += fmt::format("  {:<28} {:7.2f} s, peak memory {:.0f} MiB\n", s.step, s.seconds,
+                       s.peak_rss_mib);
   return out;
 }
 
@@ -188,7 +192,8 @@ void write_files(const StructureCase& c, const StructureResult& r, joint::Staged
   const auto faces = boundary_faces(r.mesh);
   // The longest extent horizontal; the view's vertical axis: for the mesh the shortest
   // extent, for a mode the axis it moves most along.
-  const Eigen::Vector3d extent3 = r.mesh.nodes.rowwise().maxCoeff() - r.mesh.nodes.rowwise().minCoeff();
+  const Eigen::Vector3d extent3 =
+      r.mesh.nodes.rowwise().maxCoeff() - r.mesh.nodes.rowwise().minCoeff();
   int h = 0;
   extent3.maxCoeff(&h);
   auto other = [&](const Eigen::Vector3d& w) {
@@ -199,8 +204,8 @@ void write_files(const StructureCase& c, const StructureResult& r, joint::Staged
   };
   const char* axis = "xyz";
   const int vm = h != 2 ? 2 : 1;  // a side view, z up, unless z is the longest
-  PlotSpec m{.title = fmt::format("{}: mesh ({} nodes, {} elements)", c.name,
-                                  r.mesh.node_count(), r.mesh.element_count()),
+  PlotSpec m{.title = fmt::format("{}: mesh ({} nodes, {} elements)", c.name, r.mesh.node_count(),
+                                  r.mesh.element_count()),
              .xlabel = fmt::format("{} [mm]", axis[h]),
              .ylabel = fmt::format("{} [mm]", axis[vm]),
              .extra = "set size ratio -1\nunset key"};
@@ -229,7 +234,8 @@ void write_files(const StructureCase& c, const StructureResult& r, joint::Staged
                  .extra = "set size ratio -1\nset key bottom right"};
       p.series.push_back(
           mesh_edges(r, faces, nullptr, 0, "undeformed", "lines lc rgb '#c0c0c0'", h, v));
-      p.series.push_back(mesh_edges(r, faces, &u, scale, "mode shape", "lines lc rgb '#b02020'", h, v));
+      p.series.push_back(
+          mesh_edges(r, faces, &u, scale, "mode shape", "lines lc rgb '#b02020'", h, v));
       const auto name = fmt::format("mode_{}.png", k + 1);
       plot_png(dir.file(name), p);
       written.push_back(name);

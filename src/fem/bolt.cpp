@@ -27,8 +27,7 @@ struct Footprint {
 Footprint find_footprint(const Mesh& mesh, const std::vector<BoundaryFace>& faces,
                          const BoltSpec& spec, const Eigen::Vector3d& point,
                          const Eigen::Vector3d& axis, const char* side) {
-  const double extent =
-      (mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff()).norm();
+  const double extent = (mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff()).norm();
   const double tol = 1e-6 * extent;
   const double r_in = 0.5 * spec.hole_diameter, r_out = 0.5 * spec.washer_diameter;
   Footprint fp;
@@ -186,14 +185,17 @@ Eigen::SparseMatrix<double> bolt_stiffness(const Bolt& bolt, Eigen::Index dofs, 
     k -= bolt.axial_stiffness * v * v.transpose();
   }
   const Eigen::SparseMatrix<double> Gt = bolt.coupling.transpose();
-  Eigen::SparseMatrix<double> out = Gt * Eigen::SparseMatrix<double>(Eigen::MatrixXd(k).sparseView()) * bolt.coupling;
+  Eigen::SparseMatrix<double> out =
+      Gt * Eigen::SparseMatrix<double>(Eigen::MatrixXd(k).sparseView()) * bolt.coupling;
   out.conservativeResize(dofs, dofs);
   return out;
 }
 
 Eigen::SparseMatrix<double> bolt_mass(const Bolt& bolt, Eigen::Index dofs) {
   const Eigen::SparseMatrix<double> Gt = bolt.coupling.transpose();
-  Eigen::SparseMatrix<double> out = Gt * Eigen::SparseMatrix<double>(Eigen::MatrixXd(bolt.beam_mass).sparseView()) * bolt.coupling;
+  Eigen::SparseMatrix<double> out =
+      Gt * Eigen::SparseMatrix<double>(Eigen::MatrixXd(bolt.beam_mass).sparseView()) *
+      bolt.coupling;
   out.conservativeResize(dofs, dofs);
   return out;
 }

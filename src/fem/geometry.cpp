@@ -530,9 +530,10 @@ std::string gmsh_script(const Geometry& g) {
          "  EndFor\n"
          "EndFor\n";
     s += "If (#shared[] > 0)\n";
-    s += fmt::format("  Field[{0}] = Distance;\n  Field[{0}].FacesList = {{shared[]}};\n"
-                     "  Field[{0}].NumPointsPerCurve = 200;\n",
-                     next);
+    s += fmt::format(
+        "  Field[{0}] = Distance;\n  Field[{0}].FacesList = {{shared[]}};\n"
+        "  Field[{0}].NumPointsPerCurve = 200;\n",
+        next);
     s += fmt::format(
         "  Field[{0}] = Threshold;\n  Field[{0}].InField = {1};\n  Field[{0}].SizeMin = {2};\n"
         "  Field[{0}].SizeMax = {3};\n  Field[{0}].DistMin = {4};\n  Field[{0}].DistMax = {5};\n",

@@ -33,7 +33,9 @@ constexpr std::array<std::array<int, 8>, 6> hex20_faces{{
     {3, 0, 4, 7, 11, 16, 15, 19},
 }};
 
-int corner_count(int node_count) { return node_count == 6 ? 3 : 4; }
+int corner_count(int node_count) {
+  return node_count == 6 ? 3 : 4;
+}
 
 Eigen::Vector3d face_centroid(const Mesh& mesh, const BoundaryFace& f) {
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
@@ -69,8 +71,7 @@ CornerKey corner_key(const Mesh& mesh, const BoundaryFace& f, double tol) {
   std::array<std::array<std::int64_t, 3>, 4> pts{};
   for (int i = 0; i < 4; ++i) pts[i] = {std::numeric_limits<std::int64_t>::max(), 0, 0};
   for (int i = 0; i < nc; ++i)
-    for (int k = 0; k < 3; ++k)
-      pts[i][k] = std::llround(mesh.nodes(k, f.nodes[i]) / tol);
+    for (int k = 0; k < 3; ++k) pts[i][k] = std::llround(mesh.nodes(k, f.nodes[i]) / tol);
   std::sort(pts.begin(), pts.end());  // unused slots hold the largest key: they stay last
   CornerKey key{};
   for (int i = 0; i < 4; ++i)
@@ -100,8 +101,7 @@ const std::vector<std::array<double, 3>>& face_quadrature(int node_count) {
   return node_count == 6 ? tri : quad;
 }
 
-void face_shape(int node_count, double xi, double eta, double* N, double* dN_dxi,
-                double* dN_deta) {
+void face_shape(int node_count, double xi, double eta, double* N, double* dN_dxi, double* dN_deta) {
   if (node_count == 6) {
     // Quadratic triangle in area coordinates L1 = 1 - xi - eta, L2 = xi, L3 = eta.
     const double L1 = 1 - xi - eta, L2 = xi, L3 = eta;
@@ -221,9 +221,9 @@ void InterfaceSpec::validate() const {
   if (body_a.empty() || body_b.empty())
     throw InvalidInput(fmt::format("interface \"{}\": `bodies` needs two body names", name));
   if (body_a == body_b)
-    throw InvalidInput(fmt::format(
-        "interface \"{}\": `bodies` names \"{}\" twice; an interface joins two bodies", name,
-        body_a));
+    throw InvalidInput(
+        fmt::format("interface \"{}\": `bodies` names \"{}\" twice; an interface joins two bodies",
+                    name, body_a));
   if (!normal.allFinite())
     throw InvalidInput(fmt::format("interface \"{}\": `normal` is not finite", name));
   if (patches < 1)
@@ -238,8 +238,8 @@ Interface build_interface(const Mesh& mesh, const std::vector<BoundaryFace>& fac
   auto body_index = [&](const std::string& b) {
     const auto it = std::find(mesh.bodies.begin(), mesh.bodies.end(), b);
     if (it == mesh.bodies.end())
-      throw InvalidInput(fmt::format("interface \"{}\": no body named \"{}\" in the mesh", spec.name,
-                                     b));
+      throw InvalidInput(
+          fmt::format("interface \"{}\": no body named \"{}\" in the mesh", spec.name, b));
     return static_cast<std::int32_t>(it - mesh.bodies.begin());
   };
   Interface out;
@@ -290,9 +290,9 @@ Interface build_interface(const Mesh& mesh, const std::vector<BoundaryFace>& fac
         "interface \"{}\": the surfaces of bodies \"{}\" and \"{}\" do not touch{} (no faces with "
         "coincident nodes); the bodies must share a face in the mesh",
         spec.name, spec.body_a, spec.body_b,
-        select_by_normal ? fmt::format(" with normal ({:g}, {:g}, {:g})", wanted[0], wanted[1],
-                                       wanted[2])
-                         : ""));
+        select_by_normal
+            ? fmt::format(" with normal ({:g}, {:g}, {:g})", wanted[0], wanted[1], wanted[2])
+            : ""));
   if (!select_by_normal) {
     for (const auto& n : normals)
       if (n.dot(normals.front()) < std::cos(1e-3))
@@ -374,7 +374,8 @@ Interface build_interface(const Mesh& mesh, const std::vector<BoundaryFace>& fac
     p.centroid = cc / p.area;
     const Eigen::Vector3d n = nn.norm() > 0 ? Eigen::Vector3d(nn.normalized()) : ref_n;
     // t1: the global x axis projected on the plane (y when x is nearly normal to it).
-    Eigen::Vector3d ref = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    Eigen::Vector3d ref =
+        std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
     const Eigen::Vector3d t1 = (ref - ref.dot(n) * n).normalized();
     p.frame.row(0) = t1;
     p.frame.row(1) = n.cross(t1);
@@ -392,7 +393,8 @@ Interface build_interface(const Mesh& mesh, const std::vector<BoundaryFace>& fac
           b += de[i] * mesh.nodes.col(f.nodes[i]);
         }
         const double jw = q[2] * a.cross(b).norm() / p.area;
-        for (int i = 0; i < f.node_count; ++i) wsum[{f.nodes[i], pair.side_b.nodes[i]}] += jw * N[i];
+        for (int i = 0; i < f.node_count; ++i)
+          wsum[{f.nodes[i], pair.side_b.nodes[i]}] += jw * N[i];
       }
     }
     for (const auto& [nodes, weight] : wsum)
@@ -439,9 +441,10 @@ Eigen::SparseMatrix<double> Interface::local_operator(Eigen::Index dofs) const {
 
 Eigen::VectorXd Interface::nodal_forces(const Eigen::VectorXd& traction, Eigen::Index dofs) const {
   if (traction.size() != static_cast<Eigen::Index>(3 * patches.size()))
-    throw InvalidInput(fmt::format("interface \"{}\": {} traction components given, {} expected "
-                                   "(3 per patch)",
-                                   name, traction.size(), 3 * patches.size()));
+    throw InvalidInput(
+        fmt::format("interface \"{}\": {} traction components given, {} expected "
+                    "(3 per patch)",
+                    name, traction.size(), 3 * patches.size()));
   Eigen::VectorXd scaled = traction;
   for (std::size_t p = 0; p < patches.size(); ++p)
     scaled.segment<3>(static_cast<Eigen::Index>(3 * p)) *= patches[p].area;

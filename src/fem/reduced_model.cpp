@@ -10,12 +10,12 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
-#include <optional>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
-#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
+#include <Eigen/Eigenvalues>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
@@ -68,7 +68,8 @@ std::optional<Eigen::MatrixXd> read_matrix(mat_t* mat, const char* name, const s
   if (!var) return std::nullopt;
   if (var->rank != 2 || var->isComplex)
     throw InvalidInput(fmt::format("\"{}\": matrix {} is not a real 2-D matrix", path, name));
-  const auto rows = static_cast<Eigen::Index>(var->dims[0]), cols = static_cast<Eigen::Index>(var->dims[1]);
+  const auto rows = static_cast<Eigen::Index>(var->dims[0]),
+             cols = static_cast<Eigen::Index>(var->dims[1]);
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(rows, cols);
   if (var->class_type == MAT_C_SPARSE) {
     const auto* sp = static_cast<const mat_sparse_t*>(var->data);
@@ -134,7 +135,8 @@ void ReducedModel::validate() const {
     if (m.rows() != r || m.cols() != c)
       throw InvalidInput(fmt::format("reduced model: {} is {} x {}, expected {} x {}", name,
                                      m.rows(), m.cols(), r, c));
-    if (!m.allFinite()) throw InvalidInput(fmt::format("reduced model: {} has a non-finite entry", name));
+    if (!m.allFinite())
+      throw InvalidInput(fmt::format("reduced model: {} has a non-finite entry", name));
   };
   if (n == 0) throw InvalidInput("reduced model: M is empty");
   need(M, n, n, "M");
@@ -146,14 +148,16 @@ void ReducedModel::validate() const {
   need(T, n, 3 * ne, "T (element forces)");
   for (std::size_t e = 0; e < elements.size(); ++e)
     if (!(elements[e].area > 0))
-      throw InvalidInput(fmt::format("reduced model: interface element {} has area {} m^2; each "
-                                     "element needs an area > 0",
-                                     e, elements[e].area));
+      throw InvalidInput(
+          fmt::format("reduced model: interface element {} has area {} m^2; each "
+                      "element needs an area > 0",
+                      e, elements[e].area));
   const auto nb = static_cast<Eigen::Index>(bolt_names.size());
   need(bolt_load, n, nb, "Fv (bolt loads)");
   need(bolt_elongation, nb, n, "bolt_elongation");
   if (bolt_axial_stiffness.size() != nb || bolt_preload.size() != nb)
-    throw InvalidInput("reduced model: bolt_axial_stiffness and bolt_preload need one value per bolt");
+    throw InvalidInput(
+        "reduced model: bolt_axial_stiffness and bolt_preload need one value per bolt");
   need(recovery, 3 * static_cast<Eigen::Index>(output_names.size()), n, "R (recovery)");
 }
 
@@ -224,8 +228,9 @@ ReducedModel read_reduced_model(const std::string& path) {
     const auto centroid = require(mat.get(), "element_centroid", path);
     const auto frame = require(mat.get(), "element_frame", path);
     const auto which = require(mat.get(), "element_interface", path);
-    const auto names = split_lines(read_text(mat.get(), "interface_names"),
-                                   static_cast<std::size_t>(which.size() ? which.maxCoeff() + 1 : 0));
+    const auto names =
+        split_lines(read_text(mat.get(), "interface_names"),
+                    static_cast<std::size_t>(which.size() ? which.maxCoeff() + 1 : 0));
     for (Eigen::Index e = 0; e < area.rows(); ++e) {
       InterfaceElement el;
       el.area = area(e, 0);
@@ -245,7 +250,8 @@ ReducedModel read_reduced_model(const std::string& path) {
     m.output_points = require(mat.get(), "output_points", path);
     m.output_names = split_lines(read_text(mat.get(), "output_names"),
                                  static_cast<std::size_t>(m.output_points.rows()));
-    m.fixed_interface_modes = static_cast<Eigen::Index>(require(mat.get(), "fixed_interface_modes", path)(0, 0));
+    m.fixed_interface_modes =
+        static_cast<Eigen::Index>(require(mat.get(), "fixed_interface_modes", path)(0, 0));
   } else {
     // The published Brake-Reuss beam layout.
     const Eigen::MatrixXd L = require(mat.get(), "L", path);
@@ -256,7 +262,8 @@ ReducedModel read_reduced_model(const std::string& path) {
       throw InvalidInput(fmt::format(
           "\"{}\": L ({} x {}), Qm ({} x {}) and Tm ({} x {}) do not fit M ({} x {}): expected L "
           "with {} columns and at least 3 x {} rows, Tm {} x {}",
-          path, L.rows(), L.cols(), Qm.rows(), Qm.cols(), Tm.rows(), Tm.cols(), n, n, n, nn, nn, ne));
+          path, L.rows(), L.cols(), Qm.rows(), Qm.cols(), Tm.rows(), Tm.cols(), n, n, n, nn, nn,
+          ne));
     const Eigen::MatrixXd Li = L.topRows(3 * nn);
     m.Q = Eigen::MatrixXd::Zero(3 * ne, n);
     m.T = Eigen::MatrixXd::Zero(n, 3 * ne);
@@ -265,7 +272,8 @@ ReducedModel read_reduced_model(const std::string& path) {
         if (Qm(e, j) != 0.0)
           for (int k = 0; k < 3; ++k) m.Q.row(3 * e + k) += Qm(e, j) * Li.row(3 * j + k);
         if (Tm(j, e) != 0.0)
-          for (int k = 0; k < 3; ++k) m.T.col(3 * e + k) += Tm(j, e) * Li.row(3 * j + k).transpose();
+          for (int k = 0; k < 3; ++k)
+            m.T.col(3 * e + k) += Tm(j, e) * Li.row(3 * j + k).transpose();
       }
     for (Eigen::Index e = 0; e < ne; ++e) {
       InterfaceElement el;
@@ -278,12 +286,14 @@ ReducedModel read_reduced_model(const std::string& path) {
     m.bolt_elongation = Eigen::MatrixXd::Zero(m.bolt_load.cols(), n);
     m.bolt_axial_stiffness = Eigen::VectorXd::Zero(m.bolt_load.cols());
     m.bolt_preload = Eigen::VectorXd::Zero(m.bolt_load.cols());
-    for (Eigen::Index b = 0; b < m.bolt_load.cols(); ++b) m.bolt_names.push_back(fmt::format("Fv[{}]", b));
+    for (Eigen::Index b = 0; b < m.bolt_load.cols(); ++b)
+      m.bolt_names.push_back(fmt::format("Fv[{}]", b));
     if (auto R = read_matrix(mat.get(), "R", path)) {
       m.recovery = *R;
       if (m.recovery.rows() % 3 != 0)
         m.recovery.conservativeResize(m.recovery.rows() - m.recovery.rows() % 3, Eigen::NoChange);
-      for (Eigen::Index p = 0; p < m.recovery.rows() / 3; ++p) m.output_names.push_back(fmt::format("R[{}]", p));
+      for (Eigen::Index p = 0; p < m.recovery.rows() / 3; ++p)
+        m.output_names.push_back(fmt::format("R[{}]", p));
       m.output_points = Eigen::MatrixXd::Constant(m.recovery.rows() / 3, 3, std::nan(""));
     } else {
       m.recovery = Eigen::MatrixXd::Zero(0, n);
@@ -306,14 +316,16 @@ LinearModesResult reduced_linear_modes(const ReducedModel& model, const Eigen::V
                                    k_e.size(), model.Q.rows()));
   if (k_e.any()) {
     Eigen::VectorXd kA(k_e.size());
-    for (Eigen::Index i = 0; i < k_e.size(); ++i) kA[i] = k_e[i] * model.elements[static_cast<std::size_t>(i / 3)].area;
+    for (Eigen::Index i = 0; i < k_e.size(); ++i)
+      kA[i] = k_e[i] * model.elements[static_cast<std::size_t>(i / 3)].area;
     K += model.Q.transpose() * kA.asDiagonal() * model.Q;
   }
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, model.M);
   if (es.info() != Eigen::Success)
-    throw NumericalError(fmt::format("{}: the eigenvalues of the reduced model ({} DOFs) failed "
-                                     "(dense generalized symmetric solver; M positive definite?)",
-                                     label, K.rows()));
+    throw NumericalError(
+        fmt::format("{}: the eigenvalues of the reduced model ({} DOFs) failed "
+                    "(dense generalized symmetric solver; M positive definite?)",
+                    label, K.rows()));
   const Eigen::VectorXd w2 = es.eigenvalues();
   const double tol = rigid_tolerance(model);
   LinearModesResult out;
@@ -322,9 +334,10 @@ LinearModesResult reduced_linear_modes(const ReducedModel& model, const Eigen::V
     if (std::abs(w2[i]) <= tol)
       ++out.rigid_body_modes;
     else if (w2[i] < 0)
-      throw InvalidInput(fmt::format("{}: the stiffness is not positive semi-definite (omega^2 = "
-                                     "{:.4g} rad^2/s^2): a negative stiffness in the model",
-                                     label, w2[i]));
+      throw InvalidInput(
+          fmt::format("{}: the stiffness is not positive semi-definite (omega^2 = "
+                      "{:.4g} rad^2/s^2): a negative stiffness in the model",
+                      label, w2[i]));
     else
       elastic.push_back(i);
   }
@@ -337,7 +350,8 @@ LinearModesResult reduced_linear_modes(const ReducedModel& model, const Eigen::V
   out.frequency_hz.resize(static_cast<Eigen::Index>(n));
   out.shapes.resize(K.rows(), static_cast<Eigen::Index>(n));
   for (std::size_t i = 0; i < n; ++i) {
-    out.frequency_hz[static_cast<Eigen::Index>(i)] = std::sqrt(w2[elastic[i]]) / (2 * std::numbers::pi);
+    out.frequency_hz[static_cast<Eigen::Index>(i)] =
+        std::sqrt(w2[elastic[i]]) / (2 * std::numbers::pi);
     out.shapes.col(static_cast<Eigen::Index>(i)) = es.eigenvectors().col(elastic[i]);
   }
   return out;
@@ -389,7 +403,8 @@ LinearPrestress linear_prestress(const ReducedModel& model, double k_n) {
     for (Eigen::Index e = 0; e < ne; ++e) {
       const double gap = model.Q.row(3 * e + 2).dot(out.x);
       next[static_cast<std::size_t>(e)] = gap < 0;
-      changed = changed || next[static_cast<std::size_t>(e)] != out.in_contact[static_cast<std::size_t>(e)];
+      changed = changed ||
+                next[static_cast<std::size_t>(e)] != out.in_contact[static_cast<std::size_t>(e)];
     }
     if (!changed) break;
     out.in_contact = next;

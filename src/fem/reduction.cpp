@@ -7,8 +7,8 @@
 #include <cmath>
 #include <unordered_map>
 
-#include <Eigen/SparseCholesky>
 #include <fmt/format.h>
+#include <Eigen/SparseCholesky>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/parallel.hpp"
@@ -71,8 +71,9 @@ Sparse block(const Sparse& A, Eigen::Index r0, Eigen::Index c0, Eigen::Index nr,
 
 void ReductionOptions::validate() const {
   if (fixed_interface_modes < 0 || fixed_interface_modes > 2000)
-    throw InvalidInput(fmt::format(
-        "reduction: `fixed_interface_modes` = {} is not allowed; give 0 to 2000", fixed_interface_modes));
+    throw InvalidInput(
+        fmt::format("reduction: `fixed_interface_modes` = {} is not allowed; give 0 to 2000",
+                    fixed_interface_modes));
 }
 
 Eigen::MatrixXd rigid_body_modes(const Eigen::Matrix3Xd& nodes) {
@@ -130,11 +131,13 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
   {
     Eigen::Index next = 0;
     for (Eigen::Index d = 0; d < n; ++d)
-      if (!is_master[static_cast<std::size_t>(d / 3)]) v_index[static_cast<std::size_t>(d)] = next++;
+      if (!is_master[static_cast<std::size_t>(d / 3)])
+        v_index[static_cast<std::size_t>(d)] = next++;
   }
   std::vector<Eigen::Triplet<double>> t;
   for (Eigen::Index d = 0; d < n; ++d)
-    if (v_index[static_cast<std::size_t>(d)] >= 0) t.emplace_back(d, v_index[static_cast<std::size_t>(d)], 1.0);
+    if (v_index[static_cast<std::size_t>(d)] >= 0)
+      t.emplace_back(d, v_index[static_cast<std::size_t>(d)], 1.0);
   for (std::size_t p = 0; p < patches.size(); ++p) {
     const double cm = master_weight[p];
     for (int k = 0; k < 3; ++k) {
@@ -172,7 +175,8 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
     if (node_ok(i) && (a < 0 || nodes(0, i) < nodes(0, a))) a = i;
   Eigen::Index b = a;
   for (Eigen::Index i = 0; i < nodes.cols(); ++i)
-    if (node_ok(i) && (nodes.col(i) - nodes.col(a)).norm() > (nodes.col(b) - nodes.col(a)).norm()) b = i;
+    if (node_ok(i) && (nodes.col(i) - nodes.col(a)).norm() > (nodes.col(b) - nodes.col(a)).norm())
+      b = i;
   const Eigen::Vector3d ab = nodes.col(b) - nodes.col(a);
   Eigen::Index c = a;
   double cd = -1;
@@ -190,7 +194,8 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
     if (k != free_b) support.push_back(3 * b + k);
   support.push_back(3 * c + fix_c);
   std::vector<char> held(static_cast<std::size_t>(nv), 0);
-  for (const auto d : support) held[static_cast<std::size_t>(v_index[static_cast<std::size_t>(d)])] = 1;
+  for (const auto d : support)
+    held[static_cast<std::size_t>(v_index[static_cast<std::size_t>(d)])] = 1;
   std::vector<Eigen::Index> f_index(static_cast<std::size_t>(nv), -1);
   Eigen::Index nf = 0;
   for (Eigen::Index i = 0; i < nv; ++i)
@@ -237,7 +242,8 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
     const Eigen::MatrixXd L = Eigen::LLT<Eigen::MatrixXd>(Rv.transpose() * MRv).matrixL();
     shapes.leftCols(6) = Rv * L.transpose().inverse();
     if (count > 0) {
-      const int ncv = static_cast<int>(std::min<Eigen::Index>(nf - 6, std::max(2 * count + 1, count + 20)));
+      const int ncv =
+          static_cast<int>(std::min<Eigen::Index>(nf - 6, std::max(2 * count + 1, count + 20)));
       Spectra::SymGEigsShiftSolver<InertiaReliefFlexibility, Spectra::SparseSymMatProd<double>,
                                    Spectra::GEigsMode::ShiftInvert>
           eigs(op, bop, count, ncv, 0.0);
@@ -274,7 +280,8 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
   const Eigen::Index nr = ng + nm + ns;
   cb.basis = Eigen::MatrixXd::Zero(nt, nr);
   for (Eigen::Index i = 0; i < nv; ++i)
-    if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0) cb.basis.row(i).head(ng) = psi_f.row(fi);
+    if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0)
+      cb.basis.row(i).head(ng) = psi_f.row(fi);
   cb.basis.block(nv, 0, ng, ng).setIdentity();
   {
     const Eigen::MatrixXd MR = Mt.topLeftCorner(nt, nt) * Rt.topRows(nt).eval();
@@ -294,8 +301,8 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
   for (Eigen::Index s = 0; s < ns; ++s) {
     const auto& load = static_loads[static_cast<std::size_t>(s)];
     if (load.size() != n)
-      throw InvalidInput(fmt::format("reduction: static load {} has {} entries for {} DOFs", s,
-                                     load.size(), n));
+      throw InvalidInput(
+          fmt::format("reduction: static load {} has {} entries for {} DOFs", s, load.size(), n));
     const Eigen::VectorXd ft = Tc.transpose() * load;
     Eigen::VectorXd rhs_f(nf);
     for (Eigen::Index i = 0; i < nv; ++i)

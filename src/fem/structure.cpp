@@ -8,11 +8,11 @@
 #include <map>
 #include <numeric>
 
+#include "../core/toml_case.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
 #include "asperity/fem/mesh_io.hpp"
-#include "../core/toml_case.hpp"
 
 namespace asperity::fem {
 namespace tc = core::toml_case;
@@ -25,12 +25,14 @@ struct Reader {
   std::string path;
   double unit = 1.0;  // geometry numbers -> m
 
-  [[noreturn]] void fail(const std::string& where, const std::string& what, const toml::node* n) const {
+  [[noreturn]] void fail(const std::string& where, const std::string& what,
+                         const toml::node* n) const {
     throw InvalidInput(fmt::format("{}: {}: {}{}", path, where, what, n ? tc::at_line(*n) : ""));
   }
   // A quantity as text with units, or a bare number in `bare_unit` (0: text required).
   double quantity(const toml::table& t, const std::string& key, const std::string& where,
-                  core::Dimension dim, double bare_unit, std::optional<double> dflt = std::nullopt) const {
+                  core::Dimension dim, double bare_unit,
+                  std::optional<double> dflt = std::nullopt) const {
     const auto* n = t.get(key);
     if (!n) {
       if (dflt) return *dflt;
@@ -48,19 +50,23 @@ struct Reader {
       if (!std::isfinite(v)) fail(where, fmt::format("`{}` must be finite", key), n);
       return v * bare_unit;
     }
-    fail(where, fmt::format("`{}` must be {}", key,
-                            bare_unit > 0 ? "a number (geometry unit) or a quantity with units"
-                                          : "a quantity with units, e.g. \"200 GPa\""),
+    fail(where,
+         fmt::format("`{}` must be {}", key,
+                     bare_unit > 0 ? "a number (geometry unit) or a quantity with units"
+                                   : "a quantity with units, e.g. \"200 GPa\""),
          n);
   }
-  Eigen::Vector3d point(const toml::table& t, const std::string& key, const std::string& where) const {
+  Eigen::Vector3d point(const toml::table& t, const std::string& key,
+                        const std::string& where) const {
     const auto* n = t.get(key);
     const auto* a = n ? n->as_array() : nullptr;
-    if (!a || a->size() != 3) fail(where, fmt::format("`{}` must be an array of 3 numbers", key), n);
+    if (!a || a->size() != 3)
+      fail(where, fmt::format("`{}` must be an array of 3 numbers", key), n);
     Eigen::Vector3d p;
     for (std::size_t i = 0; i < 3; ++i) {
       const auto v = (*a)[i].value<double>();
-      if (!v || !std::isfinite(*v)) fail(where, fmt::format("`{}` must be an array of 3 finite numbers", key), n);
+      if (!v || !std::isfinite(*v))
+        fail(where, fmt::format("`{}` must be an array of 3 finite numbers", key), n);
       p[static_cast<Eigen::Index>(i)] = *v * unit;
     }
     return p;
@@ -76,7 +82,8 @@ struct Reader {
     if (!s) fail(where, fmt::format("`{}` must be a string", key), n);
     return *s;
   }
-  int integer(const toml::table& t, const std::string& key, const std::string& where, int dflt) const {
+  int integer(const toml::table& t, const std::string& key, const std::string& where,
+              int dflt) const {
     const auto* n = t.get(key);
     if (!n) return dflt;
     const auto v = n->value<std::int64_t>();
@@ -101,13 +108,16 @@ struct Reader {
     }
     if (const auto* c = tc::subtable(t, "cylinder", where)) {
       tc::check_keys(*c, where + ".cylinder", {"base", "axis", "radius"});
-      return Cylinder{point(*c, "base", where + ".cylinder"), point(*c, "axis", where + ".cylinder"),
+      return Cylinder{point(*c, "base", where + ".cylinder"),
+                      point(*c, "axis", where + ".cylinder"),
                       quantity(*c, "radius", where + ".cylinder", core::dim::length, unit)};
     }
     const auto* p = tc::subtable(t, "prism", where);
     tc::check_keys(*p, where + ".prism", {"polygon", "extrusion"});
     const auto* poly = p->get("polygon") ? p->get("polygon")->as_array() : nullptr;
-    if (!poly) fail(where + ".prism", "`polygon` must be an array of points [[x, y, z], ...]", p->get("polygon"));
+    if (!poly)
+      fail(where + ".prism", "`polygon` must be an array of points [[x, y, z], ...]",
+           p->get("polygon"));
     Prism prism;
     for (std::size_t i = 0; i < poly->size(); ++i) {
       toml::table holder;
@@ -134,28 +144,33 @@ StructureCase read_structure_case(const std::string& path) {
   Reader r{path};
   StructureCase c;
   c.path = path;
-  tc::check_keys(doc, "", {"name", "geometry", "mesh", "material", "body", "interface", "bolt",
-                           "output", "reduction"});
+  tc::check_keys(
+      doc, "",
+      {"name", "geometry", "mesh", "material", "body", "interface", "bolt", "output", "reduction"});
   c.name = r.text(doc, "name", "top level", std::filesystem::path(path).stem().string());
   const auto* geo = tc::subtable(doc, "geometry", "top level");
   const auto* mesh = tc::subtable(doc, "mesh", "top level");
   if (geo) {
     tc::check_keys(*geo, "[geometry]", {"unit", "size", "interface_size", "hole_size"});
-    r.unit = core::parse_quantity("1 " + r.text(*geo, "unit", "[geometry]", "m"), core::dim::length, "unit");
+    r.unit = core::parse_quantity("1 " + r.text(*geo, "unit", "[geometry]", "m"), core::dim::length,
+                                  "unit");
     c.geometry.size.global = r.quantity(*geo, "size", "[geometry]", core::dim::length, r.unit);
-    c.geometry.size.interface =
-        r.quantity(*geo, "interface_size", "[geometry]", core::dim::length, r.unit, c.geometry.size.global);
-    c.geometry.size.hole =
-        r.quantity(*geo, "hole_size", "[geometry]", core::dim::length, r.unit, c.geometry.size.interface);
+    c.geometry.size.interface = r.quantity(*geo, "interface_size", "[geometry]", core::dim::length,
+                                           r.unit, c.geometry.size.global);
+    c.geometry.size.hole = r.quantity(*geo, "hole_size", "[geometry]", core::dim::length, r.unit,
+                                      c.geometry.size.interface);
   }
   if (mesh) {
     tc::check_keys(*mesh, "[mesh]", {"file", "unit"});
     c.mesh_file = (std::filesystem::path(file.base_dir) / r.text(*mesh, "file", "[mesh]")).string();
-    r.unit = core::parse_quantity("1 " + r.text(*mesh, "unit", "[mesh]", "m"), core::dim::length, "unit");
+    r.unit = core::parse_quantity("1 " + r.text(*mesh, "unit", "[mesh]", "m"), core::dim::length,
+                                  "unit");
     c.mesh_unit = r.unit;
   }
   if (!geo == !mesh)
-    r.fail("top level", "give either [geometry] (with [[body]] add/cut, meshed by gmsh) or [mesh] file", nullptr);
+    r.fail("top level",
+           "give either [geometry] (with [[body]] add/cut, meshed by gmsh) or [mesh] file",
+           nullptr);
 
   std::map<std::string, IsotropicMaterial> materials;
   std::map<std::string, std::pair<double, double>> bolt_material;  // E, nu (and rho below)
@@ -186,8 +201,9 @@ StructureCase read_structure_case(const std::string& path) {
   for (std::size_t i = 0; i < bodies->size(); ++i) {
     const auto& b = *(*bodies)[i].as_table();
     const std::string where = fmt::format("[[body]] {}", i + 1);
-    tc::check_keys(b, where, geo ? std::set<std::string>{"name", "material", "add", "cut"}
-                                 : std::set<std::string>{"name", "material"});
+    tc::check_keys(b, where,
+                   geo ? std::set<std::string>{"name", "material", "add", "cut"}
+                       : std::set<std::string>{"name", "material"});
     Body body;
     body.name = r.text(b, "name", where);
     c.body_names.push_back(body.name);
@@ -196,13 +212,15 @@ StructureCase read_structure_case(const std::string& path) {
       for (const char* key : {"add", "cut"}) {
         const auto* list = b.get(key) ? b.get(key)->as_array() : nullptr;
         if (!list) {
-          if (std::string(key) == "add") r.fail(where, "`add` must list the body's solids", nullptr);
+          if (std::string(key) == "add")
+            r.fail(where, "`add` must list the body's solids", nullptr);
           continue;
         }
         for (std::size_t k = 0; k < list->size(); ++k) {
           const auto* pt = (*list)[k].as_table();
           const std::string w = fmt::format("{} \"{}\" {}[{}]", where, body.name, key, k);
-          if (!pt) r.fail(w, "must be a table {box = {...}} or {cylinder = ...} or {prism = ...}", list);
+          if (!pt)
+            r.fail(w, "must be a table {box = {...}} or {cylinder = ...} or {prism = ...}", list);
           (std::string(key) == "add" ? body.add : body.cut).push_back(r.primitive(*pt, w));
         }
       }
@@ -213,12 +231,14 @@ StructureCase read_structure_case(const std::string& path) {
     for (std::size_t i = 0; i < itfs->size(); ++i) {
       const auto& t = *(*itfs)[i].as_table();
       const std::string where = fmt::format("[[interface]] {}", i + 1);
-      tc::check_keys(t, where, {"name", "bodies", "normal", "patches", "normal_stiffness",
-                                "tangential_stiffness"});
+      tc::check_keys(
+          t, where,
+          {"name", "bodies", "normal", "patches", "normal_stiffness", "tangential_stiffness"});
       StructureInterface si;
       si.spec.name = r.text(t, "name", where, fmt::format("interface_{}", i + 1));
       const auto* bl = t.get("bodies") ? t.get("bodies")->as_array() : nullptr;
-      if (!bl || bl->size() != 2 || !(*bl)[0].value<std::string>() || !(*bl)[1].value<std::string>())
+      if (!bl || bl->size() != 2 || !(*bl)[0].value<std::string>() ||
+          !(*bl)[1].value<std::string>())
         r.fail(where, "`bodies` must name two bodies, [\"A\", \"B\"]", t.get("bodies"));
       si.spec.body_a = *(*bl)[0].value<std::string>();
       si.spec.body_b = *(*bl)[1].value<std::string>();
@@ -234,7 +254,8 @@ StructureCase read_structure_case(const std::string& path) {
           r.quantity(t, "tangential_stiffness", where, pressure_per_length, 0, si.normal_stiffness);
       for (const auto& [key, v] : {std::pair{"normal_stiffness", si.normal_stiffness},
                                    std::pair{"tangential_stiffness", si.tangential_stiffness}})
-        if (!(v > 0)) r.fail(where, fmt::format("`{}` = {} Pa/m: give a value > 0", key, v), t.get(key));
+        if (!(v > 0))
+          r.fail(where, fmt::format("`{}` = {} Pa/m: give a value > 0", key, v), t.get(key));
       try {
         si.spec.validate();
       } catch (const InvalidInput& e) {
@@ -246,8 +267,9 @@ StructureCase read_structure_case(const std::string& path) {
     for (std::size_t i = 0; i < bolts->size(); ++i) {
       const auto& t = *(*bolts)[i].as_table();
       const std::string where = fmt::format("[[bolt]] {}", i + 1);
-      tc::check_keys(t, where, {"name", "head", "nut", "shank_diameter", "hole_diameter",
-                                "washer_diameter", "material", "head_mass", "preload"});
+      tc::check_keys(t, where,
+                     {"name", "head", "nut", "shank_diameter", "hole_diameter", "washer_diameter",
+                      "material", "head_mass", "preload"});
       BoltSpec b;
       b.name = r.text(t, "name", where, fmt::format("bolt_{}", i + 1));
       b.head = r.point(t, "head", where);
@@ -278,7 +300,8 @@ StructureCase read_structure_case(const std::string& path) {
     c.reduction.fixed_interface_modes = r.integer(*red, "fixed_interface_modes", "[reduction]", 40);
     c.modes = r.integer(*red, "modes", "[reduction]", 10);
     if (c.modes < 1 || c.modes > 1000)
-      r.fail("[reduction]", fmt::format("`modes` = {}: give 1 to 1000", c.modes), red->get("modes"));
+      r.fail("[reduction]", fmt::format("`modes` = {}: give 1 to 1000", c.modes),
+             red->get("modes"));
     try {
       c.reduction.validate();
     } catch (const InvalidInput& e) {
@@ -316,8 +339,8 @@ StructureResult run_structure(const StructureCase& c, const StructureOptions& op
     else if (ext == ".inp")
       res.mesh = read_abaqus_inp(c.mesh_file);
     else
-      throw InvalidInput(fmt::format("{}: [mesh] file \"{}\": give a gmsh .msh or an Abaqus .inp file",
-                                     c.path, c.mesh_file));
+      throw InvalidInput(fmt::format(
+          "{}: [mesh] file \"{}\": give a gmsh .msh or an Abaqus .inp file", c.path, c.mesh_file));
     res.mesh.nodes *= c.mesh_unit;
   }
   step("mesh");
@@ -327,7 +350,8 @@ StructureResult run_structure(const StructureCase& c, const StructureOptions& op
   for (const auto& b : res.mesh.bodies) {
     const auto it = std::find(c.body_names.begin(), c.body_names.end(), b);
     if (it == c.body_names.end())
-      throw InvalidInput(fmt::format("{}: the mesh has a body \"{}\" that no [[body]] names", c.path, b));
+      throw InvalidInput(
+          fmt::format("{}: the mesh has a body \"{}\" that no [[body]] names", c.path, b));
     per_body.push_back(c.body_materials[static_cast<std::size_t>(it - c.body_names.begin())]);
   }
   res.shared_nodes_split = split_shared_nodes(res.mesh);
@@ -344,18 +368,18 @@ StructureResult run_structure(const StructureCase& c, const StructureOptions& op
     km.M += bolt_mass(res.bolts.back(), dofs);
     res.bolt_load_total += spec.preload;
   }
-  for (const auto& si : c.interfaces) res.interfaces.push_back(build_interface(res.mesh, faces, si.spec));
+  for (const auto& si : c.interfaces)
+    res.interfaces.push_back(build_interface(res.mesh, faces, si.spec));
   step("bolts and interfaces");
-  starting(fmt::format("reducing ({} DOFs to {} interface DOFs and {} tied modes)", dofs,
-                       3 * std::accumulate(res.interfaces.begin(), res.interfaces.end(),
-                                           std::size_t{0},
-                                           [](std::size_t a, const Interface& i) {
-                                             return a + i.patches.size();
-                                           }),
-                       c.reduction.fixed_interface_modes));
+  starting(fmt::format(
+      "reducing ({} DOFs to {} interface DOFs and {} tied modes)", dofs,
+      3 * std::accumulate(res.interfaces.begin(), res.interfaces.end(), std::size_t{0},
+                          [](std::size_t a, const Interface& i) { return a + i.patches.size(); }),
+      c.reduction.fixed_interface_modes));
   std::vector<Eigen::VectorXd> bolt_loads;
   for (const auto& b : res.bolts) bolt_loads.push_back(-Eigen::VectorXd(b.elongation));
-  res.reduction = craig_bampton(km.K, km.M, res.mesh.nodes, res.interfaces, c.reduction, bolt_loads);
+  res.reduction =
+      craig_bampton(km.K, km.M, res.mesh.nodes, res.interfaces, c.reduction, bolt_loads);
   step("reduction");
 
   // The reduced model: x = [g (3 per element, local frame); eta].
@@ -421,9 +445,12 @@ StructureResult run_structure(const StructureCase& c, const StructureOptions& op
   if (!c.interfaces.empty()) {
     res.prestress = linear_prestress(m, kn);
     for (Eigen::Index e = 0; e < static_cast<Eigen::Index>(m.elements.size()); ++e)
-      if (!res.prestress.in_contact[static_cast<std::size_t>(e)]) kn_e[3 * e + 2] = kt_e[3 * e] = kt_e[3 * e + 1] = 0;
-    res.analyses.push_back({"frictionless", reduced_linear_modes(m, kn_e, c.modes, "frictionless contact")});
-    res.analyses.push_back({"stuck", reduced_linear_modes(m, kn_e + kt_e, c.modes, "stuck interface")});
+      if (!res.prestress.in_contact[static_cast<std::size_t>(e)])
+        kn_e[3 * e + 2] = kt_e[3 * e] = kt_e[3 * e + 1] = 0;
+    res.analyses.push_back(
+        {"frictionless", reduced_linear_modes(m, kn_e, c.modes, "frictionless contact")});
+    res.analyses.push_back(
+        {"stuck", reduced_linear_modes(m, kn_e + kt_e, c.modes, "stuck interface")});
   }
   step("prestress and linear modes");
   return res;

@@ -291,15 +291,15 @@ JointBackbone joint_backbone(const std::string& path, const std::string& base_di
 }
 
 PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Index dofs,
-                            const std::optional<JointBackbone>& joint,
-                            const std::string& base_dir, const fem::ReducedModel* model) {
+                            const std::optional<JointBackbone>& joint, const std::string& base_dir,
+                            const fem::ReducedModel* model) {
   const std::string w = fmt::format("element[{}]", index);
   if (!t.get("type")) {
-    throw InvalidInput(
-        fmt::format("{}: needs type = \"rough_flat\" | \"jenkins\" | \"iwan4\" | \"masing_table\" | "
-                    "\"coulomb\" | \"elastic_dry_friction_2d\" | \"polynomial_stiffness\" | "
-                    "\"cubic_damping\"{}",
-                    w, at_line(t)));
+    throw InvalidInput(fmt::format(
+        "{}: needs type = \"rough_flat\" | \"jenkins\" | \"iwan4\" | \"masing_table\" | "
+        "\"coulomb\" | \"elastic_dry_friction_2d\" | \"polynomial_stiffness\" | "
+        "\"cubic_damping\"{}",
+        w, at_line(t)));
   }
   const std::string type = text(t, "type", w, "");
   const std::set<std::string> common{"type", "name", "T"};
@@ -390,21 +390,23 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
     const auto* ie = ref->get("interface_element");
     const auto e_idx = ie ? ie->value<std::int64_t>() : std::nullopt;
     if (!e_idx || !ie->is_integer() || *e_idx < 0 || *e_idx >= ne)
-      throw InvalidInput(fmt::format("{}.T.interface_element: give an element index 0 .. {} of the "
-                                     "reduced model{}",
-                                     w, ne - 1, at_line(*T)));
+      throw InvalidInput(
+          fmt::format("{}.T.interface_element: give an element index 0 .. {} of the "
+                      "reduced model{}",
+                      w, ne - 1, at_line(*T)));
     const auto* dirs = ref->get("directions") ? ref->get("directions")->as_array() : nullptr;
     if (!dirs || dirs->empty())
-      throw InvalidInput(fmt::format("{}.T.directions: list the element directions, e.g. [\"t1\", "
-                                     "\"n\"] (t1, t2 tangential, n normal){}",
-                                     w, at_line(*T)));
+      throw InvalidInput(
+          fmt::format("{}.T.directions: list the element directions, e.g. [\"t1\", "
+                      "\"n\"] (t1, t2 tangential, n normal){}",
+                      w, at_line(*T)));
     pe.T.resize(static_cast<Eigen::Index>(dirs->size()), dofs);
     for (std::size_t k = 0; k < dirs->size(); ++k) {
       const auto d = (*dirs)[k].value<std::string>();
       const int col = !d ? -1 : *d == "t1" ? 0 : *d == "t2" ? 1 : *d == "n" ? 2 : -1;
       if (col < 0)
-        throw InvalidInput(fmt::format("{}.T.directions[{}]: use \"t1\", \"t2\" or \"n\"{}", w, k,
-                                       at_line(*T)));
+        throw InvalidInput(
+            fmt::format("{}.T.directions[{}]: use \"t1\", \"t2\" or \"n\"{}", w, k, at_line(*T)));
       pe.T.row(static_cast<Eigen::Index>(k)) = model->Q.row(3 * *e_idx + col);
     }
   } else {

@@ -280,8 +280,8 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
   std::optional<fem::ReducedModel> model;
   if (const auto* mf = st->get("model")) {
     if (M || K)
-      throw InvalidInput(fmt::format("structure: give model or mass and stiffness, not both{}",
-                                     at_line(*mf)));
+      throw InvalidInput(
+          fmt::format("structure: give model or mass and stiffness, not both{}", at_line(*mf)));
     std::filesystem::path p(text(*st, "model", S, ""));
     if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
     model = fem::read_reduced_model(p.lexically_normal().string());

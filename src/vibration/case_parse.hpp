@@ -5,11 +5,11 @@
 // header includes it.
 #include <toml++/toml.h>
 
-#include "asperity/fem/reduced_model.hpp"
 #include <cstddef>
 #include <memory>
 #include <optional>
 #include <string>
+#include "asperity/fem/reduced_model.hpp"
 
 #include <Eigen/Dense>
 

@@ -42,7 +42,8 @@ Mesh stacked_boxes(ElementType type, std::array<int, 3> div, double lx = 0.04, d
 }
 
 InterfaceSpec lap_spec(int patches) {
-  return {.name = "lap", .body_a = "lower", .body_b = "upper", .normal = {0, 0, 1}, .patches = patches};
+  return {
+      .name = "lap", .body_a = "lower", .body_b = "upper", .normal = {0, 0, 1}, .patches = patches};
 }
 
 TEST(FemInterface, CoincidentFacesFormTheInterfaceWithItsArea) {
@@ -78,11 +79,13 @@ TEST(FemInterface, RigidMotionsGiveNoRelativeDisplacement) {
   for (const auto& blk : m.blocks)
     for (std::size_t e = 0; e < blk.size(); ++e)
       if (blk.body[e] == 1)
-        for (const auto n : blk.element(e)) u.segment<3>(3 * Eigen::Index{n}) = Eigen::Vector3d(1e-6, -2e-6, 3e-6);
+        for (const auto n : blk.element(e))
+          u.segment<3>(3 * Eigen::Index{n}) = Eigen::Vector3d(1e-6, -2e-6, 3e-6);
   const Eigen::VectorXd gl = itf.local_operator(3 * m.node_count()) * u;
   for (std::size_t p = 0; p < itf.patches.size(); ++p) {
     const Eigen::Vector3d expect = itf.patches[p].frame * Eigen::Vector3d(1e-6, -2e-6, 3e-6);
-    EXPECT_NEAR((gl.segment<3>(3 * static_cast<Eigen::Index>(p)) - expect).norm(), 0.0, 1e-12 * expect.norm());
+    EXPECT_NEAR((gl.segment<3>(3 * static_cast<Eigen::Index>(p)) - expect).norm(), 0.0,
+                1e-12 * expect.norm());
   }
 }
 
@@ -91,7 +94,8 @@ TEST(FemInterface, UniformTractionGivesNodalForcesSummingToTractionTimesArea) {
   const Interface itf = build_interface(m, boundary_faces(m), lap_spec(5));
   const Eigen::Vector3d t_local(2e6, -1e6, -5e6);  // Pa (t1, t2, n): a compressive normal
   Eigen::VectorXd t(3 * itf.patches.size());
-  for (std::size_t p = 0; p < itf.patches.size(); ++p) t.segment<3>(3 * static_cast<Eigen::Index>(p)) = t_local;
+  for (std::size_t p = 0; p < itf.patches.size(); ++p)
+    t.segment<3>(3 * static_cast<Eigen::Index>(p)) = t_local;
   const Eigen::VectorXd f = itf.nodal_forces(t, 3 * m.node_count());
   Eigen::Vector3d upper = Eigen::Vector3d::Zero(), lower = Eigen::Vector3d::Zero();
   const auto& blk = m.blocks.front();
@@ -109,7 +113,8 @@ TEST(FemInterface, UniformTractionGivesNodalForcesSummingToTractionTimesArea) {
 
 TEST(FemInterface, SplitSharedNodesSeparatesBodiesOfOneMesh) {
   // One box of two cells in z; the upper cell becomes a second body.
-  Mesh m = structured_box_mesh({0, 0, 0}, {0.02, 0.02, 0.02}, {2, 2, 2}, ElementType::hex20, "lower");
+  Mesh m =
+      structured_box_mesh({0, 0, 0}, {0.02, 0.02, 0.02}, {2, 2, 2}, ElementType::hex20, "lower");
   m.bodies.push_back("upper");
   auto& blk = m.blocks.front();
   for (std::size_t e = 0; e < blk.size(); ++e) {
@@ -174,9 +179,12 @@ TEST(FemBolt, CouplingFollowsRigidMotionAndPretensionIsSelfEquilibrated) {
     for (int end = 0; end < 2; ++end) {
       const Eigen::Vector3d at = (end == 0 ? centre_bolt(0).head : centre_bolt(0).nut) - c;
       Eigen::Vector3d u = Eigen::Vector3d::Zero(), th = Eigen::Vector3d::Zero();
-      if (k < 3) u[k] = 1.0;
-      else th[k - 3] = 1.0, u = th.cross(at);
-      EXPECT_NEAR((ref.segment<3>(6 * end) - u).norm(), 0.0, 1e-12) << "mode " << k << " end " << end;
+      if (k < 3)
+        u[k] = 1.0;
+      else
+        th[k - 3] = 1.0, u = th.cross(at);
+      EXPECT_NEAR((ref.segment<3>(6 * end) - u).norm(), 0.0, 1e-12)
+          << "mode " << k << " end " << end;
       EXPECT_NEAR((ref.segment<3>(6 * end + 3) - th).norm(), 0.0, 1e-10) << "mode " << k;
     }
   }
@@ -238,7 +246,8 @@ ReducedModel reduced(const Assembled& a, const CraigBampton& cb) {
   for (std::size_t p = 0; p < a.itf.patches.size(); ++p) {
     const auto e = static_cast<Eigen::Index>(p);
     for (int k = 0; k < 3; ++k) m.T(3 * e + k, 3 * e + k) = a.itf.patches[p].area;
-    m.elements.push_back({"lap", a.itf.patches[p].area, a.itf.patches[p].centroid, a.itf.patches[p].frame});
+    m.elements.push_back(
+        {"lap", a.itf.patches[p].area, a.itf.patches[p].centroid, a.itf.patches[p].frame});
   }
   m.bolt_elongation = cb.reduce_row(a.bolt.elongation);
   m.bolt_load = -m.bolt_elongation.transpose();
@@ -256,9 +265,9 @@ TEST(FemReduction, ReducedModesMatchTheFullModelInTheRetainedRange) {
   const auto full = sparse_modes(a.K, a.M, 12, -1e4);
   std::vector<double> worst;
   for (const int modes : {10, 30, 60}) {
-    const CraigBampton cb = craig_bampton(a.K, a.M, a.mesh.nodes, {a.itf},
-                                          {.fixed_interface_modes = modes},
-                                          {-Eigen::VectorXd(a.bolt.elongation)});
+    const CraigBampton cb =
+        craig_bampton(a.K, a.M, a.mesh.nodes, {a.itf}, {.fixed_interface_modes = modes},
+                      {-Eigen::VectorXd(a.bolt.elongation)});
     EXPECT_EQ(cb.rigid_body_modes, 6);
     EXPECT_EQ(cb.K.rows(), 24 + modes + 6 + 1);
     const ReducedModel m = reduced(a, cb);
@@ -271,8 +280,10 @@ TEST(FemReduction, ReducedModesMatchTheFullModelInTheRetainedRange) {
       EXPECT_GE(red.frequency_hz[i], f_full * (1 - 1e-9)) << modes << " modes, mode " << i;
       w = std::max(w, red.frequency_hz[i] / f_full - 1);
     }
-    std::printf("fixed-interface modes %d: largest relative error of the first 6 elastic "
-                "frequencies %.3e\n", modes, w);
+    std::printf(
+        "fixed-interface modes %d: largest relative error of the first 6 elastic "
+        "frequencies %.3e\n",
+        modes, w);
     worst.push_back(w);
   }
   // Converging with the tied modes kept, and below 1e-3 with 60 of them (all the
@@ -284,12 +295,14 @@ TEST(FemReduction, ReducedModesMatchTheFullModelInTheRetainedRange) {
 
 TEST(FemReduction, BoltPretensionIsInEquilibriumWithTheInterfacePressure) {
   const Assembled a = assemble_stack({8, 4, 2}, 8, 1500.0);
-  const CraigBampton cb = craig_bampton(a.K, a.M, a.mesh.nodes, {a.itf}, {.fixed_interface_modes = 10},
-                                        {-Eigen::VectorXd(a.bolt.elongation)});
+  const CraigBampton cb =
+      craig_bampton(a.K, a.M, a.mesh.nodes, {a.itf}, {.fixed_interface_modes = 10},
+                    {-Eigen::VectorXd(a.bolt.elongation)});
   const ReducedModel m = reduced(a, cb);
   const LinearPrestress p = linear_prestress(m, 1e14);
   double force = 0;
-  for (Eigen::Index e = 0; e < p.pressure.size(); ++e) force += p.pressure[e] * m.elements[static_cast<std::size_t>(e)].area;
+  for (Eigen::Index e = 0; e < p.pressure.size(); ++e)
+    force += p.pressure[e] * m.elements[static_cast<std::size_t>(e)].area;
   // The interface carries the bolt's tension: exact in the reduced model because the
   // bolt's load-dependent Ritz vector is in the basis (round-off of the dense solve).
   EXPECT_NEAR(force, 1500.0, 1e-6 * 1500.0);
@@ -302,11 +315,14 @@ TEST(FemReduction, MoreRigidBodyModesThanFreeFreeIsRefused) {
   const IsotropicMaterial steel{200e9, 0.3, 7800};
   const std::vector<IsotropicMaterial> mats{steel, steel};
   auto km = assemble(a.mesh, mats);
-  const CraigBampton cb = craig_bampton(km.K, km.M, a.mesh.nodes, {a.itf}, {.fixed_interface_modes = 5});
+  const CraigBampton cb =
+      craig_bampton(km.K, km.M, a.mesh.nodes, {a.itf}, {.fixed_interface_modes = 5});
   ReducedModel m = reduced(a, cb);
   m.bolt_load.setZero();
-  EXPECT_THAT([&] { (void)reduced_linear_modes(m, Eigen::VectorXd::Zero(12), 4, "open interface"); },
-              ::testing::ThrowsMessage<InvalidInput>(HasSubstr("12 rigid-body modes, more than a free-free")));
+  EXPECT_THAT(
+      [&] { (void)reduced_linear_modes(m, Eigen::VectorXd::Zero(12), 4, "open interface"); },
+      ::testing::ThrowsMessage<InvalidInput>(
+          HasSubstr("12 rigid-body modes, more than a free-free")));
 }
 
 }  // namespace

@@ -28,24 +28,25 @@ namespace asperity::fem {
 
 struct BoltSpec {
   std::string name;
-  Eigen::Vector3d head = Eigen::Vector3d::Zero();  ///< centre of the washer footprint, head side [m]
-  Eigen::Vector3d nut = Eigen::Vector3d::Zero();   ///< centre of the washer footprint, nut side [m]
-  double shank_diameter = 0.0;                     ///< [m]
-  double hole_diameter = 0.0;    ///< inner diameter of the footprint annulus [m]
-  double washer_diameter = 0.0;  ///< outer diameter of the footprint annulus [m]
-  double E = 0.0;                ///< shank Young's modulus [Pa]
-  double nu = 0.3;               ///< shank Poisson's ratio
-  double rho = 0.0;              ///< shank density [kg/m^3]
-  double head_mass = 0.0;        ///< head (or nut) and washer, lumped at each end [kg]
-  double preload = 0.0;          ///< pretension P [N]
+  Eigen::Vector3d head =
+      Eigen::Vector3d::Zero();                    ///< centre of the washer footprint, head side [m]
+  Eigen::Vector3d nut = Eigen::Vector3d::Zero();  ///< centre of the washer footprint, nut side [m]
+  double shank_diameter = 0.0;                    ///< [m]
+  double hole_diameter = 0.0;                     ///< inner diameter of the footprint annulus [m]
+  double washer_diameter = 0.0;                   ///< outer diameter of the footprint annulus [m]
+  double E = 0.0;                                 ///< shank Young's modulus [Pa]
+  double nu = 0.3;                                ///< shank Poisson's ratio
+  double rho = 0.0;                               ///< shank density [kg/m^3]
+  double head_mass = 0.0;  ///< head (or nut) and washer, lumped at each end [kg]
+  double preload = 0.0;    ///< pretension P [N]
   void validate() const;
 };
 
 /// A bolt placed on the mesh.
 struct Bolt {
   BoltSpec spec;
-  double length = 0.0;                  ///< |nut - head| [m]
-  Eigen::Vector3d axis;                 ///< (nut - head) / length
+  double length = 0.0;   ///< |nut - head| [m]
+  Eigen::Vector3d axis;  ///< (nut - head) / length
   std::vector<std::int32_t> head_nodes, nut_nodes;
   /// 12 x dofs: rows 0-2 u_ref, 3-5 theta_ref of the head end; 6-11 of the nut end.
   Eigen::SparseMatrix<double> coupling;

@@ -55,10 +55,10 @@ struct InterfaceSpec {
 
 /// One zero-thickness element: a patch of faces.
 struct InterfacePatch {
-  double area = 0.0;                        ///< A_p [m^2]
-  Eigen::Vector3d centroid;                 ///< area-weighted [m]
-  Eigen::Matrix3d frame;                    ///< rows t1, t2, n (orthonormal)
-  std::vector<std::int32_t> faces;          ///< indices into Interface::face_pairs
+  double area = 0.0;                ///< A_p [m^2]
+  Eigen::Vector3d centroid;         ///< area-weighted [m]
+  Eigen::Matrix3d frame;            ///< rows t1, t2, n (orthonormal)
+  std::vector<std::int32_t> faces;  ///< indices into Interface::face_pairs
   /// The patch average as node weights: g_p = sum_k weight_k (u[node_b_k] - u[node_a_k]),
   /// weight_k = (1/A_p) sum_q w_q |J_q| N_k(q) (sum of weights = 1).
   struct NodeWeight {
@@ -104,8 +104,7 @@ struct Interface {
                                         const InterfaceSpec& spec);
 
 /// Shape functions of a tri6 / quad8 face at (xi, eta) (node_count values).
-void face_shape(int node_count, double xi, double eta, double* N, double* dN_dxi,
-                double* dN_deta);
+void face_shape(int node_count, double xi, double eta, double* N, double* dN_dxi, double* dN_deta);
 /// Quadrature points of a face: (xi, eta, weight on the reference face).
 [[nodiscard]] const std::vector<std::array<double, 3>>& face_quadrature(int node_count);
 

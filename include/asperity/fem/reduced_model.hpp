@@ -36,9 +36,9 @@ namespace asperity::fem {
 
 struct InterfaceElement {
   std::string interface;
-  double area = 0.0;                                     ///< [m^2]
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();    ///< [m] (NaN when unknown)
-  Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();   ///< rows t1, t2, n
+  double area = 0.0;                                    ///< [m^2]
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();   ///< [m] (NaN when unknown)
+  Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();  ///< rows t1, t2, n
 };
 
 struct ReducedModel {
@@ -70,8 +70,8 @@ void write_reduced_model(const std::string& path, const ReducedModel& model);
 /// Elastic modes of a reduced model with a linear interface stiffness per element and
 /// direction (k_e, 3N values, N/m; zero where the interface is open).
 struct LinearModesResult {
-  Eigen::VectorXd frequency_hz;   ///< elastic modes only, ascending
-  Eigen::MatrixXd shapes;         ///< reduced, mass-normalised, one column per elastic mode
+  Eigen::VectorXd frequency_hz;  ///< elastic modes only, ascending
+  Eigen::MatrixXd shapes;        ///< reduced, mass-normalised, one column per elastic mode
   Eigen::Index rigid_body_modes = 0;
 };
 /// `label` names the analysis in messages. Rigid-body modes: |omega^2| below 1e-10 of
@@ -86,9 +86,9 @@ struct LinearModesResult {
 /// static displacement, and the contact state.
 struct LinearPrestress {
   Eigen::VectorXd x;
-  Eigen::VectorXd pressure;          ///< N
-  std::vector<char> in_contact;      ///< N
-  double contact_area = 0.0;         ///< [m^2]
+  Eigen::VectorXd pressure;      ///< N
+  std::vector<char> in_contact;  ///< N
+  double contact_area = 0.0;     ///< [m^2]
   int iterations = 0;
 };
 [[nodiscard]] LinearPrestress linear_prestress(const ReducedModel& model, double normal_stiffness);

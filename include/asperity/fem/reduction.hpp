@@ -36,11 +36,11 @@ struct ReductionOptions {
 
 /// The reduction basis and its products.
 struct CraigBampton {
-  Eigen::MatrixXd K, M;       ///< reduced, (3N + m) square; first 3N are the interface DOFs
-  Eigen::Index interface_dofs = 0;  ///< 3N
+  Eigen::MatrixXd K, M;               ///< reduced, (3N + m) square; first 3N are the interface DOFs
+  Eigen::Index interface_dofs = 0;    ///< 3N
   Eigen::Index rigid_body_modes = 0;  ///< rigid-body modes found among the tied structure's modes
-  Eigen::VectorXd tied_omega2;  ///< eigenvalues of the kept tied-structure modes [rad^2/s^2]
-  Eigen::Index static_vectors = 0;  ///< load-dependent Ritz vectors appended (last columns)
+  Eigen::VectorXd tied_omega2;        ///< eigenvalues of the kept tied-structure modes [rad^2/s^2]
+  Eigen::Index static_vectors = 0;    ///< load-dependent Ritz vectors appended (last columns)
   /// u = elimination * basis * x (elimination sparse n x n_t, basis dense n_t x n_r).
   Eigen::SparseMatrix<double> elimination;
   Eigen::MatrixXd basis;

@@ -32,7 +32,7 @@ struct OutputPoint {
 /// A structure case: geometry (meshed by gmsh) or a mesh file, one material per body,
 /// interfaces, bolts, output points, reduction settings.
 struct StructureCase {
-  std::string path;        ///< the case file (messages, relative paths)
+  std::string path;  ///< the case file (messages, relative paths)
   std::string name;
   Geometry geometry;       ///< used when mesh_file is empty
   std::string mesh_file;   ///< .msh or .inp, relative to the case file
@@ -61,17 +61,17 @@ struct LinearAnalysis {
 };
 
 struct StructureResult {
-  Mesh mesh;                      ///< nodes split per body
+  Mesh mesh;  ///< nodes split per body
   std::size_t shared_nodes_split = 0;
   std::vector<Interface> interfaces;
   std::vector<Bolt> bolts;
   CraigBampton reduction;
   ReducedModel model;
-  LinearPrestress prestress;      ///< frictionless, linear normal penalty
-  double bolt_load_total = 0.0;   ///< sum of preloads [N]
+  LinearPrestress prestress;             ///< frictionless, linear normal penalty
+  double bolt_load_total = 0.0;          ///< sum of preloads [N]
   std::vector<LinearAnalysis> analyses;  ///< open, frictionless, stuck
   std::vector<StepCost> costs;
-  double total_mass = 0.0;        ///< [kg] bodies (elements) only
+  double total_mass = 0.0;  ///< [kg] bodies (elements) only
 };
 
 struct StructureOptions {
