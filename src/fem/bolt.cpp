@@ -31,7 +31,6 @@ Footprint find_footprint(const Mesh& mesh, const std::vector<BoundaryFace>& face
   const double tol = 1e-6 * extent;
   const double r_in = 0.5 * spec.hole_diameter, r_out = 0.5 * spec.washer_diameter;
   Footprint fp;
-  std::array<double, 8> N{}, dx{}, de{};
   for (const auto& f : faces) {
     const int nc = f.node_count == 6 ? 3 : 4;
     bool in_plane = true;
@@ -45,17 +44,11 @@ Footprint find_footprint(const Mesh& mesh, const std::vector<BoundaryFace>& face
     const Eigen::Vector3d d = c - point;
     const double r = (d - d.dot(axis) * axis).norm();
     if (r < r_in || r > r_out) continue;
-    for (const auto& q : face_quadrature(f.node_count)) {
-      face_shape(f.node_count, q[0], q[1], N.data(), dx.data(), de.data());
-      Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
-      for (int i = 0; i < f.node_count; ++i) {
-        a += dx[i] * mesh.nodes.col(f.nodes[i]);
-        b += de[i] * mesh.nodes.col(f.nodes[i]);
-      }
-      const double jw = q[2] * a.cross(b).norm();
+    for_each_face_point(mesh, f, [&](const double* N, const Eigen::Vector3d& wn) {
+      const double jw = wn.norm();
       fp.area += jw;
       for (int i = 0; i < f.node_count; ++i) fp.weight[f.nodes[i]] += jw * N[i];
-    }
+    });
   }
   const double annulus = std::numbers::pi * (r_out * r_out - r_in * r_in);
   if (fp.area < 0.5 * annulus)

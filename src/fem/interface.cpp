@@ -46,20 +46,12 @@ Eigen::Vector3d face_centroid(const Mesh& mesh, const BoundaryFace& f) {
 
 // Area-weighted normal (unit) and area of a face by its quadrature.
 std::pair<Eigen::Vector3d, double> face_normal_area(const Mesh& mesh, const BoundaryFace& f) {
-  std::array<double, 8> N{}, dx{}, de{};
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   double area = 0.0;
-  for (const auto& q : face_quadrature(f.node_count)) {
-    face_shape(f.node_count, q[0], q[1], N.data(), dx.data(), de.data());
-    Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
-    for (int i = 0; i < f.node_count; ++i) {
-      a += dx[i] * mesh.nodes.col(f.nodes[i]);
-      b += de[i] * mesh.nodes.col(f.nodes[i]);
-    }
-    const Eigen::Vector3d n = a.cross(b);
-    sum += q[2] * n;
-    area += q[2] * n.norm();
-  }
+  for_each_face_point(mesh, f, [&](const double*, const Eigen::Vector3d& wn) {
+    sum += wn;
+    area += wn.norm();
+  });
   const double s = sum.norm();
   return {s > 0 ? Eigen::Vector3d(sum / s) : Eigen::Vector3d::Zero(), area};
 }
@@ -381,21 +373,14 @@ Interface build_interface(const Mesh& mesh, const std::vector<BoundaryFace>& fac
     p.frame.row(1) = n.cross(t1);
     p.frame.row(2) = n;
     std::map<std::pair<std::int32_t, std::int32_t>, double> wsum;
-    std::array<double, 8> N{}, dx{}, de{};
     for (const auto fi : p.faces) {
       const auto& pair = out.face_pairs[static_cast<std::size_t>(fi)];
       const auto& f = pair.side_a;
-      for (const auto& q : face_quadrature(f.node_count)) {
-        face_shape(f.node_count, q[0], q[1], N.data(), dx.data(), de.data());
-        Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
-        for (int i = 0; i < f.node_count; ++i) {
-          a += dx[i] * mesh.nodes.col(f.nodes[i]);
-          b += de[i] * mesh.nodes.col(f.nodes[i]);
-        }
-        const double jw = q[2] * a.cross(b).norm() / p.area;
+      for_each_face_point(mesh, f, [&](const double* N, const Eigen::Vector3d& wn) {
+        const double jw = wn.norm() / p.area;
         for (int i = 0; i < f.node_count; ++i)
           wsum[{f.nodes[i], pair.side_b.nodes[i]}] += jw * N[i];
-      }
+      });
     }
     for (const auto& [nodes, weight] : wsum)
       if (std::abs(weight) > 1e-14) p.weights.push_back({nodes.first, nodes.second, weight});

@@ -13,6 +13,7 @@
 // so that the operator pair is consistent (power t_p . g_p A_p).
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -107,5 +108,11 @@ struct Interface {
 void face_shape(int node_count, double xi, double eta, double* N, double* dN_dxi, double* dN_deta);
 /// Quadrature points of a face: (xi, eta, weight on the reference face).
 [[nodiscard]] const std::vector<std::array<double, 3>>& face_quadrature(int node_count);
+/// Calls point(N, w n) at each quadrature point of a face: N the shape function values,
+/// w the quadrature weight and n = dx/dxi x dx/deta (|n| the area element; n points out
+/// of the face's element). Summing w |n| gives the face's area.
+void for_each_face_point(
+    const Mesh& mesh, const BoundaryFace& face,
+    const std::function<void(const double* N, const Eigen::Vector3d& wn)>& point);
 
 }  // namespace asperity::fem
