@@ -93,6 +93,21 @@ const std::vector<std::array<double, 3>>& face_quadrature(int node_count) {
   return node_count == 6 ? tri : quad;
 }
 
+void for_each_face_point(
+    const Mesh& mesh, const BoundaryFace& f,
+    const std::function<void(const double* N, const Eigen::Vector3d& wn)>& point) {
+  std::array<double, 8> N{}, dx{}, de{};
+  for (const auto& q : face_quadrature(f.node_count)) {
+    face_shape(f.node_count, q[0], q[1], N.data(), dx.data(), de.data());
+    Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+    for (int i = 0; i < f.node_count; ++i) {
+      a += dx[i] * mesh.nodes.col(f.nodes[i]);
+      b += de[i] * mesh.nodes.col(f.nodes[i]);
+    }
+    point(N.data(), q[2] * a.cross(b));
+  }
+}
+
 void face_shape(int node_count, double xi, double eta, double* N, double* dN_dxi, double* dN_deta) {
   if (node_count == 6) {
     // Quadratic triangle in area coordinates L1 = 1 - xi - eta, L2 = xi, L3 = eta.

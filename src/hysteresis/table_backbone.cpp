@@ -136,7 +136,22 @@ std::pair<std::vector<double>, std::vector<double>> tabulate(const Backbone& bac
                                                              std::size_t points) {
   if (points < 3) throw InvalidInput(fmt::format("tabulate: {} points, at least 3", points));
   const double F = backbone.limit();
-  const double xs = backbone.displacement((1.0 - 1e-9) * F);
+  // x_s by bisection on the (non-decreasing) force itself: the inverse's own root finder
+  // can fail this close to the plateau, where force - target is of the order of round-off
+  // at both ends of its bracket (seen on the steel_smooth joint at 200 N).
+  const double target = (1.0 - 1e-9) * F;
+  double lo = 0.0, hi = backbone.displacement(0.5 * F);
+  for (int k = 0; k < 200 && backbone.force(hi) < target; ++k) {
+    const double before = backbone.force(hi);
+    lo = hi;
+    hi *= 2.0;
+    if (backbone.force(hi) <= before) break;  // the force stopped growing: its plateau
+  }
+  for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (backbone.force(mid) < target ? lo : hi) = mid;
+  }
+  const double xs = hi;
   std::vector<double> x, Q;
   for (std::size_t k = 0; k < points; ++k) {
     const double v = xs * static_cast<double>(k) / static_cast<double>(points - 1);

@@ -104,8 +104,10 @@ elif case == "predict_without_excitation":
     p = run("predict", write_case(text), "--out", out)
     check("no [excitation]" in p.stdout, p.stdout)
     written = sorted(f for f in os.listdir(out) if not f.startswith("."))
-    check(written == ["mu_vs_preload.png", "stiffness_vs_preload.png", "summary.json"], written)
-    check(f"wrote {out}/ (summary.json, mu_vs_preload.png, stiffness_vs_preload.png)" in p.stdout,
+    check(written == ["backbones.csv", "mu_vs_preload.png", "stiffness_vs_preload.png",
+                      "summary.json"], written)
+    check(f"wrote {out}/ (summary.json, backbones.csv, mu_vs_preload.png, stiffness_vs_preload.png)"
+          in p.stdout,
           p.stdout)
 elif case == "predict_sweep_files":
     # Chapter 5 joint from scans: Table 5.4 within 0.3 % (JointCase.ProfilesGiveTable54), so
