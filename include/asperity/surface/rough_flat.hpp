@@ -107,6 +107,14 @@ class RoughFlat {
   /// P* at d* = -5 sigma_a/sigma_s: no larger load is accepted by separation_star (which
   /// may refuse smaller ones too, where A_r/A0 >= 1).
   [[nodiscard]] double max_load_star() const;
+  /// P/(K H A0) at separation d* of a flat first pressed to d_set* (its closest approach):
+  /// every asperity that touched at d_set* unloads and reloads elastically from its plastic
+  /// set, as a Hertzian contact with the contact radius a_m it had there (continuity of P
+  /// and of dP/domega = 2 E* a at the set): P = P_m ((w - w_m + delta_u)/delta_u)^{3/2}
+  /// while w > w_m - delta_u, with delta_u = (P_m/P_c)/(a_m/a_c) in omega_c (Eq. A.1-A.2's
+  /// Hertz scales); asperities first touching closer than d_set* follow their virgin law.
+  /// Equals normal_load_star(d*) at d* = d_set*, and everywhere for an elastic flat.
+  [[nodiscard]] double normal_load_after_set_star(double d_star, double d_set_star) const;
   /// Static friction Q_max/(K H A0) at d* (Eq. 4.7).
   [[nodiscard]] double static_friction_star(double d_star) const;
   /// Real contact area over A0: pi beta omega_c* Int (a/a_c)^2 phi* dz*.

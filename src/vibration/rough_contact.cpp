@@ -1,0 +1,551 @@
+#include "asperity/vibration/rough_contact.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "asperity/contact/material.hpp"
+#include "asperity/core/error.hpp"
+#include "asperity/core/parallel.hpp"
+#include "asperity/core/validate.hpp"
+
+namespace asperity::vibration {
+
+namespace {
+
+// Tangential tables 2^(1/8) apart in p: cubic Lagrange interpolation of Q_l/p in ln p errs
+// by ~h^4/24 |d^4/d(ln p)^4 (Q_l/p)| ~ 1e-6 of Q_l/p (h = ln 2/8).
+constexpr double kLnPressureStep = std::numbers::ln2 / 8.0;
+// Normal table: spacing and reach in d* = d/sigma. A cubic B-spline errs by ~5 h^4/384 of the
+// fourth derivative: 5e-9 of P* for h = 0.025. Compression past the prestress is tabulated
+// over 1.5 sigma; unloading until the load is below kNormalTail of the prestress load.
+constexpr double kNormalStep = 0.025;
+constexpr double kCompressionReach = 1.5;
+constexpr double kNormalTail = 1e-13;
+constexpr int kMaxUnloadingNodes = 800;  // 20 sigma
+// Steady periodic response: a period that changes no force by more than this fraction of the
+// slip force from the previous one; at most kMaxPeriods periods.
+constexpr double kPeriodicTolerance = 1e-13;
+constexpr std::size_t kMaxPeriods = 64;
+
+surface::RoughFlat make_flat(const RoughInterfaceParameters& c) {
+  c.validate();
+  const double K = contact::hardness_factor(c.nu);
+  const double beta = c.sigma * c.R * c.eta;
+  const double sigma_a = c.sigma * std::sqrt(1.0 - 3.717e-4 / (beta * beta));
+  // psi on the asperity-height spread (SEED_NOTES.md), as dynamics::epb_backbone.
+  const surface::RoughFlatParameters rp{
+      .model = c.model,
+      .beta = beta,
+      .psi = 2.0 * c.E_star / (std::numbers::pi * K * c.H) * std::sqrt(sigma_a / c.R),
+      .nu = c.nu,
+      .G_over_E = c.G_star / c.E_star,
+      .friction = c.friction};
+  return surface::RoughFlat(rp);
+}
+
+void require_finite_samples(const Eigen::MatrixXd& u) {
+  if (!u.allFinite()) {
+    throw InvalidInput("rough_contact element: displacement samples hold a NaN or infinity");
+  }
+}
+
+int sign_of(double x) {
+  return (x > 0.0) - (x < 0.0);
+}
+
+// d f*/d coord*(sample j, direction c): the sparse dependence of one force value.
+struct Term {
+  std::uint32_t j;
+  std::uint16_t c;
+  double v;
+};
+using Deriv = std::vector<Term>;
+
+// Sorted by (j, c) with duplicates summed: bounds a list by the number of sample values.
+void compress(Deriv& d) {
+  std::sort(d.begin(), d.end(),
+            [](const Term& a, const Term& b) { return a.j != b.j ? a.j < b.j : a.c < b.c; });
+  std::size_t out = 0;
+  for (std::size_t k = 0; k < d.size(); ++k) {
+    if (out > 0 && d[out - 1].j == d[k].j && d[out - 1].c == d[k].c) {
+      d[out - 1].v += d[k].v;
+    } else {
+      d[out++] = d[k];
+    }
+  }
+  d.resize(out);
+}
+
+struct Reversal {
+  double x;          // displacement* at the reversal
+  double f;          // force* there
+  double direction;  // of the branch that starts here
+  double closes_at;  // where the branch meets the one it left (Masing's loop memory)
+  std::uint32_t sample;
+  Deriv D;  // d f / d(samples)
+};
+
+// Lagrange basis on nodes 0..3 at tau, and its derivative.
+void lagrange4(double t, double w[4], double dw[4]) {
+  w[0] = -(t - 1.0) * (t - 2.0) * (t - 3.0) / 6.0;
+  w[1] = t * (t - 2.0) * (t - 3.0) / 2.0;
+  w[2] = -t * (t - 1.0) * (t - 3.0) / 2.0;
+  w[3] = t * (t - 1.0) * (t - 2.0) / 6.0;
+  dw[0] = -(3.0 * t * t - 12.0 * t + 11.0) / 6.0;
+  dw[1] = (3.0 * t * t - 10.0 * t + 6.0) / 2.0;
+  dw[2] = -(3.0 * t * t - 8.0 * t + 3.0) / 2.0;
+  dw[3] = (3.0 * t * t - 6.0 * t + 2.0) / 6.0;
+}
+
+}  // namespace
+
+void RoughInterfaceParameters::validate() const {
+  core::require_positive("rough_contact.E_star", E_star);
+  core::require_positive("rough_contact.G_star", G_star);
+  core::require_positive("rough_contact.H", H);
+  core::require_in_half_open("rough_contact.nu", nu, 0.0, 0.5);
+  core::require_positive("rough_contact.sigma", sigma);
+  core::require_positive("rough_contact.R", R);
+  core::require_positive("rough_contact.eta", eta);
+  if (!(G_star < E_star)) {
+    throw InvalidInput(fmt::format("rough_contact.G_star = {} Pa: must be below E_star = {} Pa",
+                                   core::format_value(G_star), core::format_value(E_star)));
+  }
+  if (!(H < E_star)) {
+    throw InvalidInput(fmt::format(
+        "rough_contact.H = {} Pa: a hardness at or above E_star = {} Pa is not a metal pair",
+        core::format_value(H), core::format_value(E_star)));
+  }
+}
+
+RoughContactSurface::RoughContactSurface(const RoughInterfaceParameters& params, double p_low,
+                                         double p_high)
+    : params_(params),
+      flat_(make_flat(params)),
+      pressure_scale_(contact::hardness_factor(params.nu) * params.H),
+      p_low_(p_low),
+      p_high_(p_high) {
+  core::require_positive("rough_contact pressure range low end", p_low);
+  core::require_finite("rough_contact pressure range high end", p_high);
+  const double p_max = flat_.max_load_star() * pressure_scale_;
+  if (!(p_high > p_low) || !(p_high <= p_max)) {
+    throw InvalidInput(fmt::format(
+        "rough_contact pressure range [{}, {}] Pa: give 0 < low < high <= {} Pa (the load of "
+        "this rough flat at d = -5 sigma_a, the largest it represents)",
+        core::format_value(p_low), core::format_value(p_high), core::format_value(p_max)));
+  }
+  h_ = kLnPressureStep;
+  ln_p_first_ = std::log(p_low / pressure_scale_);
+  const double span = std::log(p_high / p_low);
+  const auto count = std::max<std::size_t>(4, static_cast<std::size_t>(std::ceil(span / h_)) + 1);
+  p_star_.resize(count);
+  tables_.resize(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    p_star_[k] = std::exp(ln_p_first_ + static_cast<double>(k) * h_);
+  }
+  // The last node may lie above p_high (count >= 4, or the ceiling): never above the flat's
+  // largest load.
+  if (p_star_.back() > flat_.max_load_star()) {
+    throw InvalidInput(fmt::format(
+        "rough_contact pressure range [{}, {}] Pa: the tables would reach {} Pa, above the "
+        "{} Pa this rough flat represents; narrow the range",
+        core::format_value(p_low), core::format_value(p_high),
+        core::format_value(p_star_.back() * pressure_scale_), core::format_value(p_max)));
+  }
+  core::parallel_for(count, [&](std::size_t k) {
+    tables_[k] = flat_.backbone(flat_.separation_star(p_star_[k]));
+  });
+}
+
+// ---------------------------------------------------------------------------------------
+
+RoughContactElement::RoughContactElement(std::shared_ptr<const RoughContactSurface> surface,
+                                         double area, double pressure, std::string name)
+    : surface_(std::move(surface)), area_(area), p0_(pressure), name_(std::move(name)) {
+  if (!surface_)
+    throw InvalidInput(fmt::format("{}: a rough_contact element needs its surface", name_));
+  if (!(std::isfinite(area) && area > 0.0)) {
+    throw InvalidInput(
+        fmt::format("{}: area = {} m^2: give a finite area > 0", name_, core::format_value(area)));
+  }
+  if (!(pressure >= surface_->p_low() && pressure <= surface_->p_high())) {
+    throw InvalidInput(fmt::format(
+        "{}: prestress pressure = {} Pa: give a value in the surface's table range [{}, {}] Pa "
+        "(an element out of contact at the prestress carries no rough_contact law)",
+        name_, core::format_value(pressure), core::format_value(surface_->p_low()),
+        core::format_value(surface_->p_high())));
+  }
+  const surface::RoughFlat& flat = surface_->flat();
+  p0_star_ = p0_ / surface_->pressure_scale();
+  d0_star_ = flat.separation_star(p0_star_);
+  table0_ = flat.backbone(d0_star_);
+  stencil0_ = stencil(p0_star_);
+
+  // Normal law after the prestress set: one spline on each side of d0 (the third derivative
+  // is singular at the set from the compression side, where asperities first touch, like
+  // (d0 - d)^{-1/2}), both ending at d0 with the slope of the unloading side there
+  // (continuous: newly touching asperities add no stiffness at first contact), from a
+  // one-sided difference of order 4.
+  const auto after_set = [&](double d) { return flat.normal_load_after_set_star(d, d0_star_); };
+  const double P0 = after_set(d0_star_);
+  std::vector<double> unloading{P0};
+  for (int k = 1; k <= kMaxUnloadingNodes; ++k) {
+    const double P = after_set(d0_star_ + k * kNormalStep);
+    unloading.push_back(P);
+    if (P < kNormalTail * p0_star_) break;
+  }
+  const double hs = kNormalStep / 16.0;
+  double fd[5] = {P0, 0, 0, 0, 0};
+  for (int k = 1; k <= 4; ++k) fd[k] = after_set(d0_star_ + k * hs);
+  const double slope0 =
+      (-25.0 * fd[0] + 48.0 * fd[1] - 36.0 * fd[2] + 16.0 * fd[3] - 3.0 * fd[4]) / (12.0 * hs);
+  const auto n_low = static_cast<std::size_t>(std::round(kCompressionReach / kNormalStep));
+  std::vector<double> compression(n_low + 1);
+  compression[n_low] = P0;
+  core::parallel_for(n_low, [&](std::size_t k) {
+    compression[k] = after_set(d0_star_ - static_cast<double>(n_low - k) * kNormalStep);
+  });
+  d_lo_ = d0_star_ - static_cast<double>(n_low) * kNormalStep;
+  d_hi_ = d0_star_ + static_cast<double>(unloading.size() - 1) * kNormalStep;
+  using Spline = boost::math::interpolators::cardinal_cubic_b_spline<double>;
+  compression_ =
+      std::make_shared<const Spline>(compression.data(), compression.size(), d_lo_, kNormalStep,
+                                     std::numeric_limits<double>::quiet_NaN(), slope0);
+  unloading_ = std::make_shared<const Spline>(unloading.data(), unloading.size(), d0_star_,
+                                              kNormalStep, slope0, 0.0);
+  p_ref_star_ = P0;
+}
+
+RoughContactElement::Stencil RoughContactElement::stencil(double p_star) const {
+  Stencil s;
+  const double L = std::log(p_star);
+  const double t = (L - surface_->ln_p_first()) / surface_->ln_p_step();
+  const auto n = static_cast<double>(surface_->tables());
+  if (!(t > 0.0)) {
+    s.w[0] = 1.0;  // below the lowest table: its shape, scaled with p
+    return s;
+  }
+  if (t > n - 1.0) {
+    throw NumericalError(fmt::format(
+        "{}: normal pressure {} Pa is above the {} Pa the interface's tangential tables reach "
+        "(the pressure range of its rough_contact surface): a larger range is needed",
+        name_, core::format_value(p_star * surface_->pressure_scale()),
+        core::format_value(surface_->table_pressure_star(surface_->tables() - 1) *
+                           surface_->pressure_scale())));
+  }
+  const double k0 = std::clamp(std::floor(t) - 1.0, 0.0, n - 4.0);
+  s.k0 = static_cast<std::size_t>(k0);
+  lagrange4(t - k0, s.w, s.dw);
+  for (double& d : s.dw) d /= surface_->ln_p_step();
+  return s;
+}
+
+RoughContactElement::Tangential RoughContactElement::tangential_star(double x, double p) const {
+  if (!(p > 0.0)) return {};
+  const Stencil s = stencil(p);
+  const double R0 = table0_->evaluate_non_negative(x) / p0_star_;
+  const double R0x = table0_->slope_non_negative(x) / p0_star_;
+  double I = 0.0, Ix = 0.0, IL = 0.0;
+  for (int m = 0; m < 4; ++m) {
+    if (s.w[m] != 0.0 || s.dw[m] != 0.0) {
+      const std::size_t k = s.k0 + static_cast<std::size_t>(m);
+      const double pk = surface_->table_pressure_star(k);
+      const double S = surface_->table(k).evaluate_non_negative(x) / pk;
+      const double Sx = surface_->table(k).slope_non_negative(x) / pk;
+      I += s.w[m] * S;
+      Ix += s.w[m] * Sx;
+      IL += s.dw[m] * S;
+    }
+    if (stencil0_.w[m] != 0.0) {
+      const std::size_t k = stencil0_.k0 + static_cast<std::size_t>(m);
+      const double pk = surface_->table_pressure_star(k);
+      I -= stencil0_.w[m] * surface_->table(k).evaluate_non_negative(x) / pk;
+      Ix -= stencil0_.w[m] * surface_->table(k).slope_non_negative(x) / pk;
+    }
+  }
+  const double F = R0 + I;
+  return {p * F, p * (R0x + Ix), F + IL};  // d(p F(ln p))/dp = F + F'
+}
+
+RoughContactElement::Tangential RoughContactElement::limit_star(double p) const {
+  if (!(p > 0.0)) return {};
+  const Stencil s = stencil(p);
+  double F = table0_->limit() / p0_star_, FL = 0.0;
+  for (int m = 0; m < 4; ++m) {
+    const std::size_t k = s.k0 + static_cast<std::size_t>(m);
+    const double lk = surface_->table(k).limit() / surface_->table_pressure_star(k);
+    F += s.w[m] * lk;
+    FL += s.dw[m] * lk;
+    const std::size_t k0 = stencil0_.k0 + static_cast<std::size_t>(m);
+    F -= stencil0_.w[m] * surface_->table(k0).limit() / surface_->table_pressure_star(k0);
+  }
+  return {p * F, 0.0, F + FL};
+}
+
+RoughContactElement::Pressure RoughContactElement::pressure(double u_n) const {
+  const double d = d0_star_ - u_n / surface_->sigma();
+  if (d >= d_hi_) return {};
+  if (d < d_lo_) {
+    throw NumericalError(fmt::format(
+        "{}: closure u_n = {} m presses the surfaces {:.3g} sigma past their prestress; the "
+        "element's normal law is tabulated over {} sigma (d/sigma from {:.4g})",
+        name_, core::format_value(u_n), d0_star_ - d, kCompressionReach, d_lo_));
+  }
+  // P*(d) - P*_spline(d0) + p0*: exactly the prestress load at u_n = 0.
+  const auto& spline = d < d0_star_ ? *compression_ : *unloading_;
+  const double P = spline(d) - p_ref_star_ + p0_star_;
+  if (!(P > 0.0)) return {};
+  return {P, -spline.prime(d)};  // dP*/dy*, y* = u_n/sigma
+}
+
+void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eigen::MatrixXd& /*v*/,
+                                            bool tangent, PeriodicResponse& out) const {
+  require_finite_samples(u);
+  if (u.cols() != 3) {
+    throw InvalidInput(
+        fmt::format("{}: rough_contact takes 3 directions (t1, t2, n), got {}", name_, u.cols()));
+  }
+  const auto n = static_cast<std::size_t>(u.rows());
+  out.f.setZero(u.rows(), 3);
+  out.history.clear();
+  if (tangent) {
+    out.du.setZero(u.rows(), 9);
+  } else {
+    out.du.resize(0, 0);
+  }
+  out.dv.resize(0, 0);
+  if (n == 0) return;
+  const double sig = surface_->sigma();
+  const double force_scale = surface_->pressure_scale() * area_;
+  const double stiffness_scale = force_scale / sig;
+
+  struct Direction {
+    std::vector<Reversal> stack;
+    double x_prev = 0.0, f_prev = 0.0, dir_prev = 0.0;
+    double origin = 0.0;  // centre of the virgin curve: 0, or where the element last separated
+    std::uint32_t origin_sample = 0;
+    bool origin_has_sample = false;
+    std::uint32_t s_prev = 0;
+    bool prev_has_sample = false;
+    Deriv D_prev;
+  };
+  Direction dirs[2];
+  Deriv g_D[2];
+  // Periods are repeated until one repeats the previous (the steady response): one repeat
+  // under Masing's rules in one direction at constant load, a few more where the traction
+  // limit returns a 2-D trial force or the load varies (shakedown of the reversal forces).
+  Eigen::MatrixXd previous;
+  for (std::size_t step = 0;; ++step) {
+    const auto i = static_cast<std::uint32_t>(step % n);
+    if (i == 0 && step >= n) {
+      if (step >= 2 * n) {
+        const double diff = (out.f - previous).cwiseAbs().maxCoeff();
+        if (diff <= kPeriodicTolerance * force_scale * table0_->limit()) break;
+        if (step >= kMaxPeriods * n) {
+          throw NumericalError(
+              fmt::format("{}: the response to the sampled period is not periodic after {} periods "
+                          "(change {:.3g} N in the last); the path may be too coarsely sampled",
+                          name_, kMaxPeriods, diff));
+        }
+      }
+      previous = out.f;
+      out.history.clear();
+      if (tangent) out.du.setZero();
+    }
+    const auto ii = static_cast<Eigen::Index>(i);
+    const Pressure pr = pressure(u(ii, 2));
+    const double p = pr.p;
+    double g[2];
+    for (int c = 0; c < 2; ++c) {
+      Direction& s = dirs[c];
+      const double x = u(ii, c) / sig;
+      Deriv& D = g_D[c];
+      D.clear();
+      if (!(p > 0.0)) {
+        // Separated: no traction; the surfaces touch again with a fresh virgin curve here.
+        s.stack.clear();
+        s.origin = x;
+        s.origin_sample = i;
+        s.origin_has_sample = true;
+        s.dir_prev = 0.0;
+        s.prev_has_sample = false;
+        s.D_prev.clear();
+        g[c] = 0.0;
+        s.x_prev = x;
+        continue;
+      }
+      const int d = sign_of(x - s.x_prev);
+      if (d != 0) {
+        if (s.dir_prev != 0.0 && d != static_cast<int>(s.dir_prev)) {
+          Reversal r{s.x_prev,
+                     s.f_prev,
+                     static_cast<double>(d),
+                     s.stack.empty() ? 2.0 * s.origin - s.x_prev : s.stack.back().x,
+                     s.s_prev,
+                     {}};
+          if (tangent && s.prev_has_sample) {
+            r.D = s.D_prev;
+            compress(r.D);
+          }
+          s.stack.push_back(std::move(r));
+        }
+        s.dir_prev = d;
+        // Masing's loop memory (as MasingElement).
+        std::size_t k = s.stack.size();
+        while (k >= 1) {
+          const Reversal& r = s.stack[k - 1];
+          if ((x - r.x) * r.direction < 0.0) {
+            --k;
+            continue;
+          }
+          if ((x - r.closes_at) * r.direction >= 0.0) {
+            k = k >= 2 ? k - 2 : 0;
+            continue;
+          }
+          break;
+        }
+        s.stack.resize(k);
+      }
+      if (s.stack.empty()) {
+        const double rel = x - s.origin;
+        const Tangential t = tangential_star(std::abs(rel), p);
+        const double sgn = rel < 0.0 ? -1.0 : 1.0;
+        g[c] = rel == 0.0 ? 0.0 : sgn * t.Q;
+        if (tangent) {
+          D.push_back({i, static_cast<std::uint16_t>(c), t.Qx});
+          if (s.origin_has_sample)
+            D.push_back({s.origin_sample, static_cast<std::uint16_t>(c), -t.Qx});
+          D.push_back({i, 2, sgn * t.Qp * pr.dp});
+        }
+      } else {
+        const Reversal& r = s.stack.back();
+        const Tangential t = tangential_star(0.5 * std::abs(x - r.x), p);
+        g[c] = r.f + r.direction * 2.0 * t.Q;
+        if (tangent) {
+          D = r.D;
+          D.push_back({i, static_cast<std::uint16_t>(c), t.Qx});
+          D.push_back({r.sample, static_cast<std::uint16_t>(c), -t.Qx});
+          D.push_back({i, 2, r.direction * 2.0 * t.Qp * pr.dp});
+        }
+      }
+    }
+    // The rough flat's static friction bounds the traction vector (Eq. 4.7).
+    double f[2] = {g[0], g[1]};
+    Deriv D_f[2];
+    const double mag = std::hypot(g[0], g[1]);
+    const Tangential lim = limit_star(p);
+    const bool capped = mag > lim.Q;
+    if (capped) {
+      if (mag > 0.0) {
+        const double e[2] = {g[0] / mag, g[1] / mag};
+        const double ratio = lim.Q / mag;
+        for (int a = 0; a < 2; ++a) {
+          f[a] = e[a] * lim.Q;
+          if (!tangent) continue;
+          for (int b = 0; b < 2; ++b) {
+            const double m = ratio * ((a == b ? 1.0 : 0.0) - e[a] * e[b]);
+            if (m == 0.0) continue;
+            for (const Term& term : g_D[b]) D_f[a].push_back({term.j, term.c, m * term.v});
+          }
+          D_f[a].push_back({i, 2, e[a] * lim.Qp * pr.dp});
+        }
+      } else {
+        f[0] = f[1] = 0.0;
+      }
+    } else if (tangent) {
+      D_f[0] = g_D[0];
+      D_f[1] = g_D[1];
+    }
+    for (int c = 0; c < 2; ++c) {
+      Direction& s = dirs[c];
+      const double x = u(ii, c) / sig;
+      if (p > 0.0 && x != s.x_prev) {
+        s.s_prev = i;
+        s.prev_has_sample = true;
+      }
+      if (p > 0.0 && tangent) s.D_prev = D_f[c];
+      s.f_prev = f[c];
+      s.x_prev = x;
+    }
+    if (step < n) continue;
+    out.f(ii, 0) = force_scale * f[0];
+    out.f(ii, 1) = force_scale * f[1];
+    out.f(ii, 2) = force_scale * (p - p0_star_);
+    if (!tangent) continue;
+    out.du(ii, 2 + 3 * 2) = stiffness_scale * pr.dp;
+    for (int c = 0; c < 2; ++c) {
+      for (const Term& term : D_f[c]) {
+        const double v = stiffness_scale * term.v;
+        if (term.j == i) {
+          out.du(ii, c + 3 * term.c) += v;
+        } else {
+          out.history.push_back({i, term.j, static_cast<std::uint16_t>(c), term.c, v});
+        }
+      }
+    }
+  }
+}
+
+void RoughContactElement::static_response(const Eigen::VectorXd& u, Eigen::VectorXd& f,
+                                          Eigen::MatrixXd& K) const {
+  if (u.size() != 3 || !u.allFinite()) {
+    throw InvalidInput(fmt::format("{}: static response needs 3 finite displacements", name_));
+  }
+  const double sig = surface_->sigma();
+  const double force_scale = surface_->pressure_scale() * area_;
+  const Pressure pr = pressure(u(2));
+  f.setZero(3);
+  K.setZero(3, 3);
+  f(2) = force_scale * (pr.p - p0_star_);
+  K(2, 2) = force_scale / sig * pr.dp;
+  if (!(pr.p > 0.0)) return;
+  const Eigen::Vector2d x(u(0) / sig, u(1) / sig);
+  const double r = x.norm();
+  const Tangential t = tangential_star(r, pr.p);
+  if (r == 0.0) {
+    K(0, 0) = K(1, 1) = force_scale / sig * t.Qx;
+    return;
+  }
+  const Eigen::Vector2d e = x / r;
+  f.head<2>() = force_scale * t.Q * e;
+  const Eigen::Matrix2d P = e * e.transpose();
+  K.topLeftCorner<2, 2>() =
+      force_scale / sig * (t.Qx * P + (t.Q / r) * (Eigen::Matrix2d::Identity() - P));
+  K.block<2, 1>(0, 2) = force_scale / sig * t.Qp * pr.dp * e;
+}
+
+Eigen::MatrixXd RoughContactElement::initial_stiffness() const {
+  const double s = surface_->pressure_scale() * area_ / surface_->sigma();
+  const double kt = s * table0_->initial_stiffness();
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(3, 3);
+  K(0, 0) = K(1, 1) = kt;
+  K(2, 2) = s * pressure(0.0).dp;
+  return K;
+}
+
+double RoughContactElement::slip_force() const {
+  return surface_->pressure_scale() * area_ * table0_->limit();
+}
+
+dynamics::SummaryObject RoughContactElement::describe() const {
+  const RoughInterfaceParameters& c = surface_->parameters();
+  return {{"type", std::string("rough_contact")},
+          {"name", name_},
+          {"area_m2", area_},
+          {"prestress_pressure_Pa", p0_},
+          {"prestress_separation_over_sigma", d0_star_},
+          {"asperity_model", std::string(contact::to_string(c.model))},
+          {"mu", table0_->limit() / p0_star_},
+          {"E_star_Pa", c.E_star},
+          {"G_star_Pa", c.G_star},
+          {"H_Pa", c.H},
+          {"sigma_m", c.sigma},
+          {"R_m", c.R},
+          {"eta_per_m2", c.eta}};
+}
+
+}  // namespace asperity::vibration
