@@ -86,6 +86,24 @@ Json summary(const StructureCase& c, const StructureResult& r) {
         {"max_pressure_Pa", r.prestress.pressure.size() ? r.prestress.pressure.maxCoeff() : 0.0},
         {"active_set_iterations", r.prestress.iterations}};
   }
+  if (r.rough) {
+    const RoughPrestress& q = *r.rough;
+    j["rough_prestress"] = {
+        {"model",
+         "rough flat (thesis Eq. 4.4) per interface element, frictionless while the bolts are "
+         "tightened; stiffnesses linearised about it (docs/rough_contact.md)"},
+        {"asperity_model", std::string(contact::to_string(c.rough.model))},
+        {"bolt_load_N", q.bolt_load},
+        {"interface_normal_force_N", q.interface_load},
+        {"contact_area_m2", q.contact_area},
+        {"real_contact_area_m2", q.real_contact_area},
+        {"max_pressure_Pa", q.pressure.maxCoeff()},
+        {"elements_in_contact", std::count(q.in_contact.begin(), q.in_contact.end(), char{1})},
+        {"newton_iterations", q.iterations},
+        {"relative_residual", q.residual},
+        {"gap_map", c.rough.gap_map.empty() ? Json(nullptr) : Json(c.rough.gap_map)},
+        {"max_gap_m", r.gap.size() ? r.gap.maxCoeff() : 0.0}};
+  }
   j["reduced_model"] = {{"dofs", r.model.dofs()},
                         {"interface_elements", r.model.elements.size()},
                         {"fixed_interface_modes", r.model.fixed_interface_modes},
@@ -118,6 +136,14 @@ std::string text_summary(const StructureCase& c, const StructureResult& r) {
         "{:.4g} mm^2\n",
         r.bolt_load_total, force, r.prestress.contact_area * 1e6);
   }
+  if (r.rough)
+    out += fmt::format(
+        "rough prestress: interface normal force {:.6g} N, {} of {} elements in contact "
+        "({:.4g} mm^2), real contact area {:.4g} mm^2, largest pressure {:.4g} MPa\n",
+        r.rough->interface_load,
+        std::count(r.rough->in_contact.begin(), r.rough->in_contact.end(), char{1}),
+        r.rough->in_contact.size(), r.rough->contact_area * 1e6, r.rough->real_contact_area * 1e6,
+        r.rough->pressure.maxCoeff() * 1e-6);
   for (const auto& a : r.analyses) {
     std::string f;
     for (Eigen::Index i = 0; i < std::min<Eigen::Index>(6, a.modes.frequency_hz.size()); ++i)
@@ -185,6 +211,17 @@ void write_files(const StructureCase& c, const StructureResult& r, joint::Staged
       }
     fields.push_back({"prestress_pressure_Pa", p});
     fields.push_back({"interface_element", id});
+    if (r.rough) {
+      Eigen::MatrixXd rp = Eigen::MatrixXd::Zero(1, nn), gp = Eigen::MatrixXd::Zero(1, nn);
+      for (Eigen::Index node = 0; node < nn; ++node)
+        if (id(0, node) >= 0) {
+          const auto el = static_cast<Eigen::Index>(id(0, node));
+          rp(0, node) = r.rough->pressure[el];
+          if (r.gap.size()) gp(0, node) = r.gap[el];
+        }
+      fields.push_back({"rough_pressure_Pa", rp});
+      if (r.gap.size()) fields.push_back({"gap_m", gp});
+    }
   }
   write_vtu(dir.file("structure.vtu"), r.mesh, fields);
   written.push_back("structure.vtu");
@@ -212,6 +249,42 @@ void write_files(const StructureCase& c, const StructureResult& r, joint::Staged
   m.series.push_back(mesh_edges(r, faces, nullptr, 0, "mesh", "lines lc rgb '#4060a0'", h, vm));
   plot_png(dir.file("mesh.png"), m);
   written.push_back("mesh.png");
+  if (r.rough) {
+    // The interface seen along its normal: elements by pressure class (eight equal classes
+    // up to the largest pressure), those out of contact in grey.
+    const RoughPrestress& q = *r.rough;
+    const double pmax = q.pressure.maxCoeff();
+    constexpr int kClasses = 8;
+    static const char* colours[kClasses] = {"#fde725", "#a0da39", "#4ac16d", "#1fa187",
+                                            "#277f8e", "#365c8d", "#46327e", "#440154"};
+    PlotSpec pm{.title = fmt::format("{}: interface pressure at the bolt preloads (rough flat, "
+                                     "{}), {} N",
+                                     c.name, contact::to_string(c.rough.model), q.bolt_load),
+                .xlabel = "x [mm]",
+                .ylabel = "y [mm]",
+                .extra = "set size ratio -1\nset key outside right"};
+    Series open{.title = "out of contact", .style = "points pt 5 ps 1.2 lc rgb '#d0d0d0'"};
+    std::vector<Series> cls(kClasses);
+    for (int k = 0; k < kClasses; ++k) {
+      cls[k].title = fmt::format("{:.0f}-{:.0f} MPa", pmax * k / kClasses * 1e-6,
+                                 pmax * (k + 1) / kClasses * 1e-6);
+      cls[k].style = fmt::format("points pt 5 ps 1.2 lc rgb '{}'", colours[k]);
+    }
+    for (std::size_t e = 0; e < r.model.elements.size(); ++e) {
+      const Eigen::Vector3d x = r.model.elements[e].centroid * 1e3;
+      const double p = q.pressure[static_cast<Eigen::Index>(e)];
+      Series& target = q.in_contact[e] ? cls[static_cast<std::size_t>(std::min(
+                                             kClasses - 1, static_cast<int>(p / pmax * kClasses)))]
+                                       : open;
+      target.x.push_back(x.x());
+      target.y.push_back(x.y());
+    }
+    if (!open.x.empty()) pm.series.push_back(open);
+    for (auto& s : cls)
+      if (!s.x.empty()) pm.series.push_back(s);
+    plot_png(dir.file("interface_pressure.png"), pm);
+    written.push_back("interface_pressure.png");
+  }
   const double extent =
       (r.mesh.nodes.rowwise().maxCoeff() - r.mesh.nodes.rowwise().minCoeff()).norm();
   for (const auto& a : r.analyses) {

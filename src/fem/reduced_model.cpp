@@ -357,6 +357,14 @@ LinearModesResult reduced_linear_modes(const ReducedModel& model, const Eigen::V
   return out;
 }
 
+Eigen::MatrixXd read_mat_matrix(const std::string& path, const std::string& name) {
+  core::require_regular_input(path, std::size_t{1} << 30, "MATLAB file");
+  MatFile mat(Mat_Open(path.c_str(), MAT_ACC_RDONLY));
+  if (!mat)
+    throw InvalidInput(fmt::format("\"{}\" is not a MATLAB .mat file (v5, v7 or v7.3)", path));
+  return require(mat.get(), name.c_str(), path);
+}
+
 LinearPrestress linear_prestress(const ReducedModel& model, double k_n) {
   if (!(k_n > 0))
     throw InvalidInput(fmt::format("normal_stiffness = {} Pa/m: give a value > 0", k_n));

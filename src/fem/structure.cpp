@@ -12,6 +12,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
+#include "asperity/fem/gap_map.hpp"
 #include "asperity/fem/mesh_io.hpp"
 
 namespace asperity::fem {
@@ -144,9 +145,9 @@ StructureCase read_structure_case(const std::string& path) {
   Reader r{path};
   StructureCase c;
   c.path = path;
-  tc::check_keys(
-      doc, "",
-      {"name", "geometry", "mesh", "material", "body", "interface", "bolt", "output", "reduction"});
+  tc::check_keys(doc, "",
+                 {"name", "geometry", "mesh", "material", "body", "interface", "bolt", "output",
+                  "reduction", "rough_contact"});
   c.name = r.text(doc, "name", "top level", std::filesystem::path(path).stem().string());
   const auto* geo = tc::subtable(doc, "geometry", "top level");
   const auto* mesh = tc::subtable(doc, "mesh", "top level");
@@ -263,6 +264,93 @@ StructureCase read_structure_case(const std::string& path) {
       }
       c.interfaces.push_back(si);
     }
+  if (const auto* rc = tc::subtable(doc, "rough_contact", "top level")) {
+    const std::string where = "[rough_contact]";
+    tc::check_keys(*rc, where,
+                   {"hardness", "sigma", "sigma_summits", "R", "eta", "surface_data",
+                    "asperity_model", "gap_map", "gap_variable", "gap_origin"});
+    RoughContactCase& rough = c.rough;
+    rough.given = true;
+    rough.hardness = r.quantity(*rc, "hardness", where, core::dim::pressure, 0);
+    if (rc->get("surface_data")) {
+      // A measured surface (the published BRB layout): Re [m], area_density [1/m^2] and the
+      // summit-height density pzinterp over normzinterp (fractions of z_max): its standard
+      // deviation is sigma_a.
+      for (const char* key : {"sigma", "sigma_summits", "R", "eta"})
+        if (rc->get(key))
+          r.fail(where, fmt::format("give `{}` or `surface_data`, not both", key), rc->get(key));
+      rough.surface_data =
+          (std::filesystem::path(file.base_dir) / r.text(*rc, "surface_data", where)).string();
+      const auto scalar = [&](const char* name) {
+        const Eigen::MatrixXd v = read_mat_matrix(rough.surface_data, name);
+        if (v.size() != 1 || !(v(0) > 0) || !std::isfinite(v(0)))
+          r.fail(where,
+                 fmt::format("\"{}\": {} must be one finite value > 0", rough.surface_data, name),
+                 rc->get("surface_data"));
+        return v(0);
+      };
+      rough.R = scalar("Re");
+      rough.eta = scalar("area_density");
+      const double z_max = scalar("z_max");
+      const Eigen::MatrixXd z = read_mat_matrix(rough.surface_data, "normzinterp");
+      const Eigen::MatrixXd pz = read_mat_matrix(rough.surface_data, "pzinterp");
+      if (z.size() != pz.size() || z.size() < 3 || !z.allFinite() || !pz.allFinite() ||
+          pz.minCoeff() < 0)
+        r.fail(where,
+               fmt::format("\"{}\": normzinterp and pzinterp must be equal-length finite tables "
+                           "(3 or more points) with a density >= 0",
+                           rough.surface_data),
+               rc->get("surface_data"));
+      double I = 0, m1 = 0, m2 = 0;  // trapezoidal moments of the summit density
+      for (Eigen::Index k = 0; k + 1 < z.size(); ++k) {
+        const double h = z(k + 1) - z(k);
+        if (!(h > 0))
+          r.fail(where, fmt::format("\"{}\": normzinterp must increase", rough.surface_data),
+                 rc->get("surface_data"));
+        I += 0.5 * h * (pz(k) + pz(k + 1));
+        m1 += 0.5 * h * (pz(k) * z(k) + pz(k + 1) * z(k + 1));
+        m2 += 0.5 * h * (pz(k) * z(k) * z(k) + pz(k + 1) * z(k + 1) * z(k + 1));
+      }
+      if (!(I > 0) || std::abs(I - 1.0) > 1e-3)
+        r.fail(where,
+               fmt::format("\"{}\": pzinterp integrates to {} over normzinterp; a probability "
+                           "density integrates to 1",
+                           rough.surface_data, I),
+               rc->get("surface_data"));
+      rough.sigma = z_max * std::sqrt(std::max(0.0, m2 / I - (m1 / I) * (m1 / I)));
+      rough.summit_sigma = true;
+    } else {
+      if (rc->get("sigma") && rc->get("sigma_summits"))
+        r.fail(where, "give `sigma` (surface heights) or `sigma_summits`, not both", rc);
+      rough.summit_sigma = rc->get("sigma_summits") != nullptr;
+      rough.sigma = r.quantity(*rc, rough.summit_sigma ? "sigma_summits" : "sigma", where,
+                               core::dim::length, 0);
+      rough.R = r.quantity(*rc, "R", where, core::dim::length, 0);
+      rough.eta = r.quantity(*rc, "eta", where, core::dim::inverse_area, 0);
+    }
+    for (const auto& [key, v] :
+         {std::pair{"hardness", rough.hardness}, std::pair{"sigma", rough.sigma},
+          std::pair{"R", rough.R}, std::pair{"eta", rough.eta}})
+      if (!(v > 0)) r.fail(where, fmt::format("`{}` = {}: give a value > 0", key, v), rc->get(key));
+    try {
+      rough.model = contact::parse_model_name(r.text(*rc, "asperity_model", where, "bke"));
+    } catch (const InvalidInput& e) {
+      r.fail(where, e.what(), rc->get("asperity_model"));
+    }
+    if (rc->get("gap_map")) {
+      rough.gap_map =
+          (std::filesystem::path(file.base_dir) / r.text(*rc, "gap_map", where)).string();
+      rough.gap_variable = r.text(*rc, "gap_variable", where, "mesoscale_xygap");
+      if (rc->get("gap_origin")) rough.gap_origin = r.point(*rc, "gap_origin", where);
+      try {
+        rough.gap = read_gap_map(rough.gap_map, rough.gap_variable);
+      } catch (const InvalidInput& e) {
+        r.fail(where, e.what(), rc->get("gap_map"));
+      }
+    } else if (rc->get("gap_origin") || rc->get("gap_variable")) {
+      r.fail(where, "`gap_origin` and `gap_variable` need a `gap_map`", rc);
+    }
+  }
   if (const auto* bolts = r.tables(doc, "bolt"))
     for (std::size_t i = 0; i < bolts->size(); ++i) {
       const auto& t = *(*bolts)[i].as_table();
@@ -453,6 +541,36 @@ StructureResult run_structure(const StructureCase& c, const StructureOptions& op
         {"stuck", reduced_linear_modes(m, kn_e + kt_e, c.modes, "stuck interface")});
   }
   step("prestress and linear modes");
+  if (c.rough.given && !c.interfaces.empty()) {
+    starting("rough prestress and linear modes");
+    // The first interface's bodies give E*, G* and nu (one rough surface for all).
+    const auto material_of = [&](const std::string& body) {
+      const auto it = std::find(c.body_names.begin(), c.body_names.end(), body);
+      const IsotropicMaterial& mat =
+          c.body_materials[static_cast<std::size_t>(it - c.body_names.begin())];
+      return contact::Material{.E = mat.E, .nu = mat.nu, .G = 0.0, .H = c.rough.hardness};
+    };
+    const auto ma = material_of(c.interfaces.front().spec.body_a);
+    const auto mb = material_of(c.interfaces.front().spec.body_b);
+    const auto flat = c.rough.summit_sigma
+                          ? surface::RoughFlat::from_summit_heights(
+                                ma, mb, c.rough.sigma, c.rough.eta, c.rough.R, 1.0, c.rough.model)
+                          : surface::RoughFlat::from_dimensional(ma, mb, c.rough.sigma, c.rough.eta,
+                                                                 c.rough.R, 1.0, c.rough.model);
+    const RoughSurfaceScales scales{
+        .sigma = c.rough.sigma, .pressure_scale = flat.scales()->force, .eta = c.rough.eta};
+    if (c.rough.gap) res.gap = gap_at_elements(*c.rough.gap, m, c.rough.gap_origin);
+    res.rough = rough_prestress(m, flat, scales, res.gap);
+    Eigen::VectorXd k = Eigen::VectorXd::Zero(ng);
+    for (Eigen::Index e = 0; e < static_cast<Eigen::Index>(m.elements.size()); ++e)
+      if (res.rough->in_contact[static_cast<std::size_t>(e)]) {
+        k[3 * e] = k[3 * e + 1] = res.rough->tangential_stiffness[e];
+        k[3 * e + 2] = res.rough->normal_stiffness[e];
+      }
+    res.analyses.push_back(
+        {"rough", reduced_linear_modes(m, k, c.modes, "rough interface at the prestress")});
+    step("rough prestress and linear modes");
+  }
   return res;
 }
 

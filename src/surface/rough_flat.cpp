@@ -183,7 +183,12 @@ void require_separation(double d_star) {
 }  // namespace
 
 void RoughFlatParameters::validate() const {
-  if (!std::isfinite(beta) || beta <= 0.01928) {
+  if (summit_sigma && !(std::isfinite(beta) && beta > 0.0)) {
+    throw InvalidInput(
+        fmt::format("beta = sigma_a R eta = {} is not allowed: give sigma_a, R and eta > 0",
+                    core::format_value(beta)));
+  }
+  if (!summit_sigma && (!std::isfinite(beta) || beta <= 0.01928)) {
     throw InvalidInput(fmt::format(
         "beta = sigma_s R eta = {} is not allowed: it must exceed 0.01928, below which "
         "sigma_a/sigma_s = sqrt(1 - 3.717e-4/beta^2) is not real (Eq. 4.2); check sigma, R and "
@@ -221,9 +226,45 @@ void RoughFlatParameters::validate() const {
 
 RoughFlat::RoughFlat(const RoughFlatParameters& params)
     : params_(params), laws_((params.validate(), params.model), params.nu, params.friction) {
-  s_a_ = std::sqrt(1.0 - 3.717e-4 / (params.beta * params.beta));
+  s_a_ = params.summit_sigma ? 1.0 : std::sqrt(1.0 - 3.717e-4 / (params.beta * params.beta));
   omega_c_star_ = s_a_ / (params.psi * params.psi);
   prefactor_ = 2.0 * std::numbers::pi / 3.0 * params.beta * omega_c_star_;
+}
+
+RoughFlat RoughFlat::from_summit_heights(const contact::Material& body1,
+                                         const contact::Material& body2, double sigma_summits,
+                                         double eta, double R, double A0, contact::ModelName model,
+                                         const contact::FrictionParameters& friction) {
+  core::require_positive("sigma_a (standard deviation of the summit heights)", sigma_summits);
+  core::require_positive("eta (areal density of asperities)", eta);
+  core::require_positive("R (mean asperity radius)", R);
+  core::require_positive("A0 (nominal area)", A0);
+  const auto pair = contact::ContactPair::combine(body1, body2, R);
+  RoughFlatParameters p;
+  p.model = model;
+  p.summit_sigma = true;
+  p.beta = sigma_summits * R * eta;
+  p.nu = pair.nu;
+  p.G_over_E = pair.G_star / pair.E_star;
+  p.friction = friction;
+  p.psi = 2.0 * pair.E_star / (std::numbers::pi * pair.K() * pair.H) * std::sqrt(sigma_summits / R);
+  try {
+    p.validate();
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format(
+        "{} (from E* = {} Pa, H = {} Pa of the softer material, sigma_a = {} m, R = {} m, "
+        "eta = {} 1/m^2)",
+        e.what(), core::format_value(pair.E_star), core::format_value(pair.H),
+        core::format_value(sigma_summits), core::format_value(R), core::format_value(eta)));
+  }
+  RoughFlat flat(p);
+  flat.scales_ = RoughFlatScales{.sigma = sigma_summits,
+                                 .force = pair.K() * pair.H * A0,
+                                 .A0 = A0,
+                                 .eta = eta,
+                                 .R = R,
+                                 .pair = pair};
+  return flat;
 }
 
 std::vector<std::string> RoughFlat::warnings() const {

@@ -69,6 +69,20 @@ def case_summary_keys(exe, tmp):
     # Equilibrium: the interface carries the bolt's tension (load-dependent Ritz vector).
     if abs(pre["interface_normal_force_N"] / pre["bolt_load_N"] - 1) > 1e-6:
         return fail(f"prestress {pre}")
+    # The rough flat's prestress ([rough_contact] of the example): the same equilibrium, to
+    # Newton's 1e-10 residual (1e-8 of the load allows for the reduced model's conditioning);
+    # a real contact area below the nominal one in contact; every linearised mode above the
+    # open interface's (Courant-Fischer again).
+    rough = s["rough_prestress"]
+    if abs(rough["interface_normal_force_N"] / rough["bolt_load_N"] - 1) > 1e-8:
+        return fail(f"rough prestress {rough}")
+    if rough["relative_residual"] > 1e-10 or not (
+        0 < rough["real_contact_area_m2"] < rough["contact_area_m2"]
+    ):
+        return fail(f"rough prestress {rough}")
+    f = lm["rough"]["frequency_hz"]
+    if len(f) != 8 or any(b < a * (1 - 1e-9) for a, b in zip(lm["open"]["frequency_hz"], f)):
+        return fail(f"rough: frequencies {f} against open {lm['open']['frequency_hz']}")
     return 0
 
 
@@ -77,7 +91,8 @@ def case_out_files(exe, tmp):
     p = run(exe, ["structure", EXAMPLE, "--out", out])
     if p.returncode != 0:
         return fail(f"exit {p.returncode}: {p.stderr}")
-    for name in ["summary.json", "reduced_model.mat", "structure.vtu", "mesh.png", "mode_1.png"]:
+    for name in ["summary.json", "reduced_model.mat", "structure.vtu", "mesh.png", "mode_1.png",
+                 "interface_pressure.png"]:
         if not os.path.getsize(os.path.join(out, name)) > 0:
             return fail(f"{name} missing or empty")
     m = scipy.io.loadmat(os.path.join(out, "reduced_model.mat"))
@@ -214,6 +229,22 @@ def case_bad_input_inverted_element(exe, tmp):
     text = ('[mesh]\nfile = "one.inp"\nunit = "mm"\n[[material]]\nname = "s"\nE = "200 GPa"\n'
             'nu = 0.3\nrho = "7800 kg/m^3"\n[[body]]\nname = "BLOCK"\nmaterial = "s"\n')
     return bad(exe, tmp, text, "is inverted")
+
+
+def case_bad_input_rough_two_sigmas(exe, tmp):
+    return bad(exe, tmp, TWO_BLOCKS.replace('sigma = "2.7 um"', 'sigma = "2.7 um"\nsigma_summits = "3 um"'),
+               "[rough_contact]: give `sigma` (surface heights) or `sigma_summits`, not both")
+
+
+def case_bad_input_rough_gap_map_missing(exe, tmp):
+    return bad(exe, tmp, TWO_BLOCKS.replace('asperity_model = "bke"',
+                                            'asperity_model = "bke"\ngap_map = "nowhere.mat"'),
+               "nowhere.mat")
+
+
+def case_bad_input_rough_hardness(exe, tmp):
+    return bad(exe, tmp, TWO_BLOCKS.replace('hardness = "5.8 GPa"', 'hardness = "-5.8 GPa"'),
+               "[rough_contact]: `hardness` = -5800000000: give a value > 0")
 
 
 CASES = {name[len("case_"):]: fn for name, fn in globals().items() if name.startswith("case_")}

@@ -15,6 +15,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/fem/bolt.hpp"
 #include "asperity/fem/elasticity.hpp"
+#include "asperity/fem/gap_map.hpp"
 #include "asperity/fem/interface.hpp"
 #include "asperity/fem/modes.hpp"
 #include "asperity/fem/reduced_model.hpp"
@@ -387,6 +388,49 @@ TEST(FemReduction, MoreRigidBodyModesThanFreeFreeIsRefused) {
       [&] { (void)reduced_linear_modes(m, Eigen::VectorXd::Zero(12), 4, "open interface"); },
       ::testing::ThrowsMessage<InvalidInput>(
           HasSubstr("12 rigid-body modes, more than a free-free")));
+}
+
+}  // namespace
+}  // namespace asperity::fem
+
+namespace asperity::fem {
+namespace {
+
+// The published BRB gap map (examples/brb, data README): 13284 points on a regular grid, 596
+// of them NaN (bolt holes), gaps 0 to 109 um. At a grid point the element's gap is the map's
+// value (bilinear weights 1, 0, 0, 0: round-off only); midway between four it is their mean;
+// outside the map the element is named.
+TEST(FemGapMap, PublishedBrbMap) {
+  const std::string path =
+      std::string(ASPERITY_TEST_DATA_DIR) + "/../../examples/brb/brb_surface_data.mat";
+  const GapMap map = read_gap_map(path);
+  EXPECT_EQ(map.nx * map.ny, 13284);
+  EXPECT_EQ(map.gap.array().isNaN().count(), 596);
+  const double gmax = map.gap.array().isNaN().select(0.0, map.gap).maxCoeff();
+  EXPECT_GT(gmax, 100e-6);
+  EXPECT_LT(gmax, 110e-6);
+  // A grid cell with four valid corners, away from the holes.
+  const Eigen::Index i = 3, j = 4;
+  ASSERT_FALSE(
+      std::isnan(map.gap(i, j) + map.gap(i + 1, j) + map.gap(i, j + 1) + map.gap(i + 1, j + 1)));
+  ReducedModel m;
+  const Eigen::Vector3d origin(0.36, 0.0127, 0.0127);
+  const auto at = [&](double fi, double fj) {
+    InterfaceElement e;
+    e.area = 1e-6;
+    e.centroid = origin + Eigen::Vector3d(map.x0 + fi * map.dx, map.y0 + fj * map.dy, 0.0);
+    return e;
+  };
+  m.elements = {at(i, j), at(i + 0.5, j + 0.5)};
+  const Eigen::VectorXd g = gap_at_elements(map, m, origin);
+  EXPECT_NEAR(g[0], map.gap(i, j), 1e-12 * gmax);
+  EXPECT_NEAR(
+      g[1], 0.25 * (map.gap(i, j) + map.gap(i + 1, j) + map.gap(i, j + 1) + map.gap(i + 1, j + 1)),
+      1e-12 * gmax);
+  m.elements.push_back(at(-3.0, 2.0));
+  EXPECT_THAT(
+      [&] { (void)gap_at_elements(map, m, origin); },
+      ::testing::ThrowsMessage<InvalidInput>(HasSubstr("does not cover interface element 2")));
 }
 
 }  // namespace

@@ -67,6 +67,10 @@ void write_reduced_model(const std::string& path, const ReducedModel& model);
 /// file and the missing or malformed matrix.
 [[nodiscard]] ReducedModel read_reduced_model(const std::string& path);
 
+/// A real 2-D matrix (full or sparse) named `name` in a MATLAB v5 file, as doubles;
+/// InvalidInput names the file and the variable when it is absent or not a real matrix.
+[[nodiscard]] Eigen::MatrixXd read_mat_matrix(const std::string& path, const std::string& name);
+
 /// Elastic modes of a reduced model with a linear interface stiffness per element and
 /// direction (k_e, 3N values, N/m; zero where the interface is open).
 struct LinearModesResult {

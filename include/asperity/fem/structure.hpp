@@ -2,6 +2,7 @@
 // A bolted structure from a case file to a reduced model and its linear modes: the steps
 // of `asperity structure` (beyond the thesis). See docs/structures.md for the case format.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -9,11 +10,13 @@
 
 #include "asperity/fem/bolt.hpp"
 #include "asperity/fem/elasticity.hpp"
+#include "asperity/fem/gap_map.hpp"
 #include "asperity/fem/geometry.hpp"
 #include "asperity/fem/interface.hpp"
 #include "asperity/fem/mesh.hpp"
 #include "asperity/fem/reduced_model.hpp"
 #include "asperity/fem/reduction.hpp"
+#include "asperity/fem/rough_prestress.hpp"
 
 namespace asperity::fem {
 
@@ -22,6 +25,24 @@ struct StructureInterface {
   InterfaceSpec spec;
   double normal_stiffness = 0.0;      ///< linear normal penalty [Pa/m] (> 0)
   double tangential_stiffness = 0.0;  ///< stuck tangential stiffness [Pa/m] (> 0)
+};
+
+/// The rough surfaces of the interfaces ([rough_contact]): the thesis's rough flat (chapter 4)
+/// as their normal law under the bolt preloads and their stiffness about that prestress.
+/// E*, G* and nu come from the bodies' materials; one rough surface for all interfaces.
+struct RoughContactCase {
+  bool given = false;
+  double hardness = 0.0;      ///< H of the softer body [Pa]
+  double sigma = 0.0;         ///< combined rms roughness [m] (or of the summits: summit_sigma)
+  bool summit_sigma = false;  ///< sigma is the summit heights' standard deviation
+  std::string surface_data;   ///< MATLAB file with Re, area_density, z_max, normzinterp, pzinterp
+  double R = 0.0;             ///< mean asperity radius [m]
+  double eta = 0.0;           ///< asperities per unit area [1/m^2]
+  contact::ModelName model = contact::ModelName::bke;
+  std::string gap_map;  ///< MATLAB file with a P x 3 (x, y, gap) grid; empty: no gap
+  std::string gap_variable = "mesoscale_xygap";
+  std::optional<GapMap> gap;  ///< read with the case (its errors are the case's)
+  Eigen::Vector3d gap_origin = Eigen::Vector3d::Zero();  ///< where the map's (0, 0) lies [m]
 };
 
 struct OutputPoint {
@@ -43,6 +64,7 @@ struct StructureCase {
   std::vector<BoltSpec> bolts;
   std::vector<OutputPoint> outputs;
   ReductionOptions reduction;
+  RoughContactCase rough;
   int modes = 10;  ///< elastic modes reported per linear analysis
 };
 
@@ -69,7 +91,9 @@ struct StructureResult {
   ReducedModel model;
   LinearPrestress prestress;             ///< frictionless, linear normal penalty
   double bolt_load_total = 0.0;          ///< sum of preloads [N]
-  std::vector<LinearAnalysis> analyses;  ///< open, frictionless, stuck
+  std::vector<LinearAnalysis> analyses;  ///< open, frictionless, stuck (and rough)
+  std::optional<RoughPrestress> rough;   ///< with [rough_contact]
+  Eigen::VectorXd gap;                   ///< per element [m] (empty without a gap map)
   std::vector<StepCost> costs;
   double total_mass = 0.0;  ///< [kg] bodies (elements) only
 };

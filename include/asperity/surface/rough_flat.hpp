@@ -50,6 +50,11 @@ struct RoughFlatParameters {
   double G_over_E = 0.0;  ///< G*/E*, in (0, 1) (0.2059 for identical materials, nu = 0.3)
   contact::FrictionParameters friction{};
   SlipScaling slip_scaling = SlipScaling::elastic;
+  /// True when the length scale is the standard deviation of the summit heights itself
+  /// (a measured summit distribution): sigma_a/sigma_s = 1, beta = sigma_a R eta in (0, 1/pi],
+  /// no McCool relation (Eq. 4.2's sigma_a/sigma_s = sqrt(1 - 3.717e-4/beta^2) is for sigma_s
+  /// the rms of the surface heights).
+  bool summit_sigma = false;
 
   void validate() const;
 };
@@ -85,6 +90,13 @@ class RoughFlat {
                                     contact::ModelName model,
                                     const contact::FrictionParameters& friction = {},
                                     SlipScaling scaling = SlipScaling::elastic);
+
+  /// As from_dimensional, with sigma_summits the standard deviation of the summit heights
+  /// (RoughFlatParameters::summit_sigma): the form a measured summit distribution gives.
+  static RoughFlat from_summit_heights(const contact::Material& body1,
+                                       const contact::Material& body2, double sigma_summits,
+                                       double eta, double R, double A0, contact::ModelName model,
+                                       const contact::FrictionParameters& friction = {});
 
   [[nodiscard]] const RoughFlatParameters& parameters() const { return params_; }
   [[nodiscard]] const std::optional<RoughFlatScales>& scales() const { return scales_; }
