@@ -338,3 +338,35 @@ TEST(RoughContactElement, RefusesBadInput) {
 
 }  // namespace
 }  // namespace asperity::vibration
+
+namespace asperity::surface {
+namespace {
+
+// A flat described by its summit heights' standard deviation (a measured summit
+// distribution) is the same physical flat as one described by the surface heights' rms
+// sigma_s with sigma_a = sqrt(1 - 3.717e-4/beta^2) sigma_s (Eq. 4.2): at the same separation
+// in metres, the same load and static friction (Eq. 4.4, 4.7) to the quadratures' 1e-12.
+TEST(RoughFlatSummitHeights, SameFlatAsFromTheSurfaceRms) {
+  const contact::Material steel{.E = 200e9, .nu = 0.3, .G = 0.0, .H = 5.8e9};
+  const double sigma = 2.7e-6, R = 30.1e-6, eta = 2.9e8;
+  const auto by_surface =
+      RoughFlat::from_dimensional(steel, steel, sigma, eta, R, 1.0, contact::ModelName::bke);
+  const double sigma_a = by_surface.sigma_a_over_sigma() * sigma;
+  const auto by_summits =
+      RoughFlat::from_summit_heights(steel, steel, sigma_a, eta, R, 1.0, contact::ModelName::bke);
+  EXPECT_EQ(by_summits.sigma_a_over_sigma(), 1.0);
+  EXPECT_LT(testing::rel(by_summits.parameters().psi, by_surface.parameters().psi), 1e-14);
+  for (double d : {0.5e-6, 2e-6, 5e-6}) {
+    EXPECT_LT(testing::rel(by_summits.normal_load_star(d / sigma_a),
+                           by_surface.normal_load_star(d / sigma)),
+              1e-12)
+        << d;
+    EXPECT_LT(testing::rel(by_summits.static_friction_star(d / sigma_a),
+                           by_surface.static_friction_star(d / sigma)),
+              1e-12)
+        << d;
+  }
+}
+
+}  // namespace
+}  // namespace asperity::surface
