@@ -20,6 +20,7 @@
 #include "asperity/joint/case.hpp"
 #include "asperity/joint/predict.hpp"
 #include "asperity/surface/rough_flat.hpp"
+#include "asperity/vibration/rough_contact.hpp"
 
 namespace asperity::vibration::detail {
 
@@ -298,7 +299,7 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
     throw InvalidInput(fmt::format(
         "{}: needs type = \"rough_flat\" | \"jenkins\" | \"iwan4\" | \"masing_table\" | "
         "\"coulomb\" | \"elastic_dry_friction_2d\" | \"polynomial_stiffness\" | "
-        "\"cubic_damping\"{}",
+        "\"cubic_damping\" | \"rough_contact\"{}",
         w, at_line(t)));
   }
   const std::string type = text(t, "type", w, "");
@@ -362,10 +363,36 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
   } else if (type == "masing_table") {
     check_keys(t, w, keys({"table", "preload", "displacement", "force"}));
     e = masing_table_element(t, w, base_dir);
+  } else if (type == "rough_contact") {
+    check_keys(t, w,
+               keys({"E_star", "G_star", "H", "nu", "sigma", "R", "eta", "asperity_model", "mu_cfc",
+                     "pressure", "area"}));
+    const std::string what = "a rough_contact element";
+    if (!t.get("nu")) throw InvalidInput(fmt::format("{}: {} needs nu{}", w, what, at_line(t)));
+    RoughInterfaceParameters rp{.E_star = need_si(t, "E_star", w, dim::pressure, what),
+                                .G_star = need_si(t, "G_star", w, dim::pressure, what),
+                                .H = need_si(t, "H", w, dim::pressure, what),
+                                .nu = number(t, "nu", w, 0.3),
+                                .sigma = need_si(t, "sigma", w, dim::length, what),
+                                .R = need_si(t, "R", w, dim::length, what),
+                                .eta = need_si(t, "eta", w, dim::inverse_area, what),
+                                .model = core::toml_case::named_choice(
+                                    t, "asperity_model", w, "bke", contact::parse_model_name),
+                                .friction = {}};
+    if (t.get("mu_cfc")) rp.friction.mu_cfc = number(t, "mu_cfc", w, 0.0);
+    const double p0 = need_si(t, "pressure", w, dim::pressure, what);
+    const double area = need_si(t, "area", w, dim::area, what);
+    // Tables from p0/8 to 8 p0 (48 backbones): the normal pressure of a vibrating element
+    // stays within them unless it nearly opens (below: shape frozen, scaled) or is pressed
+    // eight times harder than by its prestress (refused, naming the element).
+    core::require_positive(w + ".pressure", p0);
+    const auto surface = std::make_shared<const RoughContactSurface>(rp, p0 / 8.0, p0 * 8.0);
+    e = std::make_shared<RoughContactElement>(surface, area, p0, w);
   } else {
     throw InvalidInput(
         fmt::format("{}.type = \"{}\" is not known: use rough_flat, jenkins, iwan4, masing_table, "
-                    "coulomb, elastic_dry_friction_2d, polynomial_stiffness or cubic_damping{}",
+                    "coulomb, elastic_dry_friction_2d, polynomial_stiffness, cubic_damping or "
+                    "rough_contact{}",
                     w, type, at_line(t)));
   }
   PlacedElement pe;
@@ -403,11 +430,20 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
     pe.T.resize(static_cast<Eigen::Index>(dirs->size()), dofs);
     for (std::size_t k = 0; k < dirs->size(); ++k) {
       const auto d = (*dirs)[k].value<std::string>();
-      const int col = !d ? -1 : *d == "t1" ? 0 : *d == "t2" ? 1 : *d == "n" ? 2 : -1;
+      // "-n": the closure (the negative of Q's normal row, the opening), as rough_contact takes.
+      const int col = !d           ? -1
+                      : *d == "t1" ? 0
+                      : *d == "t2" ? 1
+                      : *d == "n"  ? 2
+                      : *d == "-n" ? 3
+                                   : -1;
       if (col < 0)
-        throw InvalidInput(
-            fmt::format("{}.T.directions[{}]: use \"t1\", \"t2\" or \"n\"{}", w, k, at_line(*T)));
-      pe.T.row(static_cast<Eigen::Index>(k)) = model->Q.row(3 * *e_idx + col);
+        throw InvalidInput(fmt::format(
+            "{}.T.directions[{}]: use \"t1\", \"t2\", \"n\" (opening) or \"-n\" (closure){}", w, k,
+            at_line(*T)));
+      pe.T.row(static_cast<Eigen::Index>(k)) =
+          col == 3 ? Eigen::RowVectorXd(-model->Q.row(3 * *e_idx + 2))
+                   : Eigen::RowVectorXd(model->Q.row(3 * *e_idx + col));
     }
   } else {
     pe.T = matrix(*T, w + ".T", true);

@@ -643,6 +643,44 @@ continuation = { max_iterations = 2, target_iterations = 1 }
 }
 
 
+def rough_contact_equals_rough_flat(exe):
+    """The 3-D rough_contact element of examples/vibration/rough_contact_3d.toml moved along
+    t1 at constant normal load is the rough_flat element at the same preload (the same
+    table, the same Masing memory): the mode-1 backbones agree point by point to 1e-10
+    (round-off of two continuations along the same path)."""
+    with open(os.path.join(EXAMPLES, "rough_contact_3d.toml")) as f:
+        text = f.read()
+    one_d = "\n".join([
+        "[structure]", "mass = [[1.0]]", "stiffness = [[1e8]]", "damping = [[20.0]]",
+        "output_dofs = [0]", "[[element]]", 'type = "rough_flat"', 'backbone = "dimensional"',
+        'E_star = "106 GPa"', 'G_star = "22.9 GPa"', 'H = "5.8 GPa"', "nu = 0.3",
+        'sigma = "2.7 um"', 'R = "30.1 um"', 'eta = "2.9e8 m^-2"', 'A0 = "170 mm^2"',
+        'P = "525.98 N"', 'asperity_model = "bke"', "T = [[1.0]]", "[harmonic_balance]",
+        "max = 3", "time_points = 128", "[nonlinear_mode]", "mode = 1",
+        "log10_amplitude = { from = -9.0, to = -5.0 }", ""])
+    got = {}
+    for name, case in [("3d", text), ("1d", one_d)]:
+        with tempfile.TemporaryDirectory() as tmp:
+            r, out = run(exe, case, tmp)
+            if r.returncode != 0:
+                return fail(f"{name}: exit {r.returncode}: {r.stderr}")
+            with open(os.path.join(out, "summary.json")) as f:
+                got[name] = json.load(f)["nonlinear_mode"]
+    a, b = got["3d"], got["1d"]
+    if len(a["frequency_hz"]) != len(b["frequency_hz"]) or len(a["frequency_hz"]) < 20:
+        return fail(f"points: {len(a['frequency_hz'])} against {len(b['frequency_hz'])}")
+    for key in ["frequency_hz", "damping_ratio", "amplitude"]:
+        for x, y in zip(a[key], b[key]):
+            if abs(x - y) > 1e-10 * abs(y):
+                return fail(f"{key}: {x} against the rough flat's {y}")
+    # Microslip softens and damps: the backbone falls from the stuck 5 kHz towards the
+    # flexure alone (1.6 kHz) as the damping ratio rises.
+    f, z = a["frequency_hz"], a["damping_ratio"]
+    if not (f[0] > 4900 and f[-1] < 0.5 * f[0] and z[-1] > 10 * z[0]):
+        return fail(f"backbone {f[0]} -> {f[-1]} Hz, damping {z[0]} -> {z[-1]}")
+    return 0
+
+
 def main():
     exe, case = sys.argv[1], sys.argv[2]
     if case.startswith("bad_input."):
@@ -662,6 +700,7 @@ def main():
         "rough_flat_forms": rough_flat_forms,
         "masing_table_from_predict": masing_table_from_predict,
         "masing_table_from_flat": masing_table_from_flat,
+        "rough_contact_equals_rough_flat": rough_contact_equals_rough_flat,
     }[case](exe)
 
 
