@@ -148,6 +148,7 @@ bool from_profiles(const joint::JointCase& c) {
 
 // Where each half's roughness came from (parameters, or scans and their directions) and
 // the resulting parameters.
+Json processing_json(const joint::ProfileSettings& s);
 Json halves_json(const joint::JointCase& c) {
   Json halves = Json::array();
   for (const auto& h : c.halves) {
@@ -160,6 +161,7 @@ Json halves_json(const joint::JointCase& c) {
                              {"direction", i < r.directions.size() ? r.directions[i] : ""}});
       }
       j["profiles"] = scans;
+      j["processing"] = processing_json(h.profile_settings);
     }
     j["sigma"] = r.moments.sigma();
     j["eta"] = r.moments.eta();
@@ -247,10 +249,19 @@ std::string prediction_summary(const joint::JointCase& c, const joint::JointPred
         ov->fretting_yield_point, ov->hardening_coefficient * 1e-6);
   }
   if (from_profiles(c)) {
-    const auto& ps = c.profile_settings;
     const auto cut = [](double v, double scale, const char* unit) {
       return v > 0.0 ? fmt::format("{:.4g} {}", v * scale, unit) : std::string("none");
     };
+    const auto settings = [&](const joint::ProfileSettings& ps) {
+      return fmt::format(
+          "level {}, Gaussian filter lc = {}, ls = {} (end effects {}), rule {} (Eq. 5.1)",
+          surface::to_string(ps.level), cut(ps.filter.lc, 1e3, "mm"), cut(ps.filter.ls, 1e6, "um"),
+          surface::to_string(ps.filter.end), surface::to_string(ps.rule));
+    };
+    // One line for the scans when both halves were processed alike, else one per half.
+    const bool alike =
+        settings(c.halves[0].profile_settings) == settings(c.halves[1].profile_settings) ||
+        c.halves[0].roughness.profiles.empty() || c.halves[1].roughness.profiles.empty();
     for (std::size_t i = 0; i < 2; ++i) {
       const auto& r = c.halves[i].roughness;
       std::string files;
@@ -258,12 +269,12 @@ std::string prediction_summary(const joint::JointCase& c, const joint::JointPred
       s += fmt::format("half {}: sigma = {:.4g} um, eta = {:.4g} um^-2, R = {:.4g} um ({})\n",
                        i + 1, r.moments.sigma() * 1e6, r.moments.eta() * 1e-12, r.moments.R() * 1e6,
                        files.empty() ? "given as parameters" : files);
+      if (!alike) s += fmt::format("  its scans: {}\n", settings(c.halves[i].profile_settings));
     }
-    s += fmt::format(
-        "scans: level {}, Gaussian filter lc = {}, ls = {} (end effects {}), rule {} (Eq. "
-        "5.1)\n",
-        surface::to_string(ps.level), cut(ps.filter.lc, 1e3, "mm"), cut(ps.filter.ls, 1e6, "um"),
-        surface::to_string(ps.filter.end), surface::to_string(ps.rule));
+    if (alike) {
+      const auto& h = c.halves[0].roughness.profiles.empty() ? c.halves[1] : c.halves[0];
+      s += fmt::format("scans: {}\n", settings(h.profile_settings));
+    }
   }
   const bool torques = c.bolts.has_value();
   s += fmt::format("\n{:>11} {}{:>10} {:>10} {:>8} {:>10} {:>10} {:>9}\n", "preload[N]",
