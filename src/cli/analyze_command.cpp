@@ -829,6 +829,12 @@ void add_synthesize_command(CLI::App& app, std::function<int()>& action) {
         s.sample_rate = required_quantity(o->rate, dim::frequency, "--rate");
         if (!(s.excitation.amplitude > 0.0) || !std::isfinite(s.excitation.amplitude))
           throw InvalidInput(fmt::format("--imposed = {}: must be > 0", *o->imposed));
+        if (s.excitation.amplitude > joint::kMaxImposedAmplitude) {
+          throw InvalidInput(fmt::format(
+              "--imposed = {} is not allowed: at most 1 mm, beyond the stroke of fretting PZT "
+              "stacks (the thesis's 2.25-18 um, section 6.2); check the unit",
+              *o->imposed));
+        }
         if (!(s.excitation.frequency > 0.0) || !std::isfinite(s.excitation.frequency))
           throw InvalidInput(fmt::format("--frequency = {}: must be > 0", *o->frequency));
         if (!(s.sample_rate > 0.0) || !std::isfinite(s.sample_rate))

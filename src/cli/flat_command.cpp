@@ -53,6 +53,20 @@ double number(const std::optional<std::string>& text, const std::string& flag) {
   return required_quantity(text, dim::dimensionless, flag);
 }
 
+// A history value beyond `limit` (in the column's own units) is a unit or typing slip: a
+// tangential displacement of a joint above 1 m (or 1e6 sigma) is no fretting.
+void require_plausible_history(const std::vector<double>& x, double limit, const std::string& file,
+                               const std::string& column, const std::string& what) {
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (std::abs(x[i]) > limit) {
+      throw InvalidInput(fmt::format(
+          "{}: row {} of column {}: {} is not allowed: |{}| must be at most {}; a joint's "
+          "tangential displacement beyond that is no fretting (check the unit)",
+          file, i + 1, column, core::format_value(x[i]), column, what));
+    }
+  }
+}
+
 // --case CASE.toml --history H.csv --out F.csv [--P 526N]: the force history of a joint
 // case (its [interface] field in patches, or the uniform flat) by Masing's rules on its
 // SI backbone, the one predict and dynamics use (docs/joints.md).
@@ -89,6 +103,7 @@ void run_flat_case(const FlatOptions& o, std::string& out) {
         "{}: --case needs a \"delta[unit]\" column (dimensional: the case is)", *o.history_csv));
   }
   const auto x = csv.si_values(*col, dim::length);
+  require_plausible_history(x, 1.0, *o.history_csv, "delta [m]", "1 m");
   const auto lp = joint::predict_case_load(c, P);
   // Masing on the case's backbone, or the Odfalk-Vingsbo law in series with it.
   const auto Q =
@@ -300,6 +315,8 @@ void run_flat(const FlatOptions& o, std::string& out) {
     }
     if (c_star) {
       history_star = csv.si_values(*c_star, dim::dimensionless);
+      require_plausible_history(history_star, 1e6, *o.history_csv, "delta_star",
+                                "1e6 (a million times sigma)");
     } else if (c_si) {
       if (!scales) {
         throw InvalidInput(
@@ -308,6 +325,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
                         *o.history_csv));
       }
       history_star = csv.si_values(*c_si, dim::length);
+      require_plausible_history(history_star, 1.0, *o.history_csv, "delta [m]", "1 m");
       for (auto& v : history_star) v /= scales->sigma;
       history_si = true;
     } else {
