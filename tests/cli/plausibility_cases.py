@@ -174,5 +174,24 @@ def case_dynamics_frequency_of_a_million_says_its_cost(exe, src, tmp):
             check("expect about 1.8e+07 integration steps" in line, line)
 
 
+def case_x3p_every_third_point_invalid_names_the_gaps(exe, src, tmp):
+    # A 3 mm profile with every third point missing was refused as "the profile (2 points)
+    # is shorter than the filter needs", as if the scan were short.
+    sys.path.insert(0, os.path.join(src, "tests/data/x3p"))
+    import make_fixtures as m  # the fixtures' X3P writer
+    n = 3000
+    vals = [None if k % 3 == 2 else f"{1e-6 * math.sin(0.05 * k):.6e}" for k in range(n)]
+    datums = "".join("\n      <Datum/>" if t is None else f"\n      <Datum>{t}</Datum>"
+                     for t in vals)
+    xml = (m.HEADER + m.record1("PRF", ("1.0e-6", "0"), ("1.0e-6", "0"), ("D", "1", "0"))
+           + m.RECORD2 + "  <Record3>\n" + m.dimension(n, 1)
+           + f"    <DataList>{datums}\n    </DataList>\n  </Record3>\n" + m.RECORD4).encode()
+    m.write_archive(os.path.join(tmp, "gaps.x3p"), [("main.xml", xml)])
+    r = run(exe, ["roughness", "--surface", "gaps.x3p"], tmp)
+    expect_exit2(r, "gaps.x3p: 1000 of the file's 3000 points are invalid",
+                 "longest run of consecutive valid points", "has 2 points", "fill the gaps")
+    check(r.stderr.index("invalid") < r.stderr.index("shorter than the filter"), r.stderr)
+
+
 if __name__ == "__main__":
     sys.exit(main(globals()))
