@@ -206,6 +206,37 @@ def main():
         if abs(abs(area) - W) > 1e-3 * W:
             return fail(f"loop area {area} against energy {W}")
         return 0
+    if case == "odfalk_vingsbo_case":
+        # flat --case follows a history with the case's Odfalk-Vingsbo law (the history
+        # operator); predict gives the same steady peak from the closed form (the root of
+        # x_m = x_l(Q_m) + (Q_m - Q_ty)/(2 k_p)): 1e-9 covers both roots' rounding.
+        src = os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../examples/joints")
+        with open(os.path.join(src, "steel_rough.toml")) as f:
+            text = f.read()
+        text = text.split("[excitation]")[0] + (
+            '[excitation]\namplitudes = ["1 um"]\n[interface]\ntangential = "odfalk_vingsbo"\n'
+            'fretting_yield_point = "20 N"\nhardening_coefficient = "50 N/um"\n')
+        case_file = os.path.join(tmp, "ov.toml")
+        write(case_file, text)
+        r = run(exe, ["predict", case_file, "--json"])
+        if r.returncode != 0:
+            return fail(r.stderr)
+        load = json.loads(r.stdout)["loads"][0]
+        Q_peak, P = load["amplitudes"][0]["Q_peak"], load["preload"]
+        hist = os.path.join(tmp, "h.csv")
+        path = ([i / 100 for i in range(101)] + [1 - i / 50 for i in range(1, 101)]
+                + [-1 + i / 50 for i in range(1, 101)])
+        write(hist, "delta[um]\n" + "\n".join(f"{x!r}" for x in path) + "\n")
+        out = os.path.join(tmp, "out.csv")
+        r = run(exe, ["flat", "--case", case_file, "--history", hist, "--out", out, f"--P={P!r}N"])
+        if r.returncode != 0:
+            return fail(r.stderr)
+        with open(out) as f:
+            Q = [float(row[1]) for row in list(csv.reader(f))[1:]]
+        for k, want in ((100, Q_peak), (200, -Q_peak), (300, Q_peak)):
+            if abs(Q[k] - want) > 1e-9 * Q_peak:
+                return fail(f"Q[{k}] = {Q[k]} against {want}")
+        return 0
     hist = os.path.join(tmp, "h.csv")
     out = os.path.join(tmp, "out.csv")
     cases = {
