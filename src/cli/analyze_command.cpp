@@ -719,7 +719,7 @@ void add_analyze_command(CLI::App& app, std::function<int()>& action) {
                 loops.series.push_back(fs);
               }
               if (r.model) {
-                auto [x, Q] = joint::steady_loop(*r.model->backbone, r.a.mean.delta_max, 100);
+                auto [x, Q] = joint::steady_loop(*r.model, r.a.mean.delta_max, 100);
                 Series m{single ? "model" : fmt::format("{} (model)", base_name(r.file)),
                          {},
                          {},
@@ -829,6 +829,12 @@ void add_synthesize_command(CLI::App& app, std::function<int()>& action) {
         s.sample_rate = required_quantity(o->rate, dim::frequency, "--rate");
         if (!(s.excitation.amplitude > 0.0) || !std::isfinite(s.excitation.amplitude))
           throw InvalidInput(fmt::format("--imposed = {}: must be > 0", *o->imposed));
+        if (s.excitation.amplitude > joint::kMaxImposedAmplitude) {
+          throw InvalidInput(fmt::format(
+              "--imposed = {} is not allowed: at most 1 mm, beyond the stroke of fretting PZT "
+              "stacks (the thesis's 2.25-18 um, section 6.2); check the unit",
+              *o->imposed));
+        }
         if (!(s.excitation.frequency > 0.0) || !std::isfinite(s.excitation.frequency))
           throw InvalidInput(fmt::format("--frequency = {}: must be > 0", *o->frequency));
         if (!(s.sample_rate > 0.0) || !std::isfinite(s.sample_rate))
@@ -869,6 +875,12 @@ void add_synthesize_command(CLI::App& app, std::function<int()>& action) {
         core::require_positive("--k-lc", s.load_cell_stiffness);
         s.seed = o->seed;
         const auto lp = joint::predict_case_load(c, P);  // with the case's [interface]
+        if (lp.odfalk_vingsbo) {
+          throw InvalidInput(
+              fmt::format("{}: interface.tangential = \"odfalk_vingsbo\": synthesize simulates the "
+                          "apparatus on a Masing backbone only; use tangential = \"mindlin\"",
+                          c.interface.origin));
+        }
         const auto d = joint::synthetic_experiment(lp.backbone, s);
         std::vector<std::vector<double>> cols(o->no_imposed ? 3 : 4);
         cols[0] = d.t;

@@ -67,6 +67,9 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
     require_case_output_directory(*o.out_dir, o.case_file);
   }
   const DynamicsCase c = read_case_file(o.case_file);
+  // A long run says so before it starts (and one beyond max_steps is refused here).
+  const std::string cost = expected_cost_warning(c);
+  if (!cost.empty()) fmt::print(stderr, "warning: {}\n", cost);
   // Only what is asked for is kept: the summary's samples (run_case summary_only), the
   // time history streamed to timeseries.csv in chunks as the integration produces it
   // (every --decimate'th sample, events and the final state always), thinned plot series.
@@ -196,7 +199,9 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
     dir.commit();
   }
 
-  for (const auto& w : r.warnings) fmt::print(stderr, "warning: {}\n", w);
+  for (const auto& w : r.warnings) {
+    if (w != cost) fmt::print(stderr, "warning: {}\n", w);  // said before the run
+  }
   if (stdout_is_data || kind == OutKind::file) {
     const std::string summary_json = json_output(to_json(r.summary));
     if (kind == OutKind::file) write_file_atomically(*o.out_dir, summary_json);

@@ -12,6 +12,7 @@
 #include "asperity/core/validate.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 #include "asperity/hysteresis/masing.hpp"
+#include "asperity/hysteresis/odfalk_vingsbo.hpp"
 #include "asperity/hysteresis/table_backbone.hpp"
 #include "asperity/joint/case.hpp"
 #include "asperity/joint/output_dir.hpp"
@@ -36,6 +37,8 @@ struct FlatOptions {
   std::string model = "bke";
   std::optional<std::string> mu_cfc, zeta;
   std::string slip_scaling = "elastic";
+  std::string tangential = "mindlin";
+  std::optional<std::string> fretting_yield_point, hardening_coefficient;
   bool json = false;
   std::optional<std::string> history_csv, out_csv, loop_csv, plot_png, backbone_csv;
   std::size_t points = 201;
@@ -50,17 +53,33 @@ double number(const std::optional<std::string>& text, const std::string& flag) {
   return required_quantity(text, dim::dimensionless, flag);
 }
 
+// A history value beyond `limit` (in the column's own units) is a unit or typing slip: a
+// tangential displacement of a joint above 1 m (or 1e6 sigma) is no fretting.
+void require_plausible_history(const std::vector<double>& x, double limit, const std::string& file,
+                               const std::string& column, const std::string& what) {
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (std::abs(x[i]) > limit) {
+      throw InvalidInput(fmt::format(
+          "{}: row {} of column {}: {} is not allowed: |{}| must be at most {}; a joint's "
+          "tangential displacement beyond that is no fretting (check the unit)",
+          file, i + 1, column, core::format_value(x[i]), column, what));
+    }
+  }
+}
+
 // --case CASE.toml --history H.csv --out F.csv [--P 526N]: the force history of a joint
 // case (its [interface] field in patches, or the uniform flat) by Masing's rules on its
 // SI backbone, the one predict and dynamics use (docs/joints.md).
 void run_flat_case(const FlatOptions& o, std::string& out) {
   const bool others = o.beta || o.psi || o.nu || o.P_star || o.G_over_E || o.delta_star_max ||
                       any_material_flag(o.materials) || o.sigma || o.eta || o.R || o.area ||
-                      o.delta_max || o.mu_cfc || o.zeta || o.loop_csv || o.plot_png || o.json;
+                      o.delta_max || o.mu_cfc || o.zeta || o.loop_csv || o.plot_png || o.json ||
+                      o.fretting_yield_point || o.hardening_coefficient ||
+                      lowercase(o.tangential) != "mindlin";
   if (others) {
     throw InvalidInput(
-        "--case takes the joint from the case file: give only --history, --out and optionally "
-        "--P (the preload, when the case has several)");
+        "--case takes the joint from the case file (its [interface] tangential law too): give only "
+        "--history, --out and optionally --P (the preload, when the case has several)");
   }
   if (!o.history_csv || !o.out_csv)
     throw InvalidInput("--case needs --history FILE.csv and --out FILE.csv");
@@ -84,9 +103,13 @@ void run_flat_case(const FlatOptions& o, std::string& out) {
         "{}: --case needs a \"delta[unit]\" column (dimensional: the case is)", *o.history_csv));
   }
   const auto x = csv.si_values(*col, dim::length);
+  require_plausible_history(x, 1.0, *o.history_csv, "delta [m]", "1 m");
   const auto lp = joint::predict_case_load(c, P);
-  const hysteresis::Hysteresis h(lp.backbone);
-  const auto Q = h.forces(x);
+  // Masing on the case's backbone, or the Odfalk-Vingsbo law in series with it.
+  const auto Q =
+      lp.odfalk_vingsbo
+          ? hysteresis::OdfalkVingsboHysteresis(lp.backbone, *lp.odfalk_vingsbo).forces(x)
+          : hysteresis::Hysteresis(lp.backbone).forces(x);
   core::write_csv_table(*o.out_csv, {"delta[m]", "Q[N]"}, {x, Q});
   out = fmt::format(
       "{} at P = {:.6g} N: Q_max = {:.6g} N, stiffness {:.6g} N/um, {} patch{}; wrote {} ({} "
@@ -121,6 +144,43 @@ void run_flat(const FlatOptions& o, std::string& out) {
         o.slip_scaling));
   }
 
+  // The tangential law: Cattaneo-Mindlin, or the Odfalk-Vingsbo parallelogram (Eq. 3.10) in
+  // series with it, whose two parameters only a measurement gives.
+  std::optional<hysteresis::OdfalkVingsboParameters> ov;
+  const std::string law = lowercase(o.tangential);
+  if (law == "odfalk-vingsbo" || law == "odfalk_vingsbo") {
+    if (!o.fretting_yield_point || !o.hardening_coefficient) {
+      throw InvalidInput(fmt::format(
+          "--tangential odfalk-vingsbo needs {}: the Odfalk-Vingsbo law (Eq. 3.10) takes the "
+          "fretting yield point Q_ty and the hardening coefficient k_p, which the thesis says are "
+          "obtained experimentally and could not be generalized (section 3.3); asperity has no "
+          "physics-based value for them and fits none: give both from fretting loops measured on "
+          "this contact, e.g. --fretting-yield-point 20N --hardening-coefficient 5N/um",
+          !o.fretting_yield_point ? "--fretting-yield-point" : "--hardening-coefficient"));
+    }
+    ov = hysteresis::OdfalkVingsboParameters{
+        .fretting_yield_point =
+            required_quantity(o.fretting_yield_point, dim::force, "--fretting-yield-point"),
+        .hardening_coefficient =
+            required_quantity(o.hardening_coefficient, dim::stiffness, "--hardening-coefficient")};
+    core::require_positive("--fretting-yield-point", ov->fretting_yield_point);
+    core::require_finite("--fretting-yield-point", ov->fretting_yield_point);
+    core::require_positive("--hardening-coefficient", ov->hardening_coefficient);
+    core::require_finite("--hardening-coefficient", ov->hardening_coefficient);
+  } else if (law == "mindlin") {
+    if (o.fretting_yield_point || o.hardening_coefficient) {
+      throw InvalidInput(
+          "--fretting-yield-point and --hardening-coefficient are used only with --tangential "
+          "odfalk-vingsbo");
+    }
+  } else {
+    throw InvalidInput(fmt::format(
+        "--tangential \"{}\" is unknown: allowed are mindlin (Cattaneo-Mindlin, default) and "
+        "odfalk-vingsbo (Eq. 3.10, with measured --fretting-yield-point and "
+        "--hardening-coefficient)",
+        o.tangential));
+  }
+
   const bool dimensional =
       any_material_flag(o.materials) || o.sigma || o.eta || o.R || o.area || o.P || o.delta_max;
   const bool normalized = o.beta || o.psi || o.nu || o.P_star || o.G_over_E || o.delta_star_max;
@@ -128,6 +188,11 @@ void run_flat(const FlatOptions& o, std::string& out) {
     throw InvalidInput(
         "mixing normalized flags (--beta --psi --nu --P-star --G-over-E --delta-star-max) with "
         "dimensional ones (materials, --sigma --eta --R --area --P --delta-max): use one set");
+  }
+  if (ov && normalized) {
+    throw InvalidInput(
+        "--tangential odfalk-vingsbo takes its measured Q_ty [N] and k_p [N/m] in SI: give the "
+        "dimensional inputs (materials, --sigma --eta --R --area --P)");
   }
   if (!dimensional && !normalized) {
     throw InvalidInput(
@@ -226,6 +291,12 @@ void run_flat(const FlatOptions& o, std::string& out) {
     }
   }
   const auto& scales = flat->scales();
+  if (o.backbone_csv && ov) {
+    throw InvalidInput(
+        "--backbone writes a Masing backbone for a masing_table element; the Odfalk-Vingsbo law "
+        "is not Masing's (its plastic slip starts at -+Q_ty, not at a scaled reversal): leave out "
+        "--backbone or --tangential");
+  }
   if (o.backbone_csv && !scales) {
     throw InvalidInput(
         "--backbone writes the backbone in SI (N against m) for a masing_table element: give the "
@@ -244,6 +315,8 @@ void run_flat(const FlatOptions& o, std::string& out) {
     }
     if (c_star) {
       history_star = csv.si_values(*c_star, dim::dimensionless);
+      require_plausible_history(history_star, 1e6, *o.history_csv, "delta_star",
+                                "1e6 (a million times sigma)");
     } else if (c_si) {
       if (!scales) {
         throw InvalidInput(
@@ -252,6 +325,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
                         *o.history_csv));
       }
       history_star = csv.si_values(*c_si, dim::length);
+      require_plausible_history(history_star, 1.0, *o.history_csv, "delta [m]", "1 m");
       for (auto& v : history_star) v /= scales->sigma;
       history_si = true;
     } else {
@@ -275,6 +349,13 @@ void run_flat(const FlatOptions& o, std::string& out) {
   }
   std::shared_ptr<const surface::RoughFlatBackbone> table;
   if (need_table && Q_max > 0.0) table = flat->backbone(d);
+  // The Odfalk-Vingsbo parameters on the normalized table's scales (x/sigma, Q/(K H A0)).
+  std::optional<hysteresis::OdfalkVingsboParameters> ov_star;
+  if (ov) {
+    ov_star = hysteresis::OdfalkVingsboParameters{
+        .fretting_yield_point = ov->fretting_yield_point / scales->force,
+        .hardening_coefficient = ov->hardening_coefficient * scales->sigma / scales->force};
+  }
 
   // Inputs outside the range of the thesis's laws, and an implausible result: said on
   // stderr and in the JSON's "warnings".
@@ -288,7 +369,13 @@ void run_flat(const FlatOptions& o, std::string& out) {
 
   std::optional<double> Q_amp, energy;
   std::optional<std::string> regime;
-  if (amplitude_star) {
+  if (amplitude_star && ov_star && table) {
+    // Eq. 3.10's steady cycle: the regime from the elastic (interface) amplitude.
+    const auto cycle = hysteresis::odfalk_vingsbo_cycle(*table, *ov_star, *amplitude_star);
+    Q_amp = cycle.Q_m;
+    energy = cycle.energy;
+    regime = cycle.elastic_amplitude >= table->table_end() ? "gross_slip" : "partial_slip";
+  } else if (amplitude_star) {
     Q_amp = table ? table->force(*amplitude_star) : 0.0;
     energy = table ? hysteresis::energy_per_cycle(*table, *amplitude_star) : 0.0;
     // Gross slip when the loading curve has reached the static friction (to the table's
@@ -332,6 +419,10 @@ void run_flat(const FlatOptions& o, std::string& out) {
         j["energy"] = *energy * scales->force * scales->sigma;
       }
     }
+    j["tangential"] = ov ? Json{{"law", "odfalk_vingsbo"},
+                                {"fretting_yield_point", ov->fretting_yield_point},
+                                {"hardening_coefficient", ov->hardening_coefficient}}
+                         : Json{{"law", "mindlin"}};
     j["warnings"] = warnings;
     out += json_output(j);
   } else if (!stdout_is_data) {
@@ -344,6 +435,12 @@ void run_flat(const FlatOptions& o, std::string& out) {
         "  P* = {:.5g}   separation d* = {:.5g}   Q*_max = {:.5g}   mu = {:.4g}   "
         "stiffness* = {:.5g}\n",
         P_star, d, Q_max, Q_max / P_star, k);
+    if (ov) {
+      out += fmt::format(
+          "  tangential law: Odfalk-Vingsbo (Eq. 3.10), Q_ty = {:.5g} N, k_p = {:.5g} N/um, as "
+          "given (measured, not predicted)\n",
+          ov->fretting_yield_point, ov->hardening_coefficient * 1e-6);
+    }
     if (scales) {
       out += fmt::format(
           "  P = {:.5g} N   separation = {:.4g} um   Q_max = {:.5g} N   "
@@ -371,7 +468,16 @@ void run_flat(const FlatOptions& o, std::string& out) {
   // Every output is written into a temporary first and renamed at the end: all or none.
   core::OutputSet outputs;
   if (o.loop_csv || o.plot_png) {
-    hysteresis::Hysteresis h(table);
+    std::optional<hysteresis::Hysteresis> masing;
+    std::optional<hysteresis::OdfalkVingsboHysteresis> elastic_plastic;
+    if (ov_star) {
+      elastic_plastic.emplace(table, *ov_star);
+    } else {
+      masing.emplace(table);
+    }
+    const auto update = [&](double v) {
+      return elastic_plastic ? elastic_plastic->update(v) : masing->update(v);
+    };
     const double dm = *amplitude_star;
     std::vector<double> x, q;
     const std::size_t n = points;
@@ -379,7 +485,7 @@ void run_flat(const FlatOptions& o, std::string& out) {
       for (std::size_t i = 1; i <= n; ++i) {
         const double v = from + (to - from) * static_cast<double>(i) / static_cast<double>(n);
         x.push_back(v);
-        q.push_back(h.update(v));
+        q.push_back(update(v));
       }
     };
     x.push_back(0.0);
@@ -404,7 +510,9 @@ void run_flat(const FlatOptions& o, std::string& out) {
         s.y.push_back(scales ? q[i] * fs : q[i]);
       }
       plot_png(*o.plot_png,
-               PlotSpec{.title = "Fretting loop of the rough flat (Masing on Eq. 4.10)",
+               PlotSpec{.title = ov ? "Fretting loop of the rough flat (Masing on Eq. 4.10 + "
+                                      "Odfalk-Vingsbo Eq. 3.10)"
+                                    : "Fretting loop of the rough flat (Masing on Eq. 4.10)",
                         .xlabel = scales ? "delta [µm]" : "delta* = delta/sigma",
                         .ylabel = scales ? "Q [N]" : "Q* = Q/(K H A0)",
                         .series = {s}},
@@ -412,8 +520,8 @@ void run_flat(const FlatOptions& o, std::string& out) {
     }
   }
   if (o.history_csv) {
-    const hysteresis::Hysteresis h(table);
-    auto Q = h.forces(history_star);
+    auto Q = ov_star ? hysteresis::OdfalkVingsboHysteresis(table, *ov_star).forces(history_star)
+                     : hysteresis::Hysteresis(table).forces(history_star);
     if (history_si) {
       for (auto& v : history_star) v *= scales->sigma;
       for (auto& v : Q) v *= scales->force;
@@ -480,6 +588,14 @@ void add_flat_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--zeta", o->zeta, "CEB yield depth over contact radius (default: 0.48)");
   cmd->add_option("--slip-scaling", o->slip_scaling,
                   "elastic (Eq. 4.8) or own-law (each law's a/P) (default: elastic)");
+  cmd->add_option(
+      "--tangential", o->tangential,
+      "tangential law: mindlin or odfalk-vingsbo (Eq. 3.10, phenomenological: "
+      "needs the measured --fretting-yield-point and --hardening-coefficient) (default: mindlin)");
+  cmd->add_option("--fretting-yield-point", o->fretting_yield_point,
+                  "Odfalk-Vingsbo Q_ty, measured, e.g. 20N");
+  cmd->add_option("--hardening-coefficient", o->hardening_coefficient,
+                  "Odfalk-Vingsbo k_p, measured, e.g. 5N/um");
   cmd->add_flag("--json", o->json, "print one JSON object instead of a table");
   cmd->add_option("--history", o->history_csv,
                   "displacement history CSV (column delta_star, or delta[unit])");

@@ -148,6 +148,7 @@ bool from_profiles(const joint::JointCase& c) {
 
 // Where each half's roughness came from (parameters, or scans and their directions) and
 // the resulting parameters.
+Json processing_json(const joint::ProfileSettings& s);
 Json halves_json(const joint::JointCase& c) {
   Json halves = Json::array();
   for (const auto& h : c.halves) {
@@ -160,6 +161,7 @@ Json halves_json(const joint::JointCase& c) {
                              {"direction", i < r.directions.size() ? r.directions[i] : ""}});
       }
       j["profiles"] = scans;
+      j["processing"] = processing_json(h.profile_settings);
     }
     j["sigma"] = r.moments.sigma();
     j["eta"] = r.moments.eta();
@@ -206,6 +208,15 @@ Json prediction_json(const joint::JointCase& c, const joint::JointPrediction& p)
   if (from_profiles(c)) j["roughness"]["processing"] = processing_json(c.profile_settings);
   j["force_scale_KHA0"] = p.force_scale;
   if (!c.interface.is_default()) j["interface"] = interface_json(c.interface);
+  if (const auto& ov = c.interface.odfalk_vingsbo) {
+    j["tangential"] = Json{{"law", "odfalk_vingsbo"},
+                           {"equation", "thesis Eq. 3.10, in series with Masing on the backbone"},
+                           {"fretting_yield_point", ov->fretting_yield_point},
+                           {"hardening_coefficient", ov->hardening_coefficient},
+                           {"parameters_from", "the user (measured; not physics-based)"}};
+  } else {
+    j["tangential"] = Json{{"law", "mindlin"}};
+  }
   if (!c.imposed.empty()) {
     j["apparatus"] = Json{{"pzt_stiffness", c.apparatus.pzt_stiffness},
                           {"load_cell_stiffness", c.apparatus.load_cell_stiffness},
@@ -230,11 +241,27 @@ std::string prediction_summary(const joint::JointCase& c, const joint::JointPred
       "R = {:.4g} um, beta = {:.4f}, psi = {:.4g}\n",
       contact::to_string(c.model), c.area * 1e6, p.sigma * 1e6, p.eta * 1e-12, p.R * 1e6, p.beta,
       p.psi);
+  if (const auto& ov = c.interface.odfalk_vingsbo) {
+    s += fmt::format(
+        "tangential law: Odfalk-Vingsbo (Eq. 3.10, phenomenological), fretting yield point Q_ty "
+        "= {:.4g} N, hardening coefficient k_p = {:.4g} N/um, as given (measured, not predicted); "
+        "backbones.csv holds the elastic (Mindlin) part only\n",
+        ov->fretting_yield_point, ov->hardening_coefficient * 1e-6);
+  }
   if (from_profiles(c)) {
-    const auto& ps = c.profile_settings;
     const auto cut = [](double v, double scale, const char* unit) {
       return v > 0.0 ? fmt::format("{:.4g} {}", v * scale, unit) : std::string("none");
     };
+    const auto settings = [&](const joint::ProfileSettings& ps) {
+      return fmt::format(
+          "level {}, Gaussian filter lc = {}, ls = {} (end effects {}), rule {} (Eq. 5.1)",
+          surface::to_string(ps.level), cut(ps.filter.lc, 1e3, "mm"), cut(ps.filter.ls, 1e6, "um"),
+          surface::to_string(ps.filter.end), surface::to_string(ps.rule));
+    };
+    // One line for the scans when both halves were processed alike, else one per half.
+    const bool alike =
+        settings(c.halves[0].profile_settings) == settings(c.halves[1].profile_settings) ||
+        c.halves[0].roughness.profiles.empty() || c.halves[1].roughness.profiles.empty();
     for (std::size_t i = 0; i < 2; ++i) {
       const auto& r = c.halves[i].roughness;
       std::string files;
@@ -242,12 +269,12 @@ std::string prediction_summary(const joint::JointCase& c, const joint::JointPred
       s += fmt::format("half {}: sigma = {:.4g} um, eta = {:.4g} um^-2, R = {:.4g} um ({})\n",
                        i + 1, r.moments.sigma() * 1e6, r.moments.eta() * 1e-12, r.moments.R() * 1e6,
                        files.empty() ? "given as parameters" : files);
+      if (!alike) s += fmt::format("  its scans: {}\n", settings(c.halves[i].profile_settings));
     }
-    s += fmt::format(
-        "scans: level {}, Gaussian filter lc = {}, ls = {} (end effects {}), rule {} (Eq. "
-        "5.1)\n",
-        surface::to_string(ps.level), cut(ps.filter.lc, 1e3, "mm"), cut(ps.filter.ls, 1e6, "um"),
-        surface::to_string(ps.filter.end), surface::to_string(ps.rule));
+    if (alike) {
+      const auto& h = c.halves[0].roughness.profiles.empty() ? c.halves[1] : c.halves[0];
+      s += fmt::format("scans: {}\n", settings(h.profile_settings));
+    }
   }
   const bool torques = c.bolts.has_value();
   s += fmt::format("\n{:>11} {}{:>10} {:>10} {:>8} {:>10} {:>10} {:>9}\n", "preload[N]",
@@ -466,7 +493,7 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
       "preload[N],delta_max[um],Q_peak[N],energy[uJ],Q_peak_over_Q_max,gross_slip,imposed[um]\n";
   for (const auto& l : p.loads) {
     for (const auto& a : l.amplitudes) {
-      const auto [x, Q] = joint::steady_loop(*l.backbone, a.delta_max, 100);
+      const auto [x, Q] = joint::steady_loop(l, a.delta_max, 100);
       for (std::size_t i = 0; i < x.size(); ++i) {
         lc[0].push_back(l.preload);
         lc[1].push_back(a.delta_max * 1e6);
@@ -546,7 +573,7 @@ std::vector<std::string> write_prediction_files(const joint::JointCase& c,
       }
       for (std::size_t j = 0; j < shown.size(); ++j) {
         const auto& a = l.amplitudes[shown[j]];
-        auto [x, Q] = joint::steady_loop(*l.backbone, a.delta_max, 400);
+        auto [x, Q] = joint::steady_loop(l, a.delta_max, 400);
         for (double& v : x) v *= 1e6;
         const bool ps = partial(a);
         std::string title =

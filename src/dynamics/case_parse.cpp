@@ -148,6 +148,13 @@ std::unique_ptr<FrictionModel> joint_friction(DynamicsCase& c, const std::string
                                           : root.get("interface")->source().begin.line;
   const joint::LoadPrediction lp = joint::predict_single_load(
       jc, fmt::format("{}:{}: load: ", path, load_line), "`asperity dynamics` runs");
+  if (lp.odfalk_vingsbo) {
+    throw InvalidInput(fmt::format(
+        "{}: interface.tangential = \"odfalk_vingsbo\" is not available in `asperity dynamics`, "
+        "whose friction models are Masing's (the thesis's ch. 7): use the joint in a `vibration` "
+        "case (a rough_flat element takes the law) or tangential = \"mindlin\"",
+        jc.interface.origin));
+  }
   const double P = jc.preloads.front();
   const double kA = *s.k * *s.A;
   c.joint = SummaryObject{{"name", jc.name},

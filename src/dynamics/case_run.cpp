@@ -27,8 +27,37 @@ using detail::time_scale;
 
 }  // namespace
 
+double expected_steps(const DynamicsCase& c) {
+  const auto* h = std::get_if<HarmonicExcitation>(&c.excitation);
+  return h ? kStepsPerPeriod * h->frequency * c.simulation.duration : 0.0;
+}
+
+std::string expected_cost_warning(const DynamicsCase& c) {
+  const double steps = expected_steps(c);
+  const auto* h = std::get_if<HarmonicExcitation>(&c.excitation);
+  if (!h) return {};
+  const double periods = h->frequency * c.simulation.duration;
+  const auto max_steps = static_cast<double>(c.simulation.integrator.max_steps);
+  if (steps > max_steps) {
+    throw InvalidInput(fmt::format(
+        "{}: dynamics.harmonic.frequency = {:.6g} over duration = {:.6g} is {:.3g} forcing "
+        "periods, about {:.3g} integration steps ({:.0f} a period), above the integrator's "
+        "max_steps = {:.3g}: lower the frequency or the duration (both in tau = sqrt(k/m) t)",
+        c.source, h->frequency, c.simulation.duration, periods, steps, kStepsPerPeriod, max_steps));
+  }
+  if (steps > 1e7) {
+    // About 3e5 steps a second on one core (the measurement of kStepsPerPeriod: 0.06 s).
+    return fmt::format(
+        "dynamics.harmonic.frequency = {:.6g} over duration = {:.6g} is {:.3g} forcing periods: "
+        "expect about {:.3g} integration steps, roughly {:.0f} s or more",
+        h->frequency, c.simulation.duration, periods, steps, steps / 3e5);
+  }
+  return {};
+}
+
 CaseResult run_case(const DynamicsCase& c, const RunOptions& options) {
   CaseResult r;
+  if (auto w = expected_cost_warning(c); !w.empty()) r.warnings.push_back(std::move(w));
   SimulationOptions sim_run = c.simulation;
   sim_run.sink = options.sink;
   if (const auto* h = std::get_if<HarmonicExcitation>(&c.excitation); h && options.summary_only) {

@@ -17,9 +17,9 @@ namespace asperity::joint::detail {
 void parse_interface(const Reader& r, const toml::node& node, JointCase& c) {
   const auto* t = node.as_table();
   if (!t) r.fail(&node, "interface", "must be a table");
-  r.check_keys(
-      *t, "interface",
-      {"pressure", "size", "patches", "map", "scale_to_preload", "bolts", "halves", "tangential"});
+  r.check_keys(*t, "interface",
+               {"pressure", "size", "patches", "map", "scale_to_preload", "bolts", "halves",
+                "tangential", "fretting_yield_point", "hardening_coefficient"});
   auto& s = c.interface;
   s.origin = r.origin(&node, "interface");
   const std::string kind = r.string(*t, "pressure", "interface", "uniform");
@@ -92,18 +92,39 @@ void parse_interface(const Reader& r, const toml::node& node, JointCase& c) {
              "is used only with pressure = \"map\"");
   }
   {
-    // The tangential law at the asperity scale: Cattaneo-Mindlin only (see docs/joints.md
-    // for why the Odfalk-Vingsbo law of Eq. 3.10 is refused).
+    // The tangential law: Cattaneo-Mindlin (Masing on the rough flat's backbone), or, opt-in,
+    // the Odfalk-Vingsbo parallelogram of plastic slip in series with it (Eq. 3.10), whose
+    // two parameters only a measurement gives (docs/joints.md).
     const std::string law = r.string(*t, "tangential", "interface", "mindlin");
+    const auto* qn = t->get("fretting_yield_point");
+    const auto* kn = t->get("hardening_coefficient");
     if (law == "odfalk_vingsbo") {
+      if (!qn || !kn) {
+        r.fail(t->get("tangential"),
+               !qn ? "interface.fretting_yield_point" : "interface.hardening_coefficient",
+               "missing: the Odfalk-Vingsbo law (Eq. 3.10) needs the fretting yield point Q_ty "
+               "and the hardening coefficient k_p, which the thesis says are obtained "
+               "experimentally and could not be generalized (section 3.3); asperity has no "
+               "physics-based value for them and fits none: give both from fretting loops "
+               "measured on this joint, e.g. fretting_yield_point = \"20 N\", "
+               "hardening_coefficient = \"5 N/um\" (or use tangential = \"mindlin\")");
+      }
+      s.odfalk_vingsbo = hysteresis::OdfalkVingsboParameters{
+          .fretting_yield_point = r.positive(*t, "fretting_yield_point", dim::force, "interface"),
+          .hardening_coefficient =
+              r.positive(*t, "hardening_coefficient", dim::stiffness, "interface")};
+    } else if (law == "mindlin") {
+      for (const auto* n : {qn, kn}) {
+        if (n) {
+          r.fail(n, n == qn ? "interface.fretting_yield_point" : "interface.hardening_coefficient",
+                 "is used only with tangential = \"odfalk_vingsbo\"");
+        }
+      }
+    } else {
       r.fail_value(t->get("tangential"), "interface.tangential",
-                   "the Odfalk-Vingsbo elastic-plastic law (Eq. 3.10) needs the fretting yield "
-                   "point Q_ty and the hardening coefficient k_p, which the thesis says are "
-                   "obtained experimentally (section 3.3); asperity has no physics-based value for "
-                   "them and does not fit any: use \"mindlin\"");
-    } else if (law != "mindlin") {
-      r.fail_value(t->get("tangential"), "interface.tangential",
-                   "use \"mindlin\" (Cattaneo-Mindlin partial slip, the default)");
+                   "use \"mindlin\" (Cattaneo-Mindlin partial slip, the default) or "
+                   "\"odfalk_vingsbo\" (Eq. 3.10, with measured fretting_yield_point and "
+                   "hardening_coefficient)");
     }
   }
   if (const auto* hn = t->get("halves")) {

@@ -78,6 +78,43 @@ contact::Material parse_material(const Reader& r, const toml::node& n, const std
   return m;
 }
 
+// A [profiles] table, or a half's `processing` table (its keys override `base`, the case's
+// [profiles], for that half only: the two surfaces are often measured differently).
+ProfileSettings parse_profile_settings(const Reader& r, const toml::node& p, const std::string& w,
+                                       ProfileSettings base) {
+  const auto* t = p.as_table();
+  if (!t) r.fail(&p, w, "must be a table");
+  r.check_keys(*t, w, {"lc", "ls", "end", "truncation", "rule", "level", "dx"});
+  try {
+    if (const auto* n = t->get("lc")) {
+      const auto s = n->value<std::string>();
+      base.filter.lc = (s && *s == "none") ? 0.0 : r.quantity(*n, dim::length, w + ".lc");
+    }
+    if (const auto* n = t->get("ls")) {
+      const auto s = n->value<std::string>();
+      base.filter.ls = (s && *s == "none") ? 0.0 : r.quantity(*n, dim::length, w + ".ls");
+    }
+    if (t->get("end"))
+      base.filter.end = surface::parse_end_effects(r.string(*t, "end", w, ""), w + ".end");
+    if (const auto* n = t->get("dx")) {
+      const double dx = r.quantity(*n, dim::length, w + ".dx");
+      if (!(dx > 0.0) || !std::isfinite(dx)) r.fail_value(n, w + ".dx", "must be > 0");
+      base.dx = dx;
+    }
+    if (const auto* n = t->get("truncation"))
+      base.filter.truncation = r.quantity(*n, dim::dimensionless, w + ".truncation");
+    base.filter.validate();
+    if (t->get("rule"))
+      base.rule = surface::parse_isotropic_rule(r.string(*t, "rule", w, ""), w + ".rule");
+    if (t->get("level"))
+      base.level = surface::parse_levelling(r.string(*t, "level", w, ""), w + ".level");
+  } catch (const InvalidInput& e) {
+    if (std::string_view(e.what()).starts_with(r.source())) throw;
+    r.fail(&p, w, e.what());
+  }
+  return base;
+}
+
 HalfRoughness parse_roughness(const Reader& r, const toml::table& half, const std::string& where,
                               const ProfileSettings& settings) {
   const auto* rough = half.get("roughness");
@@ -174,48 +211,8 @@ JointCase parse_case(std::string_view text, const std::string& source,
   }
 
   // Profile processing settings (used only by halves given as scans).
-  if (const auto* p = root.get("profiles")) {
-    const auto* t = p->as_table();
-    if (!t) r.fail(p, "profiles", "must be a table");
-    r.check_keys(*t, "profiles", {"lc", "ls", "end", "truncation", "rule", "level", "dx"});
-    try {
-      if (const auto* n = t->get("lc")) {
-        const auto s = n->value<std::string>();
-        c.profile_settings.filter.lc =
-            (s && *s == "none") ? 0.0 : r.quantity(*n, dim::length, "profiles.lc");
-      }
-      if (const auto* n = t->get("ls")) {
-        const auto s = n->value<std::string>();
-        c.profile_settings.filter.ls =
-            (s && *s == "none") ? 0.0 : r.quantity(*n, dim::length, "profiles.ls");
-      }
-      if (t->get("end")) {
-        c.profile_settings.filter.end =
-            surface::parse_end_effects(r.string(*t, "end", "profiles", ""), "profiles.end");
-      }
-      if (const auto* n = t->get("dx")) {
-        const double dx = r.quantity(*n, dim::length, "profiles.dx");
-        if (!(dx > 0.0) || !std::isfinite(dx)) r.fail_value(n, "profiles.dx", "must be > 0");
-        c.profile_settings.dx = dx;
-      }
-      if (const auto* n = t->get("truncation")) {
-        c.profile_settings.filter.truncation =
-            r.quantity(*n, dim::dimensionless, "profiles.truncation");
-      }
-      c.profile_settings.filter.validate();
-      if (t->get("rule")) {
-        c.profile_settings.rule =
-            surface::parse_isotropic_rule(r.string(*t, "rule", "profiles", ""), "profiles.rule");
-      }
-      if (t->get("level")) {
-        c.profile_settings.level =
-            surface::parse_levelling(r.string(*t, "level", "profiles", ""), "profiles.level");
-      }
-    } catch (const InvalidInput& e) {
-      if (std::string_view(e.what()).starts_with(source)) throw;
-      r.fail(p, "profiles", e.what());
-    }
-  }
+  if (const auto* p = root.get("profiles"))
+    c.profile_settings = parse_profile_settings(r, *p, "profiles", c.profile_settings);
 
   const auto* halves = joint.get("half");
   if (!halves)
@@ -232,11 +229,21 @@ JointCase parse_case(std::string_view text, const std::string& source,
   for (std::size_t i = 0; i < 2; ++i) {
     const std::string w = fmt::format("joint.half[{}]", i + 1);
     const auto& h = *arr->get(i)->as_table();
-    r.check_keys(h, w, {"name", "material", "roughness", "profiles"});
+    r.check_keys(h, w, {"name", "material", "roughness", "profiles", "processing"});
     const auto* mat = h.get("material");
     if (!mat) r.fail(&h, w + ".material", "missing");
     c.halves[i].material = parse_material(r, *mat, w + ".material");
-    c.halves[i].roughness = parse_roughness(r, h, w, c.profile_settings);
+    c.halves[i].profile_settings = c.profile_settings;
+    if (const auto* pn = h.get("processing")) {
+      if (!h.get("profiles")) {
+        r.fail(pn, w + ".processing",
+               "is used only with profiles = [scan files] (this half's roughness is given as "
+               "parameters)");
+      }
+      c.halves[i].profile_settings =
+          parse_profile_settings(r, *pn, w + ".processing", c.profile_settings);
+    }
+    c.halves[i].roughness = parse_roughness(r, h, w, c.halves[i].profile_settings);
   }
   if (c.halves[0].material.H <= 0.0 && c.halves[1].material.H <= 0.0) {
     r.fail(halves, "joint.half[].material.H", "give the hardness H of at least one half");

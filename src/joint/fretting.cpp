@@ -535,6 +535,15 @@ FrettingAnalysis analyze_fretting(const FrettingData& data, double P, const Anal
         "value is not resolved",
         mean.energy * 1e6, out.energy_noise_floor * 1e6, out.noise_delta * 1e6, out.noise_Q));
   }
+  // Eq. 6.1 with a preload that does not belong to the record: a dry metal contact does not
+  // carry more than a few times its normal load (Blau: mu 0.2-1.5; the thesis's 0.33-0.35).
+  if (out.mu > 3.0) {
+    out.warnings.push_back(fmt::format(
+        "mu = Q_max/P = {:.4g} (Eq. 6.1) is above 3 with the preload P = {:.6g} N: dry metal "
+        "contacts give 0.2-1.5 (Blau), the thesis's joints 0.33-0.35 (ch. 5-6); check the "
+        "preload (its unit, per bolt or total)",
+        out.mu, P));
+  }
   return out;
 }
 

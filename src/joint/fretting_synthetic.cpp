@@ -40,6 +40,13 @@ FrettingData synthetic_experiment(std::shared_ptr<const hysteresis::Backbone> ba
         "motion of the PZT tip (0.5 A of Eq. 5.3) must be a finite number > 0",
         core::format_value(o.excitation.amplitude)));
   }
+  if (o.excitation.amplitude > kMaxImposedAmplitude) {
+    throw InvalidInput(fmt::format(
+        "synthetic experiment: amplitude (imposed) = {} m is not allowed: at most {:g} m (1 mm), "
+        "beyond the stroke of fretting PZT stacks (the thesis's 2.25-18 um, section 6.2); check "
+        "the unit",
+        core::format_value(o.excitation.amplitude), kMaxImposedAmplitude));
+  }
   core::require_positive("synthetic experiment: frequency [Hz]", o.excitation.frequency);
   if (o.excitation.cycles < 1) {
     throw InvalidInput(fmt::format(

@@ -227,15 +227,85 @@ LoadPrediction predict_single_load(const JointCase& c, const std::string& where,
   }
 }
 
+namespace {
+
+// Amplitude rows under the Odfalk-Vingsbo law (hysteresis::odfalk_vingsbo_cycle): the force
+// amplitude and energy of its steady cycle; the regime and the slip map from the elastic
+// amplitude (the interface's own slip; the plastic slip is in series with all of it).
+void fill_odfalk_vingsbo_amplitudes(LoadPrediction& out,
+                                    const hysteresis::OdfalkVingsboParameters& p,
+                                    const std::vector<double>& amplitudes,
+                                    const std::vector<double>& imposed,
+                                    double apparatus_compliance) {
+  out.odfalk_vingsbo = p;
+  const auto& b = *out.backbone;
+  std::vector<std::pair<double, std::optional<double>>> cases;  // (delta_max, imposed)
+  for (double a : amplitudes) cases.emplace_back(a, std::nullopt);
+  for (double D : imposed) {
+    if (!(D > 0.0) || !std::isfinite(D))
+      throw InvalidInput(fmt::format("imposed amplitude = {:.6g} m must be > 0", D));
+    // delta + c Q_m(delta) = D, rising in delta.
+    const auto g = [&](double x) {
+      return x + apparatus_compliance * hysteresis::odfalk_vingsbo_cycle(b, p, x).Q_m - D;
+    };
+    cases.emplace_back(g(D) <= 0.0 ? D : core::find_root(g, 0.0, D, "joint amplitude"), D);
+  }
+  std::stable_sort(cases.begin(), cases.end(),
+                   [](const auto& l, const auto& r) { return l.first < r.first; });
+  double loaded_area = 0.0;
+  for (const auto& patch : out.patches) loaded_area += patch.patch.area;
+  for (const auto& [a, D] : cases) {
+    const auto cycle = hysteresis::odfalk_vingsbo_cycle(b, p, a);
+    AmplitudePrediction r;
+    r.delta_max = a;
+    r.imposed = D;
+    r.Q_peak = cycle.Q_m;
+    r.energy = cycle.energy;
+    r.Q_ratio = cycle.Q_m / out.Q_max;
+    const bool gross = cycle.elastic_amplitude >= out.gross_slip_amplitude;
+    r.regime = gross ? "gross slip" : "partial slip";
+    double slipping = 0.0;
+    for (const auto& patch : out.patches) {
+      const bool g = cycle.elastic_amplitude >= patch.gross_slip_amplitude;
+      r.patch_gross_slip.push_back(g ? 1 : 0);
+      if (g) slipping += patch.patch.area;
+    }
+    r.gross_slip_area_fraction = loaded_area > 0.0 ? slipping / loaded_area : 0.0;
+    if (!gross && a > 0.0) {
+      // n = d ln W / d ln Q_m, central difference over delta_max (1 +- 1e-3) as local_exponent.
+      const auto lo = hysteresis::odfalk_vingsbo_cycle(b, p, a * (1.0 - 1e-3));
+      const auto hi = hysteresis::odfalk_vingsbo_cycle(b, p, a * (1.0 + 1e-3));
+      if (hi.Q_m > lo.Q_m && lo.energy > 0.0 && hi.energy > 0.0) {
+        const double n = std::log(hi.energy / lo.energy) / std::log(hi.Q_m / lo.Q_m);
+        if (std::isfinite(n)) r.exponent = n;
+      }
+    }
+    out.amplitudes.push_back(std::move(r));
+  }
+}
+
+// One load case of `c` on its rough flat (uniform or patched), with its tangential law.
+LoadPrediction case_load(const JointCase& c, const surface::RoughFlat& flat, double preload,
+                         const std::vector<double>& amplitudes,
+                         const std::vector<double>& imposed) {
+  const auto& ov = c.interface.odfalk_vingsbo;
+  const std::vector<double> none;
+  const auto& A = ov ? none : amplitudes;
+  const auto& D = ov ? none : imposed;
+  LoadPrediction lp = c.interface.is_default()
+                          ? predict_load(flat, preload, A, D, c.apparatus.compliance())
+                          : predict_load(flat, preload, case_patches(c, preload), A, D,
+                                         c.apparatus.compliance(), case_halves_compliance(c));
+  if (ov) fill_odfalk_vingsbo_amplitudes(lp, *ov, amplitudes, imposed, c.apparatus.compliance());
+  return lp;
+}
+
+}  // namespace
+
 LoadPrediction predict_case_load(const JointCase& c, double preload,
                                  const std::vector<double>& amplitudes,
                                  const std::vector<double>& imposed) {
-  const auto flat = c.rough_flat();
-  if (c.interface.is_default()) {
-    return predict_load(flat, preload, amplitudes, imposed, c.apparatus.compliance());
-  }
-  return predict_load(flat, preload, case_patches(c, preload), amplitudes, imposed,
-                      c.apparatus.compliance(), case_halves_compliance(c));
+  return case_load(c, c.rough_flat(), preload, amplitudes, imposed);
 }
 
 JointPrediction predict(const JointCase& c,
@@ -263,11 +333,7 @@ JointPrediction predict(const JointCase& c,
     core::check_interrupt();
     LoadPrediction lp;
     try {
-      lp =
-          c.interface.is_default()
-              ? predict_load(flat, c.preloads[i], c.amplitudes, c.imposed, c.apparatus.compliance())
-              : predict_load(flat, c.preloads[i], case_patches(c, c.preloads[i]), c.amplitudes,
-                             c.imposed, c.apparatus.compliance(), case_halves_compliance(c));
+      lp = case_load(c, flat, c.preloads[i], c.amplitudes, c.imposed);
     } catch (const InvalidInput& e) {
       // Name where this load case came from (file, line, key).
       if (i < c.preload_origin.size())
@@ -288,6 +354,26 @@ JointPrediction predict(const JointCase& c,
       out.warnings.push_back(fmt::format("at {:.5g} N: {}", lp.preload, w));
   }
   return out;
+}
+
+std::pair<std::vector<double>, std::vector<double>> steady_loop(const LoadPrediction& load,
+                                                                double delta_max, std::size_t n) {
+  if (!load.odfalk_vingsbo) return steady_loop(*load.backbone, delta_max, n);
+  if (!(delta_max > 0.0)) throw InvalidInput("steady_loop: delta_max must be > 0");
+  if (n < 2) n = 2;
+  hysteresis::OdfalkVingsboHysteresis h(load.backbone, *load.odfalk_vingsbo);
+  // Virgin loading to delta_max, then the loop from there (symmetric from the first reversal).
+  for (std::size_t i = 1; i <= n; ++i)
+    h.update(delta_max * static_cast<double>(i) / static_cast<double>(n));
+  std::vector<double> x{delta_max}, Q{h.Q()};
+  for (const auto& [a, b] : {std::pair{delta_max, -delta_max}, std::pair{-delta_max, delta_max}}) {
+    for (std::size_t i = 1; i <= n; ++i) {
+      const double xi = a + (b - a) * static_cast<double>(i) / static_cast<double>(n);
+      x.push_back(xi);
+      Q.push_back(h.update(xi));
+    }
+  }
+  return {x, Q};
 }
 
 std::pair<std::vector<double>, std::vector<double>> steady_loop(const hysteresis::Backbone& b,

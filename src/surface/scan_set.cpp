@@ -129,6 +129,15 @@ IsotropicSurface equivalent_isotropic_surface(const std::vector<ScanFile>& files
         return process();
       } catch (const InvalidInput& e) {
         if (invalid == 0) throw;
+        if (2 * run < total - invalid) {
+          // The gaps, not the scan's length, are the cause (every third point NaN: runs of 2).
+          throw InvalidInput(fmt::format(
+              "{}: {} of the file's {} points are invalid (NaN or masked) and scattered: the "
+              "longest run of consecutive valid points, which is what gets processed, has {} "
+              "points; fill the gaps (interpolate the invalid points) or use a scan with fewer of "
+              "them ({})",
+              source, invalid, total, run, e.what()));
+        }
         throw InvalidInput(fmt::format(
             "{} ({} of the file's {} points are invalid (NaN or masked); the profile is their "
             "longest run of consecutive valid points, {} points)",

@@ -53,6 +53,17 @@ StuckMode stuck_mode(const HarmonicBalance& hb, int mode) {
         fmt::format("mode = {}: the structure has modes 1 .. {}", mode, lm.omega.size()));
   }
   StuckMode s{lm.shapes.col(mode - 1), lm.omega(mode - 1)};
+  // A negative eigenvalue beyond rounding (1e-9 of the largest): K with the joints stuck is
+  // indefinite, the structure unstable at rest; not a rigid-body mode (omega^2 = 0).
+  const double lambda = lm.eigenvalues(mode - 1);
+  if (lambda < -1e-9 * lm.eigenvalues.cwiseAbs().maxCoeff()) {
+    throw InvalidInput(fmt::format(
+        "mode {} of the structure with its joints stuck has a negative eigenvalue omega^2 = "
+        "{:.6g} (rad/s)^2: the stiffness (structure.stiffness plus the elements' initial "
+        "stiffnesses) is not positive semi-definite, so the structure is unstable at rest; check "
+        "for a negative stiffness",
+        mode, lambda));
+  }
   if (!(s.omega > 0.0)) {
     throw InvalidInput(fmt::format(
         "mode {} of the structure with its joints stuck has zero frequency (a rigid-body mode): "

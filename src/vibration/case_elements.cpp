@@ -277,6 +277,13 @@ JointBackbone joint_backbone(const std::string& path, const std::string& base_di
                                                  : 0;
   const joint::LoadPrediction lp = joint::predict_single_load(
       jc, fmt::format("{}:{}: load: ", path, load_line), "a rough_flat element takes");
+  if (lp.odfalk_vingsbo) {
+    throw InvalidInput(fmt::format(
+        "{}: interface.tangential = \"odfalk_vingsbo\" is not yet available in a vibration "
+        "element (its harmonic-balance tangent is Masing's); predict and flat take it; use "
+        "tangential = \"mindlin\" here",
+        jc.interface.origin));
+  }
   const double P = jc.preloads.front();
   JointBackbone j;
   j.backbone = lp.backbone;

@@ -206,6 +206,7 @@ LinearModes linear_modes(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M) {
   const Eigen::VectorXd lambda = es.eigenvalues();
   out.omega.resize(lambda.size());
   out.shapes = es.eigenvectors();
+  out.eigenvalues = lambda;
   for (Eigen::Index i = 0; i < lambda.size(); ++i) {
     out.omega(i) = std::sqrt(std::max(lambda(i), 0.0));
     Eigen::VectorXd phi = out.shapes.col(i);

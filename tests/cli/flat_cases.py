@@ -169,9 +169,83 @@ def main():
         if abs(float(rows[-1][1]) - float(first_peak[1])) > 1e-12:
             return fail("loop does not close")
         return 0
+    if case == "odfalk_vingsbo":
+        # Eq. 3.10 in series with Mindlin (Fig. 3.3): at amplitude delta_max the force
+        # amplitude Q_m is Mindlin's at the elastic amplitude delta_max - (Q_m - Q_ty)/(2 k_p)
+        # and the energy adds the parallelogram's (Q_m^2 - Q_ty^2)/k_p. Reference: the same
+        # command with the default law at that amplitude (the same table: 1e-9 covers the
+        # root's and the quadrature's rounding).
+        Q_ty, k_p = 20.0, 50e6
+        law = ["--tangential", "odfalk-vingsbo", "--fretting-yield-point", "20N",
+               "--hardening-coefficient", "50N/um"]
+        loop = os.path.join(tmp, "loop.csv")
+        j = check_json(exe, DIMENSIONAL + law + ["--delta-max=2um", "--loop", loop], ["tangential"])
+        if j == 1:
+            return 1
+        if j["tangential"]["law"] != "odfalk_vingsbo":
+            return fail(f"tangential: {j['tangential']}")
+        Q_m, W = j["Q_at_delta_max"], j["energy"]
+        x_e = 2e-6 - (Q_m - Q_ty) / (2 * k_p)
+        m = check_json(exe, DIMENSIONAL + [f"--delta-max={x_e * 1e6!r}um"], [])
+        if m == 1:
+            return 1
+        if abs(m["Q_at_delta_max"] - Q_m) > 1e-9 * Q_m:
+            return fail(f"Q_m {Q_m} against Mindlin's {m['Q_at_delta_max']} at {x_e}")
+        W_ref = m["energy"] + (Q_m ** 2 - Q_ty ** 2) / k_p
+        if abs(W - W_ref) > 1e-9 * W_ref:
+            return fail(f"energy {W} against {W_ref}")
+        # The loop written: symmetric, closing at (delta_max, Q_m), its area the energy (201
+        # points per branch: the trapezoidal error of the kinks at -+Q_ty is below 1e-3).
+        with open(loop) as f:
+            rows = [(float(a), float(b)) for a, b in list(csv.reader(f))[1:]]
+        if abs(rows[-1][1] - Q_m) > 1e-9 * Q_m or abs(rows[402][1] + Q_m) > 1e-9 * Q_m:
+            return fail(f"loop ends {rows[-1]}, {rows[402]} against Q_m = {Q_m}")
+        cyc = rows[201:]
+        area = sum(0.5 * (cyc[i][1] + cyc[i + 1][1]) * (cyc[i + 1][0] - cyc[i][0])
+                   for i in range(len(cyc) - 1))
+        if abs(abs(area) - W) > 1e-3 * W:
+            return fail(f"loop area {area} against energy {W}")
+        return 0
+    if case == "odfalk_vingsbo_case":
+        # flat --case follows a history with the case's Odfalk-Vingsbo law (the history
+        # operator); predict gives the same steady peak from the closed form (the root of
+        # x_m = x_l(Q_m) + (Q_m - Q_ty)/(2 k_p)): 1e-9 covers both roots' rounding.
+        src = os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../examples/joints")
+        with open(os.path.join(src, "steel_rough.toml")) as f:
+            text = f.read()
+        text = text.split("[excitation]")[0] + (
+            '[excitation]\namplitudes = ["1 um"]\n[interface]\ntangential = "odfalk_vingsbo"\n'
+            'fretting_yield_point = "20 N"\nhardening_coefficient = "50 N/um"\n')
+        case_file = os.path.join(tmp, "ov.toml")
+        write(case_file, text)
+        r = run(exe, ["predict", case_file, "--json"])
+        if r.returncode != 0:
+            return fail(r.stderr)
+        load = json.loads(r.stdout)["loads"][0]
+        Q_peak, P = load["amplitudes"][0]["Q_peak"], load["preload"]
+        hist = os.path.join(tmp, "h.csv")
+        path = ([i / 100 for i in range(101)] + [1 - i / 50 for i in range(1, 101)]
+                + [-1 + i / 50 for i in range(1, 101)])
+        write(hist, "delta[um]\n" + "\n".join(f"{x!r}" for x in path) + "\n")
+        out = os.path.join(tmp, "out.csv")
+        r = run(exe, ["flat", "--case", case_file, "--history", hist, "--out", out, f"--P={P!r}N"])
+        if r.returncode != 0:
+            return fail(r.stderr)
+        with open(out) as f:
+            Q = [float(row[1]) for row in list(csv.reader(f))[1:]]
+        for k, want in ((100, Q_peak), (200, -Q_peak), (300, Q_peak)):
+            if abs(Q[k] - want) > 1e-9 * Q_peak:
+                return fail(f"Q[{k}] = {Q[k]} against {want}")
+        return 0
     hist = os.path.join(tmp, "h.csv")
     out = os.path.join(tmp, "out.csv")
     cases = {
+        "bad_input.odfalk_vingsbo_without_parameters": (
+            DIMENSIONAL + ["--tangential=odfalk-vingsbo", "--fretting-yield-point=20N"],
+            "obtained experimentally"),
+        "bad_input.odfalk_vingsbo_normalized": (
+            NORMALIZED + ["--tangential=odfalk-vingsbo", "--fretting-yield-point=20N",
+                          "--hardening-coefficient=5N/um"], "dimensional"),
         "bad_input.beta_too_small": (["flat", "--beta=0.019", "--psi=0.5", "--nu=0.3", "--P-star=1e-3"], "beta"),
         "bad_input.psi_zero": (["flat", "--beta=0.04", "--psi=0", "--nu=0.3", "--P-star=1e-3"], "--psi"),
         "bad_input.preload_too_large": (["flat", "--beta=0.04", "--psi=0.5", "--nu=0.3", "--P-star=1e3"], "preload"),

@@ -464,13 +464,6 @@ TEST(InterfaceCase, BadInputNamesTheProblem) {
               (void)joint::parse_case(case_text(kind));
             }).find("interface.pressure = \"cones\""),
             std::string::npos);
-  // The Odfalk-Vingsbo law is refused, saying why (no physics-based Q_ty, k_p).
-  std::string ov = kBolted;
-  ov.replace(ov.find("patches = [17, 10]"), 18,
-             "patches = [17, 10]\ntangential = \"odfalk_vingsbo\"");
-  const auto ovm = invalid_input_message([&] { (void)joint::parse_case(case_text(ov)); });
-  EXPECT_NE(ovm.find("interface.tangential = \"odfalk_vingsbo\""), std::string::npos) << ovm;
-  EXPECT_NE(ovm.find("fretting yield point Q_ty"), std::string::npos) << ovm;
   std::string size = kBolted;
   size.replace(size.find("\"10 mm\"]"), 7, "\"12 mm\"");
   EXPECT_NE(invalid_input_message([&] {
@@ -509,3 +502,63 @@ amplitude = 1
 }
 
 }  // namespace
+
+namespace asperity {
+namespace {
+
+// interface.tangential = "odfalk_vingsbo" (thesis Eq. 3.10): refused without its measured
+// parameters, saying why; with them, each amplitude row is Mindlin's (Masing on the same
+// backbone) at the elastic amplitude plus the parallelogram's energy.
+TEST(InterfaceCase, OdfalkVingsboNeedsItsMeasuredParametersAndAddsTheParallelogram) {
+  const std::string load = R"(
+[load]
+preload = "526 N"
+[excitation]
+amplitudes = ["0.1 um", "1 um", "8 um"]
+)";
+  const auto missing = invalid_input_message([&] {
+    (void)joint::parse_case(case_text(load + "[interface]\ntangential = \"odfalk_vingsbo\"\n"));
+  });
+  EXPECT_NE(missing.find("interface.fretting_yield_point: missing"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("obtained experimentally"), std::string::npos) << missing;
+  const auto stray = invalid_input_message([&] {
+    (void)joint::parse_case(case_text(load + "[interface]\nhardening_coefficient = \"5 N/um\"\n"));
+  });
+  EXPECT_NE(stray.find("used only with tangential = \"odfalk_vingsbo\""), std::string::npos)
+      << stray;
+
+  const double Q_ty = 20.0, k_p = 50e6;  // [N], [N/m]
+  const auto ov =
+      joint::parse_case(case_text(
+          load + "[interface]\ntangential = \"odfalk_vingsbo\"\nfretting_yield_point = \"20 N\"\n"
+                 "hardening_coefficient = \"50 N/um\"\n"));
+  ASSERT_TRUE(ov.interface.odfalk_vingsbo);
+  EXPECT_EQ(ov.interface.odfalk_vingsbo->fretting_yield_point, Q_ty);
+  EXPECT_NEAR(ov.interface.odfalk_vingsbo->hardening_coefficient, k_p, 1e-12 * k_p);
+  const auto mindlin = joint::parse_case(case_text(load));
+  const auto p = joint::predict(ov).loads.front();
+  const double P = mindlin.preloads.front();
+  // The stiffness at reversals stays Mindlin's (thesis section 3.3, Fig. 3.3).
+  EXPECT_EQ(p.stiffness, joint::predict_case_load(mindlin, P).stiffness);
+  ASSERT_EQ(p.amplitudes.size(), 3u);
+  for (const auto& a : p.amplitudes) {
+    SCOPED_TRACE(a.delta_max);
+    ASSERT_GT(a.Q_peak, Q_ty);  // every row yields here
+    const double x_e = a.delta_max - (a.Q_peak - Q_ty) / (2.0 * k_p);
+    const auto m = joint::predict_case_load(mindlin, P, {x_e}).amplitudes.front();
+    // The same table on both sides: 1e-9 covers the root's and the quadrature's rounding.
+    EXPECT_NEAR(m.Q_peak, a.Q_peak, 1e-9 * a.Q_peak);
+    const double W = m.energy + (a.Q_peak * a.Q_peak - Q_ty * Q_ty) / k_p;
+    EXPECT_NEAR(a.energy, W, 1e-9 * W);
+    EXPECT_EQ(a.regime, x_e >= p.gross_slip_amplitude ? "gross slip" : "partial slip");
+  }
+  EXPECT_EQ(p.amplitudes.back().regime, "gross slip");  // 8 um: 6.5 um elastic, beyond 3.4 um
+  // Its steady loop closes at (delta_max, Q_peak) and is symmetric.
+  const auto [x, Q] = joint::steady_loop(p, 1e-6, 200);
+  EXPECT_NEAR(Q.front(), p.amplitudes[1].Q_peak, 1e-12 * Q.front());
+  EXPECT_NEAR(Q[200], -Q.front(), 1e-12 * Q.front());
+  EXPECT_NEAR(Q.back(), Q.front(), 1e-12 * Q.front());
+}
+
+}  // namespace
+}  // namespace asperity

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "asperity/core/error.hpp"
@@ -369,6 +370,46 @@ TEST(JointCase, ProfileSettingsAreThoseOfTheRoughnessCommand) {
   EXPECT_GT(ok.halves[0].roughness.moments.sigma(), 0.0);
   EXPECT_EQ(ok.halves[0].roughness.profiles.size(), 1U);
   fs::remove_all(dir);
+}
+
+TEST(JointCase, ProcessingPerHalf) {
+  // Issue 22: the two halves are often measured differently. A half's `processing` table
+  // overrides the keys of [profiles] it names, for that half only. Reference: the same
+  // scans with the setting given case-wide (the same function on the same settings: equal).
+  std::ifstream in(kExamples + "steel420_profiles.toml");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  const std::string half2 = "profiles = [\"../roughness/lc_max.csv\", \"../roughness/lc_min.csv\"]";
+  ASSERT_NE(text.find(half2), std::string::npos);
+  const auto base = parse_case(text, "case.toml", kExamples);
+  const auto per_half = parse_case(
+      replaced(text, half2, half2 + "\nprocessing = { lc = \"0.25 mm\" }"), "case.toml", kExamples);
+  const auto all =
+      parse_case(replaced(text, "lc = \"0.8 mm\"", "lc = \"0.25 mm\""), "case.toml", kExamples);
+  EXPECT_EQ(per_half.halves[0].roughness.moments.m0, base.halves[0].roughness.moments.m0);
+  EXPECT_EQ(per_half.halves[0].roughness.moments.m2, base.halves[0].roughness.moments.m2);
+  EXPECT_EQ(per_half.halves[1].roughness.moments.m0, all.halves[1].roughness.moments.m0);
+  EXPECT_EQ(per_half.halves[1].roughness.moments.m4, all.halves[1].roughness.moments.m4);
+  // A shorter long-wave cut-off removes waviness: sigma falls.
+  EXPECT_LT(per_half.halves[1].roughness.moments.sigma(), base.halves[1].roughness.moments.sigma());
+  EXPECT_DOUBLE_EQ(per_half.halves[1].profile_settings.filter.lc, 0.25e-3);
+  EXPECT_EQ(per_half.halves[1].profile_settings.filter.ls,
+            base.profile_settings.filter.ls);  // from [profiles]
+  EXPECT_DOUBLE_EQ(per_half.halves[0].profile_settings.filter.lc, 0.8e-3);
+  // Refused: on a half given as parameters, and an unknown key, naming the half.
+  auto e =
+      error_of(replaced(kCase, "roughness = { sigma = \"1.763 um\"",
+                        "processing = { lc = \"0.25 mm\" }\nroughness = { sigma = \"1.763 um\""));
+  EXPECT_NE(e.find("joint.half[1].processing: is used only with profiles"), std::string::npos) << e;
+  try {
+    (void)parse_case(replaced(text, half2, half2 + "\nprocessing = { lcc = \"0.25 mm\" }"),
+                     "case.toml", kExamples);
+    FAIL() << "an unknown key was accepted";
+  } catch (const InvalidInput& ex) {
+    EXPECT_NE(std::string(ex.what()).find("joint.half[2].processing"), std::string::npos)
+        << ex.what();
+  }
 }
 
 // ---------------------------------------------------------------- predictions

@@ -72,9 +72,10 @@ def test_profile_cut_by_invalid_points_says_so(tmp_path):
     asperity.write_x3p(path, z.reshape(1, -1), dx, dx)
     n = z.size
     with pytest.raises(asperity.InvalidInput,
-                       match=(rf"shorter than the filter needs.*\({len(z[::3])} of the file's {n} "
-                              r"points are invalid \(NaN or masked\); the profile is their longest "
-                              r"run of consecutive valid points, 2 points\)")):
+                       match=(rf"{len(z[::3])} of the file's {n} points are invalid \(NaN or "
+                              r"masked\) and scattered: the longest run of consecutive valid "
+                              r"points, which is what gets processed, has 2 points; fill the gaps"
+                              r".*shorter than the filter needs")):
         asperity.equivalent_isotropic_surface([path])
     # The same file without holes: the moments of the whole profile.
     asperity.write_x3p(path, asperity.read_profile(PZT_MAX)["z"].reshape(1, -1), dx, dx)

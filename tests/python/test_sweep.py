@@ -341,3 +341,70 @@ def test_vary_flag_takes_a_grid_array_and_progress_draws_a_bar():
     quiet = io.StringIO()
     Progress(10, stream=quiet).update(10, 0)  # not a terminal: nothing
     assert quiet.getvalue() == ""
+
+
+# Issue 21's sweep faults: each refused before any work with one line (exit 2), or, for
+# --format both, accepted as --help offers it.
+def _sweep_cli(tmp_path, *args, timeout=60):
+    cmd = [sys.executable, "-m", "asperity.sweep", *args]
+    return subprocess.run(cmd, capture_output=True, text=True, env=ENV, timeout=timeout,
+                          cwd=tmp_path)
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--scheduler", "xyz"], ["--scheduler 'xyz'", "tcp://HOST:PORT"]),
+    (["--threads-per-worker", "0"], ["--threads-per-worker 0", "positive integer"]),
+    (["--samples", "1000000000000"], ["1,000,000,000,000 samples", "limit of 10,000,000"]),
+    (["--vary", "joint.area = 100 mm^2 .. 200 mm^2, 1000000000 steps"],
+     ["1000000000 steps", "limit of 10,000,000"]),
+])
+def test_sweep_flags_refused_before_any_work(tmp_path, args, words):
+    p = _sweep_cli(tmp_path, CASE, "--vary", "load.bolts.nut_factor ~ uniform(0.158, 0.267)",
+                   "--out", "out", *args, timeout=30)
+    msg = p.stderr.strip()
+    assert p.returncode == 2, msg
+    assert msg.startswith("asperity sweep: error: ") and len(msg.splitlines()) == 1, msg
+    for w in words:
+        assert w in msg, msg
+    assert not (tmp_path / "out").exists()
+
+
+def test_sweep_case_file_not_utf8_is_named(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_bytes(b"[joint]\nname = \"\xff\xfe\"\n")
+    p = _sweep_cli(tmp_path, str(bad), "--vary", "joint.area ~ uniform(1 mm^2, 2 mm^2)",
+                   "--out", "out")
+    msg = p.stderr.strip()
+    assert p.returncode == 2 and len(msg.splitlines()) == 1, msg
+    assert f"{bad}:2: byte 0xff" in msg and "not UTF-8" in msg, msg
+
+
+def test_sweep_usage_error_is_one_line(tmp_path):
+    p = _sweep_cli(tmp_path, CASE, "--out", "out", "--bogus")
+    msg = p.stderr.strip()
+    assert p.returncode == 2 and len(msg.splitlines()) == 1, msg
+    assert "unrecognized arguments: --bogus" in msg and "--help" in msg, msg
+
+
+def test_sweep_format_both_writes_netcdf_and_parquet(tmp_path):
+    pytest.importorskip("pyarrow")
+    p = _sweep_cli(tmp_path, CASE, "--vary", "load.bolts.nut_factor ~ uniform(0.158, 0.267)",
+                   "--samples", "2", "--serial", "--no-plots", "--format", "both", "--out", "out")
+    assert p.returncode == 0, p.stderr
+    names = {f.name for f in (tmp_path / "out").iterdir()}
+    assert "samples.parquet" in names and "samples" in names, names
+
+
+def test_sweep_sigint_prints_no_traceback(tmp_path):
+    # A serial run interrupted (SIGINT, as Ctrl-C) says so in one line, exit 130.
+    cmd = [sys.executable, "-m", "asperity.sweep", CASE, "--vary",
+           "load.bolts.nut_factor ~ uniform(0.158, 0.267)", "--samples", "5000", "--serial",
+           "--no-plots", "--out", "out"]
+    run = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                           env=ENV, cwd=tmp_path)
+    time.sleep(4.0)  # past the imports, into the samples
+    run.send_signal(signal.SIGINT)
+    _, err = run.communicate(timeout=60)
+    assert run.returncode == 130, err
+    assert "Traceback" not in err and "interrupted (SIGINT)" in err, err
+    assert not (tmp_path / "out").exists() and not list(tmp_path.glob(".out.partial-*"))

@@ -141,6 +141,16 @@ struct RunOptions {
 };
 [[nodiscard]] CaseResult run_case(const DynamicsCase& c, const RunOptions& options = {});
 
+/// Steps a harmonic response takes at least: about kStepsPerPeriod per forcing period over
+/// the duration (measured: examples/dynamics/harmonic_physics_smooth.toml at frequency 10,
+/// 17959 steps for 600 periods). 0 for the other excitations.
+inline constexpr double kStepsPerPeriod = 30.0;
+[[nodiscard]] double expected_steps(const DynamicsCase& c);
+/// The cost of a run before it starts: InvalidInput when expected_steps exceeds the
+/// integrator's max_steps (naming both), a warning (with the expected steps and time)
+/// when it exceeds 1e7, else empty. run_case calls it too.
+[[nodiscard]] std::string expected_cost_warning(const DynamicsCase& c);
+
 /// The time-history columns of a run, in the order of timeseries.csv: the
 /// non-dimensional tau, u, v, y, friction, the internal states (z), the energy terms and
 /// event (1 at a located reversal), then, when the scales allow, the dimensional

@@ -35,6 +35,17 @@ struct Bolts {
   [[nodiscard]] double preload(double torque) const;
 };
 
+/// How profile files are turned into moments (docs/roughness.md): the settings of
+/// `asperity roughness` (--level, --lc, --ls, --end, --truncation, --rule, --dx), set in a
+/// case file's [profiles] table and, per half, in its `processing` table.
+struct ProfileSettings {
+  surface::Levelling level = surface::Levelling::line;
+  surface::GaussianFilter filter{};
+  surface::IsotropicRule rule = surface::IsotropicRule::geometric;
+  /// Sampling interval [m] of single-column (z only) scans; unset for files with x.
+  std::optional<double> dx;
+};
+
 /// Roughness of one half: the Greenwood-Williamson parameters or the scans they come
 /// from, as spectral moments (which add when the halves are combined, Eq. 5.1).
 struct HalfRoughness {
@@ -46,17 +57,9 @@ struct HalfRoughness {
 struct Half {
   contact::Material material;
   HalfRoughness roughness;
-};
-
-/// How profile files are turned into moments (docs/roughness.md): the settings of
-/// `asperity roughness` (--level, --lc, --ls, --end, --truncation, --rule, --dx), set in a
-/// case file's [profiles] table.
-struct ProfileSettings {
-  surface::Levelling level = surface::Levelling::line;
-  surface::GaussianFilter filter{};
-  surface::IsotropicRule rule = surface::IsotropicRule::geometric;
-  /// Sampling interval [m] of single-column (z only) scans; unset for files with x.
-  std::optional<double> dx;
+  /// The settings its scans were processed with: the case's [profiles], with the keys of the
+  /// half's own `processing` table in their place (the halves may be measured differently).
+  ProfileSettings profile_settings{};
 };
 
 /// Moments of one joint half from its scans ("FILE", "FILE@max", "FILE@min"): the

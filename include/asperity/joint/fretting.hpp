@@ -165,6 +165,10 @@ inline constexpr double kMinSamplesPerPeriod = 50.0;
 /// thesis's records (11 s at 1 kHz, section 5.3); more is a typing slip, not an
 /// experiment, and would exhaust the memory instead of failing clearly.
 inline constexpr double kMaxSyntheticSamples = 1e7;
+/// Largest PZT tip amplitude (half peak-to-peak) of a synthetic experiment [m]: 1 mm,
+/// beyond the stroke of fretting PZT stacks (tens to a few hundred um; the thesis's
+/// 2.25-18 um, section 6.2) and beyond fretting (gross sliding over the joint).
+inline constexpr double kMaxImposedAmplitude = 1e-3;
 
 /// 1-DOF apparatus of Fig. 5.7 and the sensors of section 5.2.
 struct SyntheticOptions {

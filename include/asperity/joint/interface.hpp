@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "asperity/hysteresis/odfalk_vingsbo.hpp"
+
 namespace asperity::joint {
 
 /// A patch must hold at least this many asperities (eta A_patch): the rough flat's
@@ -99,6 +101,10 @@ struct InterfaceSpec {
   /// The halves' elastic compliance in series with the interface ([interface.halves]);
   /// unset: the interface alone (today's model).
   std::optional<HalvesGeometry> halves;
+  /// tangential = "odfalk_vingsbo": the parallelogram of plastic slip (Eq. 3.10) in series
+  /// with the interface's Masing loop, with the user's measured Q_ty and k_p; unset:
+  /// Cattaneo-Mindlin alone (the physics-based law).
+  std::optional<hysteresis::OdfalkVingsboParameters> odfalk_vingsbo;
   std::string origin;  ///< "FILE:LINE: interface" for errors found later
 
   [[nodiscard]] bool is_default() const {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "asperity/hysteresis/masing.hpp"
+#include "asperity/hysteresis/odfalk_vingsbo.hpp"
 #include "asperity/joint/case.hpp"
 
 namespace asperity::joint {
@@ -68,6 +69,11 @@ struct LoadPrediction {
   /// Backbone in SI units (x [m], Q [N]): a ScaledBackbone over the rough flat's table (of
   /// the patches' summed backbone, surface/patched_flat.hpp, with an [interface]).
   std::shared_ptr<const hysteresis::Backbone> backbone;
+  /// tangential = "odfalk_vingsbo": the parallelogram of plastic slip (Eq. 3.10) in series
+  /// with `backbone`'s Masing loop (hysteresis::OdfalkVingsboHysteresis); the amplitude rows
+  /// are then that law's (hysteresis::odfalk_vingsbo_cycle), `backbone` stays the elastic
+  /// part. Unset: Masing on `backbone` alone.
+  std::optional<hysteresis::OdfalkVingsboParameters> odfalk_vingsbo;
   /// The loaded patches (one, the whole A0, without an [interface]); patches that carry
   /// no force are left out (out of contact).
   std::vector<PatchPrediction> patches;
@@ -135,6 +141,11 @@ struct JointPrediction {
 /// peak force of a symmetric loop is the backbone's).
 [[nodiscard]] double joint_amplitude(const hysteresis::Backbone& backbone, double imposed,
                                      double apparatus_compliance);
+
+/// The same loop for a load case: Masing on its backbone, or, with the Odfalk-Vingsbo law,
+/// that law's steady loop (driven from the virgin state to delta_max first).
+[[nodiscard]] std::pair<std::vector<double>, std::vector<double>> steady_loop(
+    const LoadPrediction& load, double delta_max, std::size_t n = 100);
 
 /// A steady symmetric fretting loop of amplitude delta_max on an SI backbone, from
 /// (delta_max, Q_peak) down to -delta_max and back (Masing's rules), `n` points per

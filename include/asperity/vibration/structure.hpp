@@ -41,8 +41,10 @@ struct Structure {
 /// Linear modes of (K, M): omega^2 ascending, shapes mass-normalized (phi^T M phi = 1),
 /// each shape's largest-magnitude entry positive.
 struct LinearModes {
-  Eigen::VectorXd omega;   ///< [rad/s]
+  Eigen::VectorXd omega;   ///< [rad/s] (0 for a negative eigenvalue)
   Eigen::MatrixXd shapes;  ///< columns
+  /// The eigenvalues omega^2 [(rad/s)^2] with their sign: negative when K is indefinite.
+  Eigen::VectorXd eigenvalues;
 };
 [[nodiscard]] LinearModes linear_modes(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M);
 

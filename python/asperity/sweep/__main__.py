@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
 import tomllib
 
@@ -20,8 +21,28 @@ N %), choice(A, B, ...). Exit codes: 0 done (failed samples are in failures.csv)
 2 bad input (refused before any work), 3 every sample failed, 1 anything else."""
 
 
+class _Parser(argparse.ArgumentParser):
+    """One line for a usage error (as the C++ commands), not the whole usage block."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} ({self.prog} --help lists the options)\n")
+
+
+# Dask's address forms: tcp://HOST:PORT (and tls://, ucx://, ws://, wss://), inproc://...
+_SCHEDULER = re.compile(r"^(tcp|tls|ucx|ws|wss)://[^:/\s]+:\d+/?$|^inproc://\S+$")
+
+
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        print("asperity sweep: interrupted (SIGINT); the output directory is left as it was",
+              file=sys.stderr)
+        return 130
+
+
+def _main(argv=None) -> int:
+    ap = _Parser(
         prog="python -m asperity.sweep", epilog=EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
         description="Sweeps and Monte Carlo of asperity cases on Dask: a sweep file, or a "
@@ -76,9 +97,18 @@ def main(argv=None) -> int:
             raise spec.SweepError(f"--batch {a.batch}: a positive integer")
         if a.workers is not None and a.workers < 1:
             raise spec.SweepError(f"--workers {a.workers}: a positive integer")
+        if a.threads_per_worker < 1:
+            raise spec.SweepError(f"--threads-per-worker {a.threads_per_worker}: a positive "
+                                  "integer")
+        if a.scheduler is not None and not _SCHEDULER.match(a.scheduler):
+            raise spec.SweepError(f"--scheduler {a.scheduler!r}: give the address of a running "
+                                  "Dask scheduler, tcp://HOST:PORT (e.g. tcp://127.0.0.1:8786)")
+        formats = [f.strip() for f in a.format.split(",") if f.strip()]
+        if formats == ["both"]:
+            formats = ["netcdf", "parquet"]
         info = run(s, a.out, scheduler=a.scheduler, workers=a.workers,
                    threads_per_worker=a.threads_per_worker, serial=a.serial, batch=a.batch,
-                   block=a.block, formats=[f.strip() for f in a.format.split(",") if f.strip()],
+                   block=a.block, formats=formats,
                    plots=not a.no_plots, progress=a.progress)
     except spec.SweepError as e:
         print(f"asperity sweep: error: {e}", file=sys.stderr)

@@ -46,6 +46,10 @@ _U_LOW, _U_HIGH = 2.0**-54, 1.0 - 2.0**-53
 NORMAL_CHECK_SD = 3.0
 
 METHODS = ("random", "sobol", "lhs")
+# Most samples of one sweep (grid points times draws): 1e7 rows of results are ~1 GB of
+# memory in the summary and its statistics; a grid of 1e9 steps died with a MemoryError at
+# 8 GiB, and --samples 1e12 ran on without a word. More is a typing slip, refused before work.
+MAX_SAMPLES = 10_000_000
 
 
 class SweepError(_core.InvalidInput):
@@ -373,6 +377,9 @@ def parse_variation(key: str, spec, case: dict, choices: dict | None = None) -> 
             check_unit(kind, d_hi, key, g.group(2))
             n = int(g.group(3))
             log = g.group(5) == "log"
+            if n > MAX_SAMPLES:
+                raise SweepError(f"{key} = {text}: {n} steps is above the limit of "
+                                 f"{MAX_SAMPLES:,} samples of a sweep")
             if n < 1 or (n == 1 and lo != hi):
                 raise SweepError(f"{key} = {text}: {n} steps; a grid from LOW to HIGH needs "
                                  ">= 2 steps (1 only when LOW = HIGH)")
@@ -618,6 +625,10 @@ def read_toml(path: str) -> dict:
         raise SweepError(f"{path}: cannot be read: {e.strerror}") from None
     except tomllib.TOMLDecodeError as e:
         raise SweepError(f"{path}: TOML syntax error: {e}") from None
+    except UnicodeDecodeError as e:
+        line = e.object[:e.start].count(b"\n") + 1
+        raise SweepError(f"{path}:{line}: byte 0x{e.object[e.start]:02x} at offset {e.start} is "
+                         "not UTF-8: a case or sweep file is TOML text in UTF-8") from None
 
 
 def case_kind(case: dict) -> str:
@@ -681,6 +692,14 @@ def build(case_path: str, vary: dict, *, samples: int | None = None, seed: int =
     if not drawn and samples != 1:
         raise SweepError(f"samples = {samples}: nothing is drawn (grids only), so samples must "
                          "be 1; every grid point runs once")
+    grid_points = 1
+    for v in variations:
+        if not v.drawn:
+            grid_points *= len(v.values)
+    if grid_points * samples > MAX_SAMPLES:
+        raise SweepError(f"samples = {samples} at {grid_points} grid point(s) is "
+                         f"{grid_points * samples:,} samples, above the limit of {MAX_SAMPLES:,} "
+                         "of a sweep: lower samples or the grid steps")
     return Sweep(case=case, base_dir=os.path.dirname(os.path.abspath(case_path)),
                  variations=variations, samples=samples, seed=seed, method=method,
                  case_path=case_path, kind=case_kind(case))
