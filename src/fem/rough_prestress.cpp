@@ -48,6 +48,11 @@ class LoadingLaw {
   /// P* and dP*/dd* at d* >= d_min (0 beyond the table).
   [[nodiscard]] std::pair<double, double> at(double d) const {
     if (d >= d_max_) return {0.0, 0.0};
+    if (!(d >= d_min_)) {  // also NaN: the spline does not check its range
+      throw NumericalError(fmt::format(
+          "rough prestress: separation d/sigma = {} is outside the rough flat's range (>= {})", d,
+          d_min_));
+    }
     const double P = std::exp((*spline_)(d));
     return {P, P * spline_->prime(d)};
   }
@@ -114,21 +119,22 @@ RoughPrestress rough_prestress(const ReducedModel& model, const surface::RoughFl
       return std::log(std::max(sum * KH / out.bolt_load, 1e-300));
     };
     const double lo = law.d_min() - g0.minCoeff() / sigma;
-    if (load_ratio(lo) < 0.0) {
-      throw InvalidInput(fmt::format(
-          "rough prestress: the interface cannot carry the bolt loads ({} N) within the rough "
-          "flat's range (d >= -5 sigma_a); check the gap map and the roughness",
-          core::format_value(out.bolt_load)));
+    // Where the undeformed interface cannot carry the loads within the flat's range (a gap
+    // map much deeper than sigma), start with its lowest point one sigma above the range's
+    // end: the bodies' deformation closes the rest in Newton's iterations.
+    if (load_ratio(lo + 1.0) < 0.0) {
+      d_ref = lo + 1.0;
+    } else if (load_ratio(d_ref) < 0.0) {
+      d_ref = core::find_root(load_ratio, lo + 1.0, d_ref, "reference separation", 50);
     }
-    if (load_ratio(d_ref) < 0.0)
-      d_ref = core::find_root(load_ratio, lo, d_ref, "reference separation", 50);
   }
 
   // Rigid-body modes of the assembly (free-free): alpha M r r^T M regularises the Newton
   // matrix without changing the answer (the loads are self-equilibrated).
   Eigen::MatrixXd reg = Eigen::MatrixXd::Zero(n, n);
   {
-    const double k_ref = KH / sigma * law.at(d_ref).second * -1.0;
+    // A stiffness scale only: the rough flat's at the mean pressure.
+    const double k_ref = KH / sigma * -law.at(flat.separation_star(p_mean / KH)).second;
     const Eigen::MatrixXd Kc = K0 + Qn.transpose() * (k_ref * area).asDiagonal() * Qn;
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kc, model.M);
     const Eigen::VectorXd w2 = es.eigenvalues();

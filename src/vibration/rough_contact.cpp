@@ -289,7 +289,7 @@ RoughContactElement::Tangential RoughContactElement::limit_star(double p) const 
 RoughContactElement::Pressure RoughContactElement::pressure(double u_n) const {
   const double d = d0_star_ - u_n / surface_->sigma();
   if (d >= d_hi_) return {};
-  if (d < d_lo_) {
+  if (!(d >= d_lo_)) {  // also NaN: the splines do not check their range
     throw NumericalError(fmt::format(
         "{}: closure u_n = {} m presses the surfaces {:.3g} sigma past their prestress; the "
         "element's normal law is tabulated over {} sigma (d/sigma from {:.4g})",
