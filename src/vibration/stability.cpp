@@ -74,6 +74,31 @@ Eigen::MatrixXd velocity_tangent(const HarmonicBalance& hb, const Eigen::VectorX
   return Jv;
 }
 
+// Spectral centre sum_k k |p_k|^2 / sum_k |p_k|^2 of an eigenvector's periodic part in
+// complex harmonics k = -H..H: a cos(h t) + b sin(h t) = (a - i b)/2 e^{i h t} + (a + i b)/2
+// e^{-i h t}.
+double spectral_centre(const HarmonicBasis& b, Eigen::Index dofs,
+                       const Eigen::Ref<const Eigen::VectorXcd>& p) {
+  const auto nc = static_cast<Eigen::Index>(b.coefficients());
+  const std::complex<double> i(0.0, 1.0);
+  double moment = 0.0, total = 0.0;
+  for (Eigen::Index dof = 0; dof < dofs; ++dof) {
+    for (Eigen::Index c = 0; c < nc; ++c) {
+      const int h = b.harmonic_of(static_cast<std::size_t>(c));
+      if (h == 0) {
+        total += std::norm(p(dof * nc + c));
+        continue;
+      }
+      if (b.kind_of(static_cast<std::size_t>(c)) != 0) continue;
+      const std::complex<double> a = p(dof * nc + c), s = p(dof * nc + c + 1);
+      const double wp = 0.25 * std::norm(a - i * s), wm = 0.25 * std::norm(a + i * s);
+      moment += h * (wp - wm);
+      total += wp + wm;
+    }
+  }
+  return total > 0.0 ? moment / total : 0.0;
+}
+
 }  // namespace
 
 PeriodicStability hill_stability(const HarmonicBalance& hb_in, const Eigen::VectorXd& U_in,
@@ -151,7 +176,7 @@ PeriodicStability hill_stability(const HarmonicBalance& hb_in, const Eigen::Vect
         fmt::format("Hill stability at omega = {}: the linearised system holds a NaN or infinity",
                     core::format_value(omega)));
   }
-  const Eigen::EigenSolver<Eigen::MatrixXd> es(A, false);
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
   if (es.info() != Eigen::Success) {
     throw NumericalError(fmt::format(
         "Hill stability at omega = {}: the QR algorithm did not converge on the {} x {} "
@@ -159,11 +184,20 @@ PeriodicStability hill_stability(const HarmonicBalance& hb_in, const Eigen::Vect
         core::format_value(omega), 2 * N, 2 * N));
   }
   const Eigen::VectorXcd& lambda = es.eigenvalues();
-  // The 2 n exponents nearest the real axis (Lazarus & Thomas 2010): the copies
-  // lambda + i k omega of large |k| are the ones the truncation spoils.
+  // The 2 n exponents whose eigenvectors are centred nearest harmonic 0 (the symmetric-
+  // eigenvector criterion; Bentvelsen & Lazarus, Nonlinear Dyn. 91 (2018)); the copies
+  // lambda + i k omega are shifted by -k harmonics and, near the truncation's edge,
+  // spoilt. Ties (conjugates, real eigenvectors) by |Im lambda| (Lazarus & Thomas 2010).
+  std::vector<double> centre(static_cast<std::size_t>(2 * N));
+  for (Eigen::Index j = 0; j < 2 * N; ++j) {
+    centre[static_cast<std::size_t>(j)] =
+        std::abs(spectral_centre(hb.basis(), n, es.eigenvectors().col(j).head(N)));
+  }
   std::vector<Eigen::Index> idx(static_cast<std::size_t>(2 * N));
   std::iota(idx.begin(), idx.end(), Eigen::Index{0});
   std::stable_sort(idx.begin(), idx.end(), [&](Eigen::Index a, Eigen::Index b) {
+    const double ca = centre[static_cast<std::size_t>(a)], cb = centre[static_cast<std::size_t>(b)];
+    if (std::abs(ca - cb) > 1e-6) return ca < cb;
     return std::abs(lambda(a).imag()) < std::abs(lambda(b).imag());
   });
   idx.resize(static_cast<std::size_t>(2 * n));

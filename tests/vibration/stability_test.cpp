@@ -28,7 +28,9 @@ constexpr double kPi = std::numbers::pi;
 
 // A Rayleigh-damped 2-DOF chain without elements: the Floquet exponents of any periodic
 // response are the structure's eigenvalues lambda = -zeta w_i +- i w_i sqrt(1 - zeta^2),
-// zeta = (alpha / w_i + beta w_i) / 2, each up to a multiple of i omega.
+// zeta = (alpha / w_i + beta w_i) / 2, themselves (eigenvectors on harmonic 0, the
+// symmetric ones), not copies shifted by i k omega, although the second mode
+// (4.47 rad/s) lies beyond omega / 2 (where the smallest-|Im| choice would shift it).
 TEST(VibrationStability, LinearExponentsAreTheDampedEigenvalues) {
   const Eigen::Matrix2d M{{2.0, 0.0}, {0.0, 1.0}};
   const Eigen::Matrix2d K{{30.0, -10.0}, {-10.0, 10.0}};
@@ -52,19 +54,10 @@ TEST(VibrationStability, LinearExponentsAreTheDampedEigenvalues) {
       // omega^2 H^2 ~ 70: 1e-10 of |lambda|.
       bool found = false;
       for (Eigen::Index k = 0; k < st.exponents.size(); ++k) {
-        const std::complex<double> l = st.exponents(k);
-        const double shift = (l.imag() - expected.imag()) / omega;
-        if (std::abs(l.real() - expected.real()) <= 1e-10 * std::abs(expected) &&
-            std::abs(shift - std::round(shift)) * omega <= 1e-10 * std::abs(expected)) {
-          found = true;
-        }
+        if (std::abs(st.exponents(k) - expected) <= 1e-10 * std::abs(expected)) found = true;
       }
       EXPECT_TRUE(found) << "lambda = " << expected << " not among the exponents";
     }
-  }
-  // Chosen nearest the real axis: each |Im| at most omega / 2.
-  for (Eigen::Index k = 0; k < st.exponents.size(); ++k) {
-    EXPECT_LE(std::abs(st.exponents(k).imag()), 0.5 * omega * (1.0 + 1e-12));
   }
   // |mu| = exp(max Re lambda T).
   const double re = -0.5 * (alpha + beta * lm.omega(0) * lm.omega(0));
