@@ -681,11 +681,19 @@ def plot_mode(mode: Mapping, axes=None, label: str | None = None, quasi_static: 
 
 def plot_response(curves: Sequence[Mapping], output: int = 0, ax=None):
     """First-harmonic amplitude of output ``output`` against frequency [rad/s] of
-    :meth:`HarmonicBalance.frequency_response` curves, one line per force scale."""
+    :meth:`HarmonicBalance.frequency_response` curves, one line per force scale; with
+    ``stability`` (Hill's method), the unstable stretches dashed red over them."""
     (ax,) = _axes(ax)
+    labelled = False
     for c in curves:
-        ax.plot(c["omega"], c["output_amplitude"][:, output],
-                label=f"force x {c['force_scale']:g}")
+        y = c["output_amplitude"][:, output]
+        ax.plot(c["omega"], y, label=f"force x {c['force_scale']:g}")
+        if c.get("stability") is not None:
+            yu = np.where(c["stability"]["stable"], np.nan, y)
+            if np.isfinite(yu).any():
+                ax.plot(c["omega"], yu, "--", color="#d62728", lw=2.5,
+                        label=None if labelled else "unstable (Hill)")
+                labelled = True
     ax.set_xlabel("omega [rad/s]")
     ax.set_ylabel("amplitude [m]")
     ax.legend()
