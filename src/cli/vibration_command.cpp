@@ -114,6 +114,17 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
         cols.push_back(vec(cv.harmonic_amplitude[o].col(static_cast<Eigen::Index>(hh))));
       }
     }
+    if (!cv.stability.empty()) {  // Hill's method: 1 stable, 0 unstable
+      std::vector<double> stable, max_re;
+      for (const PeriodicStability& p : cv.stability) {
+        stable.push_back(p.stable ? 1.0 : 0.0);
+        max_re.push_back(p.max_real_exponent);
+      }
+      h.push_back("stable");
+      cols.push_back(std::move(stable));
+      h.push_back("max_real_exponent_per_s");
+      cols.push_back(std::move(max_re));
+    }
     write(fmt::format("frequency_response_{}.csv", k + 1), csv(h, cols));
   }
   if (r.quasi_static_mode) {
@@ -276,6 +287,11 @@ std::string text_summary(const VibrationCase& c, const VibrationResult& r) {
         "at {:.6g} Hz, {} fold(s)\n",
         k + 1, cv.force_scale, cv.omega.size(), c.output_dofs[0], peak,
         peak_omega / (2.0 * std::numbers::pi), cv.folds.size());
+    if (!cv.stability.empty()) {
+      const auto unstable = std::count_if(cv.stability.begin(), cv.stability.end(),
+                                          [](const PeriodicStability& p) { return !p.stable; });
+      out.insert(out.size() - 1, fmt::format(", {} unstable point(s) (Hill)", unstable));
+    }
   }
   if (r.quasi_static_mode) {
     const auto& q = *r.quasi_static_mode;
