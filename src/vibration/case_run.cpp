@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <complex>
 #include <numbers>
 
 #include "asperity/core/error.hpp"
@@ -290,9 +291,17 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                             {"amplitude_m", pk.amplitude}});
         }
         for (const ResponseFold& f : cv.folds) {
-          folds.emplace_back(SummaryObject{{"omega_rad_s", f.omega},
-                                           {"frequency_hz", f.omega / (2.0 * std::numbers::pi)},
-                                           {"output_amplitude", array(f.output_amplitude)}});
+          SummaryObject fo{{"omega_rad_s", f.omega},
+                           {"frequency_hz", f.omega / (2.0 * std::numbers::pi)},
+                           {"output_amplitude", array(f.output_amplitude)}};
+          if (!cv.stability.empty()) {
+            // At a fold Delta_0 is singular: a Floquet exponent at 0 (a multiplier at +1).
+            const std::complex<double> l =
+                hill_stability(hb, f.harmonics, f.omega, hb.structure().C, all.hill)
+                    .smallest_exponent;
+            fo.emplace_back("smallest_floquet_exponent_per_s", SummaryArray{l.real(), l.imag()});
+          }
+          folds.emplace_back(std::move(fo));
         }
         o.emplace_back("peaks", std::move(peaks));
         o.emplace_back("folds", std::move(folds));

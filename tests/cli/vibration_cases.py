@@ -619,6 +619,13 @@ def stability(exe):
                 return fail(f"omega {w[i]} on an outer branch called unstable")
     if falling < 3 or rising < 10:
         return fail(f"{falling} falling and {rising} rising points")
+    if len(c["folds"]) != 2:
+        return fail(f"{len(c['folds'])} folds, expected 2")
+    for f in c["folds"]:
+        re, im = f["smallest_floquet_exponent_per_s"]
+        # The fold located to ~1e-8 of a chord: the exponent at it below 1e-6 omega, real.
+        if math.hypot(re, im) > 1e-6 * f["omega_rad_s"] or im != 0.0:
+            return fail(f"fold at {f['omega_rad_s']}: exponent {re} + {im} i")
     col = header.index("stable")
     if [bool(row[col]) for row in rows] != list(st["stable"]):
         return fail("CSV stable column differs from summary.json")
