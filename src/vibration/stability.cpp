@@ -119,7 +119,7 @@ PeriodicStability hill_stability(const HarmonicBalance& hb_in, const Eigen::Vect
         fmt::format("hill_stability: the damping matrix is {} x {}, {} x {} expected", C_eff.rows(),
                     C_eff.cols(), n, n));
   }
-  // The perturbation on all harmonics 0..H (Krack & Gross 2019, sec. 5.3).
+  // The perturbation on all harmonics 0..H.
   const int H = hb_in.basis().max_harmonic();
   std::vector<int> all(static_cast<std::size_t>(H) + 1);
   std::iota(all.begin(), all.end(), 0);
@@ -185,7 +185,7 @@ PeriodicStability hill_stability(const HarmonicBalance& hb_in, const Eigen::Vect
   }
   const Eigen::VectorXcd& lambda = es.eigenvalues();
   // The 2 n exponents whose eigenvectors are centred nearest harmonic 0 (the symmetric-
-  // eigenvector criterion; Bentvelsen & Lazarus, Nonlinear Dyn. 91 (2018)); the copies
+  // eigenvector criterion; Bentvelsen & Lazarus, Nonlinear Dyn. (2018)); the copies
   // lambda + i k omega are shifted by -k harmonics and, near the truncation's edge,
   // spoilt. Ties (conjugates, real eigenvectors) by |Im lambda| (Lazarus & Thomas 2010).
   std::vector<double> centre(static_cast<std::size_t>(2 * N));

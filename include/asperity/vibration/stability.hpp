@@ -2,7 +2,7 @@
 // Stability of a periodic solution of harmonic balance by Hill's method (Hill 1886;
 // von Groll & Ewins, J. Sound Vib. 241 (2001) 223-233; Lazarus & Thomas, C. R. Mecanique
 // 338 (2010) 510-517; Krack & Gross, "Harmonic Balance for Nonlinear Vibration
-// Problems", Springer 2019, ch. 5).
+// Problems", Springer 2019).
 //
 // A perturbation y(t) = exp(lambda t) p(t) of the periodic motion x*(t) of
 // M x'' + C x' + K x + f_nl(x, x') = f_ex, with p periodic on the same harmonics,
@@ -15,7 +15,7 @@
 // its eigenvector shifted by -k harmonics; the copies near the truncation's edge are
 // spoilt. The 2 n whose eigenvectors are centred nearest harmonic 0 (spectral centre
 // sum_k k |p_k|^2 / sum_k |p_k|^2 over complex harmonics k = -H..H; the symmetric-
-// eigenvector criterion, Bentvelsen & Lazarus, Nonlinear Dyn. 91 (2018)) are taken, ties
+// eigenvector criterion, Bentvelsen & Lazarus, Nonlinear Dyn. (2018)) are taken, ties
 // by the smallest |Im lambda| (Lazarus & Thomas 2010). The smallest-|Im| criterion alone
 // picks spoilt edge copies when modes lie above H omega (a 10-DOF Jenkins chain at H = 3
 // showed spurious Neimark-Sacker instabilities with it). Floquet multipliers are
@@ -24,7 +24,8 @@
 //
 // The linearisation of a hysteretic (non-smooth) element is the AFT Jacobian of the
 // harmonic-balance map, history terms included: the perturbed path is taken to keep the
-// reversal samples of the periodic one (docs/vibration.md says where that holds).
+// reversal samples of the periodic one, and the history terms enter without their delay
+// factor exp(-lambda (t_i - t_j)), exact at lambda = 0 (folds) only (docs/vibration.md).
 #include <complex>
 #include <cstddef>
 #include <string>
