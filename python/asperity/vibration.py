@@ -537,7 +537,8 @@ class HarmonicBalance:
 
     def frequency_response(self, force, omega, force_scales: Sequence[float] = (1.0,),
                            output_dofs: Sequence[int] = (), *, force_per_omega=None,
-                           force_per_omega2=None, **continuation) -> list:
+                           force_per_omega2=None, stability: bool = False,
+                           **continuation) -> list:
         """Forced response curves by continuation in ``omega = (from, to)`` [rad/s] for each
         force scale; ``force`` in the layout of ``U`` (see :meth:`force`). The excitation
         is ``force + omega force_per_omega + omega^2 force_per_omega2`` (the last two
@@ -546,7 +547,11 @@ class HarmonicBalance:
         One :class:`Result` per scale: ``force_scale, omega, output_amplitude (points x
         outputs, first harmonic), harmonic_amplitude (per output: points x harmonics),
         max_displacement (points x outputs), harmonics (points x unknowns), continuation,
-        warnings``.
+        warnings``; with ``stability=True`` also ``stability``: Hill's method per point
+        (``stable`` bool array, ``max_real_exponent`` [1/s], ``max_multiplier_modulus``,
+        ``instability`` ("" / "fold" / "period_doubling" / "neimark_sacker"),
+        ``exponents``: points x reported Floquet exponents [1/s], complex, largest real part
+        first; docs/vibration.md).
 
         Keyword options of the continuation (each optional; the analysis's own defaults
         otherwise, as in a case file's ``continuation`` table): step, min_step, max_step
@@ -560,10 +565,10 @@ class HarmonicBalance:
         curves = _v.frequency_response(self._core, vec(force), vec(force_per_omega),
                                        vec(force_per_omega2), [float(s) for s in force_scales],
                                        float(w0), float(w1), [int(d) for d in output_dofs],
-                                       dict(continuation))
+                                       dict(continuation), bool(stability))
         out = []
         for c in curves:
-            r = Result(c)
+            r = _curve_result(c)
             _issue(r, "frequency_response")
             out.append(r)
         return out
@@ -602,11 +607,22 @@ def quasi_static_mode(hb: HarmonicBalance, mode: int = 1, amplitude=(1e-7, 1e-4)
     return hb.quasi_static_mode(mode, amplitude, points)
 
 
+def _curve_result(c: dict) -> Result:
+    r = Result(c)
+    if "stability" in c:
+        s = dict(c["stability"])
+        s["stable"] = np.asarray(s["stable"], dtype=bool)
+        s["exponents"] = np.asarray(s.pop("exponents_real")) + 1j * np.asarray(
+            s.pop("exponents_imag"))
+        r["stability"] = Result(s)
+    return r
+
+
 def _case_result(d: dict, source: str) -> Result:
     out = Result(summary=d["summary"], complete=d["complete"], stop_reason=d["stop_reason"],
                  warnings=list(d["warnings"]))
     out["nonlinear_mode"] = Result(d["nonlinear_mode"]) if d["nonlinear_mode"] is not None else None
-    out["frequency_response"] = [Result(c) for c in d["frequency_response"]]
+    out["frequency_response"] = [_curve_result(c) for c in d["frequency_response"]]
     out["quasi_static_mode"] = (Result(d["quasi_static_mode"])
                                 if d["quasi_static_mode"] is not None else None)
     out["system"] = HarmonicBalance._from_system(d["system"])
@@ -614,21 +630,24 @@ def _case_result(d: dict, source: str) -> Result:
     return out
 
 
-def run_case(path: str | os.PathLike) -> Result:
+def run_case(path: str | os.PathLike, *, stability: bool = False) -> Result:
     """Runs a vibration case file (docs/vibration.md) through the same C++ code as
     ``asperity vibration``. Returns a :class:`Result` with ``summary`` (summary.json as a
     dict), ``nonlinear_mode`` and ``quasi_static_mode`` (:class:`Result` of arrays or None),
     ``frequency_response`` (one :class:`Result` per curve, ``table`` its
     ``[[frequency_response]]`` index), ``complete`` (every continuation reached its end),
     ``stop_reason``, ``warnings`` (also issued as RuntimeWarning) and ``system`` (the
-    case's :class:`HarmonicBalance`)."""
-    return _case_result(_v.run_case(os.fspath(path)), os.fspath(path))
+    case's :class:`HarmonicBalance`). ``stability=True`` adds Hill's stability to every
+    forced-response curve (as ``stability = true`` in each table)."""
+    return _case_result(_v.run_case(os.fspath(path), bool(stability)), os.fspath(path))
 
 
-def run_case_text(text: str, base_dir: str | os.PathLike = ".") -> Result:
+def run_case_text(text: str, base_dir: str | os.PathLike = ".", *,
+                  stability: bool = False) -> Result:
     """:func:`run_case` for case-file text (``base_dir`` resolves .mtx files and a
     [joint]'s profiles)."""
-    return _case_result(_v.run_case_text(text, os.fspath(base_dir)), "<string>")
+    return _case_result(_v.run_case_text(text, os.fspath(base_dir), bool(stability)),
+                        "<string>")
 
 
 # -- matplotlib helpers ----------------------------------------------------------------------
@@ -662,11 +681,19 @@ def plot_mode(mode: Mapping, axes=None, label: str | None = None, quasi_static: 
 
 def plot_response(curves: Sequence[Mapping], output: int = 0, ax=None):
     """First-harmonic amplitude of output ``output`` against frequency [rad/s] of
-    :meth:`HarmonicBalance.frequency_response` curves, one line per force scale."""
+    :meth:`HarmonicBalance.frequency_response` curves, one line per force scale; with
+    ``stability`` (Hill's method), the unstable stretches dashed red over them."""
     (ax,) = _axes(ax)
+    labelled = False
     for c in curves:
-        ax.plot(c["omega"], c["output_amplitude"][:, output],
-                label=f"force x {c['force_scale']:g}")
+        y = c["output_amplitude"][:, output]
+        ax.plot(c["omega"], y, label=f"force x {c['force_scale']:g}")
+        if c.get("stability") is not None:
+            yu = np.where(c["stability"]["stable"], np.nan, y)
+            if np.isfinite(yu).any():
+                ax.plot(c["omega"], yu, "--", color="#d62728", lw=2.5,
+                        label=None if labelled else "unstable (Hill)")
+                labelled = True
     ax.set_xlabel("omega [rad/s]")
     ax.set_ylabel("amplitude [m]")
     ax.legend()

@@ -209,6 +209,32 @@ nb::dict curve_dict(const FrequencyResponseCurve& c, Eigen::Index unknowns) {
   d["harmonics"] = copy_of(stack(c.harmonics, unknowns));
   d["continuation"] = continuation_dict(c.continuation);
   d["warnings"] = string_list(c.warnings);
+  if (!c.stability.empty()) {
+    // Hill's stability per point; exponents as points x reported (real and imaginary).
+    const auto np = static_cast<Eigen::Index>(c.stability.size());
+    const Eigen::Index ne = c.stability.front().exponents.size();
+    Matrix re(np, ne), im(np, ne);
+    Vector max_re(np), max_mu(np);
+    std::vector<bool> stable;
+    std::vector<std::string> kind;
+    for (Eigen::Index k = 0; k < np; ++k) {
+      const PeriodicStability& p = c.stability[static_cast<std::size_t>(k)];
+      re.row(k) = p.exponents.real().transpose();
+      im.row(k) = p.exponents.imag().transpose();
+      max_re(k) = p.max_real_exponent;
+      max_mu(k) = p.max_multiplier_modulus;
+      stable.push_back(p.stable);
+      kind.push_back(p.instability);
+    }
+    nb::dict s;
+    s["stable"] = stable;
+    s["max_real_exponent"] = copy_of(max_re);
+    s["max_multiplier_modulus"] = copy_of(max_mu);
+    s["instability"] = kind;
+    s["exponents_real"] = copy_of(re);
+    s["exponents_imag"] = copy_of(im);
+    d["stability"] = s;
+  }
   return d;
 }
 
@@ -242,7 +268,10 @@ nb::dict case_system(const VibrationCase& c) {
 }
 
 // run_case as a dict: summary (summary.json), the analyses' arrays, complete, warnings.
-nb::dict case_result(const VibrationCase& c) {
+nb::dict case_result(VibrationCase c, bool stability) {
+  if (stability) {
+    for (auto& fr : c.frequency_responses) fr.options.stability = true;
+  }
   const VibrationResult r = [&] {
     nb::gil_scoped_release release;
     return run_case(c);
@@ -653,8 +682,10 @@ void bind_vibration(nb::module_& parent) {
       "frequency_response",
       [](const PyHarmonicBalance& p, const Vector& force, const Vector& force_per_omega,
          const Vector& force_per_omega2, const std::vector<double>& scales, double omega_from,
-         double omega_to, const std::vector<long>& outputs, const nb::dict& continuation) {
+         double omega_to, const std::vector<long>& outputs, const nb::dict& continuation,
+         bool stability) {
         FrequencyResponseOptions o;
+        o.stability = stability;
         o.force = force;
         o.force_per_omega = force_per_omega;
         o.force_per_omega2 = force_per_omega2;
@@ -671,7 +702,7 @@ void bind_vibration(nb::module_& parent) {
         return out;
       },
       "hb"_a, "force"_a, "force_per_omega"_a, "force_per_omega2"_a, "force_scales"_a,
-      "omega_from"_a, "omega_to"_a, "output_dofs"_a, "continuation"_a,
+      "omega_from"_a, "omega_to"_a, "output_dofs"_a, "continuation"_a, "stability"_a = false,
       "F_ex(omega) = force + omega force_per_omega + omega^2 force_per_omega2 (the last two may "
       "be empty).");
 
@@ -693,26 +724,26 @@ void bind_vibration(nb::module_& parent) {
   // ---- case files (shared with `asperity vibration`) -------------------------------------
   m.def(
       "run_case",
-      [](const std::string& path) {
-        const VibrationCase c = [&] {
+      [](const std::string& path, bool stability) {
+        VibrationCase c = [&] {
           nb::gil_scoped_release release;
           return read_case_file(path);
         }();
-        return case_result(c);
+        return case_result(std::move(c), stability);
       },
-      "path"_a,
+      "path"_a, "stability"_a = false,
       "Runs a vibration case file: dict summary, nonlinear_mode, frequency_response, "
       "quasi_static_mode, complete, stop_reason, warnings, system.");
   m.def(
       "run_case_text",
-      [](const std::string& text, const std::string& base_dir) {
-        const VibrationCase c = [&] {
+      [](const std::string& text, const std::string& base_dir, bool stability) {
+        VibrationCase c = [&] {
           nb::gil_scoped_release release;
           return parse_case_text(text, "<string>", base_dir);
         }();
-        return case_result(c);
+        return case_result(std::move(c), stability);
       },
-      "text"_a, "base_dir"_a = ".", "run_case for case-file text.");
+      "text"_a, "base_dir"_a = ".", "stability"_a = false, "run_case for case-file text.");
   m.def(
       "check_case_text",
       [](const std::string& text, const std::string& base_dir) {

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -31,6 +32,7 @@ struct VibrationOptions {
   std::optional<std::string> out_dir;
   bool json = false;
   bool no_plots = false;
+  bool stability = false;
 };
 
 std::string num(double x) {
@@ -112,6 +114,17 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
         cols.push_back(vec(cv.harmonic_amplitude[o].col(static_cast<Eigen::Index>(hh))));
       }
     }
+    if (!cv.stability.empty()) {  // Hill's method: 1 stable, 0 unstable
+      std::vector<double> stable, max_re;
+      for (const PeriodicStability& p : cv.stability) {
+        stable.push_back(p.stable ? 1.0 : 0.0);
+        max_re.push_back(p.max_real_exponent);
+      }
+      h.push_back("stable");
+      cols.push_back(std::move(stable));
+      h.push_back("max_real_exponent_per_s");
+      cols.push_back(std::move(max_re));
+    }
     write(fmt::format("frequency_response_{}.csv", k + 1), csv(h, cols));
   }
   if (r.quasi_static_mode) {
@@ -178,6 +191,30 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
         }
         p.series.push_back(std::move(s));
       }
+      // Unstable stretches (Hill's method) over the curves, broken between stretches
+      // (gnuplot leaves out the segments at an undefined point).
+      Series unstable{.title = "unstable (Hill)",
+                      .style = "linespoints dt 2 pt 2 ps 0.6 lc rgb '#d62728'"};
+      const auto gap = [&unstable] {
+        if (!unstable.x.empty() && !std::isnan(unstable.x.back())) {
+          unstable.x.push_back(std::numeric_limits<double>::quiet_NaN());
+          unstable.y.push_back(std::numeric_limits<double>::quiet_NaN());
+        }
+      };
+      for (const auto& cv : r.frequency_response) {
+        if (cv.stability.empty()) continue;
+        for (Eigen::Index i = 0; i < cv.omega.size(); ++i) {
+          const double y = cv.output_amplitude(i, static_cast<Eigen::Index>(o));
+          if (cv.stability[static_cast<std::size_t>(i)].stable || !(y > 0.0)) {
+            gap();
+            continue;
+          }
+          unstable.x.push_back(cv.omega(i) / (2.0 * std::numbers::pi));
+          unstable.y.push_back(y);
+        }
+        gap();
+      }
+      if (!unstable.x.empty()) p.series.push_back(std::move(unstable));
       // The refined peaks of this output and the folds of every curve, as markers.
       Series peaks{.title = "peaks (refined)", .style = "points pt 7 ps 1.2"};
       Series folds{.title = "folds (turning points)", .style = "points pt 6 ps 1.2"};
@@ -250,6 +287,11 @@ std::string text_summary(const VibrationCase& c, const VibrationResult& r) {
         "at {:.6g} Hz, {} fold(s)\n",
         k + 1, cv.force_scale, cv.omega.size(), c.output_dofs[0], peak,
         peak_omega / (2.0 * std::numbers::pi), cv.folds.size());
+    if (!cv.stability.empty()) {
+      const auto unstable = std::count_if(cv.stability.begin(), cv.stability.end(),
+                                          [](const PeriodicStability& p) { return !p.stable; });
+      out.insert(out.size() - 1, fmt::format(", {} unstable point(s) (Hill)", unstable));
+    }
   }
   if (r.quasi_static_mode) {
     const auto& q = *r.quasi_static_mode;
@@ -277,7 +319,10 @@ void run_vibration(const VibrationOptions& o, std::string& out) {
   if (files) {
     require_case_output_directory(*o.out_dir, o.case_file);
   }
-  const VibrationCase c = read_case_file(o.case_file);
+  VibrationCase c = read_case_file(o.case_file);
+  if (o.stability) {
+    for (auto& fr : c.frequency_responses) fr.options.stability = true;
+  }
   const bool bar = isatty(STDERR_FILENO) != 0;
   bool bar_drawn = false;
   const CaseProgress progress = [&](const std::string& analysis, double x) {
@@ -357,6 +402,9 @@ void add_vibration_command(CLI::App& app, std::function<int()>& action) {
                   "if asperity wrote it); without it only the summary is printed");
   cmd->add_flag("--json", o->json, "print summary.json instead of the text summary");
   cmd->add_flag("--no-plots", o->no_plots, "skip the PNG plots (no gnuplot needed)");
+  cmd->add_flag("--stability", o->stability,
+                "Hill's stability of every forced-response point (as stability = true in each "
+                "[[frequency_response]] table)");
   cmd->callback([o, &action] {
     action = [o] { return run_guarded([o](std::string& out) { run_vibration(*o, out); }); };
   });

@@ -223,6 +223,7 @@ void FrequencyResponseOptions::validate(Eigen::Index unknowns) const {
   core::require_positive("frequency_response.omega.to", omega_to);
   if (omega_from == omega_to) throw InvalidInput("frequency_response.omega: from and to are equal");
   continuation.validate();
+  hill.validate();
 }
 
 std::vector<FrequencyResponseCurve> frequency_response(const HarmonicBalance& hb,
@@ -312,6 +313,8 @@ std::vector<FrequencyResponseCurve> frequency_response(const HarmonicBalance& hb
         }
       }
       c.harmonics.push_back(U);
+      if (opt.stability)
+        c.stability.push_back(hill_stability(hb, U, y(nu), hb.structure().C, opt.hill));
     }
     // Peaks of each output and folds, refined between the computed points. Contact and
     // slip located at samples fold the curve into Z's one sample wide (issue 23): those

@@ -458,7 +458,7 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
       check_keys(t, w,
                  {"force_cos", "force_sin", "force_per_omega_cos", "force_per_omega_sin",
                   "force_per_omega2_cos", "force_per_omega2_sin", "force_scales", "omega",
-                  "continuation"});
+                  "continuation", "stability"});
       FrequencyResponseCase fr;
       // One (cos, sin) pair of coefficient tables: rows harmonics, columns DOFs.
       auto pair = [&](const std::string& prefix, Eigen::MatrixXd& cos_part,
@@ -520,6 +520,15 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
       o.omega_from = from;
       o.omega_to = to;
       parse_continuation(t, w, o.continuation);
+      if (const auto* hill_node = t.get("stability")) {
+        const auto b = hill_node->value<bool>();
+        if (!hill_node->is_boolean() || !b) {
+          throw InvalidInput(
+              fmt::format("{}.stability must be true or false (Hill's stability of every point){}",
+                          w, at_line(*hill_node)));
+        }
+        o.stability = *b;
+      }
       try {
         o.validate(static_cast<Eigen::Index>(basis.coefficients()) * n);
       } catch (const InvalidInput& e) {

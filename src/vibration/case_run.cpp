@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <complex>
 #include <numbers>
 
 #include "asperity/core/error.hpp"
@@ -24,6 +25,29 @@ SummaryArray rows(const Eigen::MatrixXd& m) {
   SummaryArray a;
   for (Eigen::Index i = 0; i < m.rows(); ++i) a.emplace_back(array(m.row(i).transpose()));
   return a;
+}
+
+// Hill's stability per point (stability.hpp): flags, the leading exponent and
+// multiplier, and the reported Floquet exponents as [Re, Im] pairs [1/s].
+SummaryObject stability_summary(const std::vector<PeriodicStability>& st) {
+  SummaryArray stable, max_re, max_mu, kind, exponents;
+  for (const PeriodicStability& p : st) {
+    stable.emplace_back(p.stable);
+    max_re.emplace_back(p.max_real_exponent);
+    max_mu.emplace_back(p.max_multiplier_modulus);
+    kind.emplace_back(p.instability);
+    SummaryArray e;
+    for (Eigen::Index k = 0; k < p.exponents.size(); ++k) {
+      e.emplace_back(SummaryArray{p.exponents(k).real(), p.exponents(k).imag()});
+    }
+    exponents.emplace_back(std::move(e));
+  }
+  return {{"method", "hill"},
+          {"stable", std::move(stable)},
+          {"max_real_exponent_per_s", std::move(max_re)},
+          {"max_multiplier_modulus", std::move(max_mu)},
+          {"instability", std::move(kind)},
+          {"floquet_exponents_per_s", std::move(exponents)}};
 }
 
 SummaryArray matrix_summary(const Eigen::MatrixXd& m) {
@@ -267,12 +291,21 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                             {"amplitude_m", pk.amplitude}});
         }
         for (const ResponseFold& f : cv.folds) {
-          folds.emplace_back(SummaryObject{{"omega_rad_s", f.omega},
-                                           {"frequency_hz", f.omega / (2.0 * std::numbers::pi)},
-                                           {"output_amplitude", array(f.output_amplitude)}});
+          SummaryObject fo{{"omega_rad_s", f.omega},
+                           {"frequency_hz", f.omega / (2.0 * std::numbers::pi)},
+                           {"output_amplitude", array(f.output_amplitude)}};
+          if (!cv.stability.empty()) {
+            // At a fold Delta_0 is singular: a Floquet exponent at 0 (a multiplier at +1).
+            const std::complex<double> l =
+                hill_stability(hb, f.harmonics, f.omega, hb.structure().C, all.hill)
+                    .smallest_exponent;
+            fo.emplace_back("smallest_floquet_exponent_per_s", SummaryArray{l.real(), l.imag()});
+          }
+          folds.emplace_back(std::move(fo));
         }
         o.emplace_back("peaks", std::move(peaks));
         o.emplace_back("folds", std::move(folds));
+        if (!cv.stability.empty()) o.emplace_back("stability", stability_summary(cv.stability));
         o.emplace_back("solver", solver_summary(w));
         curves.emplace_back(std::move(o));
         add_analysis(total, w, curve);

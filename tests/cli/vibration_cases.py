@@ -585,6 +585,77 @@ def out_refuses_a_foreign_directory(exe):
     return 0
 
 
+def stability(exe):
+    # The shipped forced Duffing case with stability = true (docs/vibration.md, Stability):
+    # the points where omega falls along the curve (between its folds) are unstable by
+    # a real multiplier beyond +1, those where it rises are stable; the same flags in
+    # summary.json and in the curve's CSV; --stability asks for it on a case without the
+    # key (the linear base-excitation SDOF: every point stable, exponents -c/2 +- i w_d).
+    with tempfile.TemporaryDirectory() as tmp:
+        case = open(os.path.join(EXAMPLES, "duffing_stability.toml")).read()
+        r, out = run(exe, case, tmp)
+        if r.returncode != 0:
+            return fail(f"exit {r.returncode}: {r.stderr}")
+        c = json.load(open(os.path.join(out, "summary.json")))["frequency_response"][0]
+        header, rows = read_csv(os.path.join(out, "frequency_response_1.csv"))
+        if "unstable point(s) (Hill)" not in r.stdout:
+            return fail(f"text summary without the unstable count: {r.stdout}")
+    st = c.get("stability")
+    if st is None:
+        return fail("no frequency_response[0].stability")
+    w = c["omega_rad_s"]
+    if len(st["stable"]) != len(w) or len(st["floquet_exponents_per_s"]) != len(w):
+        return fail("stability arrays not parallel to omega_rad_s")
+    falling = rising = 0
+    for i in range(1, len(w) - 1):
+        if w[i - 1] > w[i] > w[i + 1]:
+            falling += 1
+            if st["stable"][i] or st["instability"][i] != "fold":
+                return fail(f"omega {w[i]} on the middle branch: {st['stable'][i]}, "
+                            f"{st['instability'][i]!r}")
+        elif w[i - 1] < w[i] < w[i + 1]:
+            rising += 1
+            if not st["stable"][i]:
+                return fail(f"omega {w[i]} on an outer branch called unstable")
+    if falling < 3 or rising < 10:
+        return fail(f"{falling} falling and {rising} rising points")
+    if len(c["folds"]) != 2:
+        return fail(f"{len(c['folds'])} folds, expected 2")
+    for f in c["folds"]:
+        re, im = f["smallest_floquet_exponent_per_s"]
+        # The fold located to ~1e-8 of a chord: the exponent at it below 1e-6 omega, real.
+        if math.hypot(re, im) > 1e-6 * f["omega_rad_s"] or im != 0.0:
+            return fail(f"fold at {f['omega_rad_s']}: exponent {re} + {im} i")
+    col = header.index("stable")
+    if [bool(row[col]) for row in rows] != list(st["stable"]):
+        return fail("CSV stable column differs from summary.json")
+    base = """[structure]
+mass = [[1.0]]
+stiffness = [[1.0]]
+damping = [[0.1]]
+[harmonic_balance]
+max = 3
+time_points = 16
+[[frequency_response]]
+force_cos = [[0.0], [0.01]]
+omega = { from = 0.5, to = 2.0 }
+"""
+    with tempfile.TemporaryDirectory() as tmp:
+        r, out = run(exe, base, tmp, extra=("--no-plots", "--stability"))
+        if r.returncode != 0:
+            return fail(f"exit {r.returncode}: {r.stderr}")
+        c = json.load(open(os.path.join(out, "summary.json")))["frequency_response"][0]
+    wd = math.sqrt(1.0 - 0.05 ** 2)
+    for e in c["stability"]["floquet_exponents_per_s"]:
+        for re, im in e:
+            # Round-off of a 14 x 14 eigenvalue problem: 1e-10.
+            if abs(re + 0.05) > 1e-10 or abs(abs(im) - wd) > 1e-10:
+                return fail(f"exponent {re} + {im} i, expected -0.05 +- {wd} i")
+    if not all(c["stability"]["stable"]):
+        return fail("a linear damped response called unstable")
+    return 0
+
+
 BAD = {
     "singular_mass": (JENKINS.replace("mass = [[1.0]]", "mass = [[0.0]]") + EPMC, "mass"),
     "singular_mass_2dof": (
@@ -638,6 +709,8 @@ continuation = { max_iterations = 2, target_iterations = 1 }
     "rough_flat_without_parameters": (JENKINS.replace('"jenkins"', '"rough_flat"').replace(
         "k_t = 0.25\nF_s = 0.2\n", "") + EPMC, ["rough_flat", "joint"]),
     "mtx_missing": (JENKINS.replace("mass = [[1.0]]", 'mass_file = "nope.mtx"') + EPMC, "nope.mtx"),
+    "stability_not_boolean": (JENKINS + FRF + "stability = 1\n",
+                              "frequency_response[0].stability"),
     "mode_out_of_range": (JENKINS + EPMC.replace("[nonlinear_mode]", "[nonlinear_mode]\nmode = 2"),
                           "nonlinear_mode.mode"),
 }
@@ -701,6 +774,7 @@ def main():
         "masing_table_from_predict": masing_table_from_predict,
         "masing_table_from_flat": masing_table_from_flat,
         "rough_contact_equals_rough_flat": rough_contact_equals_rough_flat,
+        "stability": stability,
     }[case](exe)
 
 

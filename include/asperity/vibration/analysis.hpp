@@ -11,6 +11,7 @@
 
 #include "asperity/vibration/continuation.hpp"
 #include "asperity/vibration/harmonic_balance.hpp"
+#include "asperity/vibration/stability.hpp"
 
 namespace asperity::vibration {
 
@@ -60,6 +61,9 @@ struct FrequencyResponseOptions {
   double omega_to = 0.0;    ///< [rad/s] > 0, != omega_from
   /// Steps in units of the frequency range (amplitudes scaled by the stuck linear response).
   ContinuationOptions continuation{.step = 0.01, .min_step = 1e-7, .max_step = 0.05};
+  /// Hill's stability of every point (stability.hpp); off by default (its cost).
+  bool stability = false;
+  HillOptions hill;
   void validate(Eigen::Index unknowns) const;
 };
 
@@ -90,6 +94,7 @@ struct FrequencyResponseCurve {
   std::vector<Eigen::VectorXd> harmonics;           ///< U per point
   std::vector<ResponsePeak> peaks;                  ///< in order along the curve, per output
   std::vector<ResponseFold> folds;                  ///< in order along the curve
+  std::vector<PeriodicStability> stability;         ///< per point when options.stability
   ContinuationResult continuation;
   std::vector<std::string> warnings;
 };

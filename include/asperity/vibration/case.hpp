@@ -76,6 +76,8 @@
 //   omega = { from = 0.2, to = 0.4 }   # rad/s as numbers, or quantity strings in Hz
 //                                      # ("10 Hz", converted by 2 pi) or rad/s ("62.8 rad/s")
 //   continuation = { ... }      # as above
+//   stability = true            # optional (default false): Hill's stability of every
+//                               #   point (stability.hpp; costly, docs/vibration.md)
 //
 //   [quasi_static_mode]         # Masing-based estimate of one mode
 //   mode = 1
