@@ -1,11 +1,8 @@
 #include "common.hpp"
 
 #include <fmt/format.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <unistd.h>
-#include <csignal>
 
 #include <cerrno>
 #include <charconv>
@@ -21,11 +18,10 @@
 
 #include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
+#include "asperity/core/process.hpp"
 #include "asperity/core/validate.hpp"
 #include "asperity/core/version.hpp"
 #include "asperity/joint/output_dir.hpp"
-
-extern char** environ;  // POSIX: the environment, for posix_spawnp
 
 namespace asperity::cli {
 
@@ -337,74 +333,6 @@ class TemporaryDirectory {
   int slot_ = -1;
 };
 
-struct GnuplotRun {
-  bool found = false;  ///< false: no gnuplot executable on PATH
-  bool exited_zero = false;
-  std::string messages;  ///< gnuplot's stdout and stderr
-};
-
-/// Runs `gnuplot script` without a shell (no quoting of the path needed), collecting
-/// its output.
-GnuplotRun run_gnuplot(const std::filesystem::path& script) {
-  int fds[2];
-  if (pipe(fds) != 0) throw Error(fmt::format("cannot run gnuplot: {}", std::strerror(errno)));
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
-  posix_spawn_file_actions_addclose(&actions, fds[0]);
-  posix_spawn_file_actions_addclose(&actions, fds[1]);
-  std::string program = "gnuplot";
-  std::string script_arg = script.string();
-  char* argv[] = {program.data(), script_arg.data(), nullptr};
-  pid_t pid = 0;
-  int rc = 0;
-  {
-    // Spawned and registered with signals blocked, so that a SIGTERM cannot fall between
-    // the two; the child starts with no signal blocked.
-    const core::SignalBlock block;
-    posix_spawnattr_t attr;
-    posix_spawnattr_init(&attr);
-    sigset_t none;
-    sigemptyset(&none);
-    posix_spawnattr_setsigmask(&attr, &none);
-    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK);
-    rc = posix_spawnp(&pid, program.c_str(), &actions, &attr, argv, environ);
-    posix_spawnattr_destroy(&attr);
-    if (rc == 0) core::set_cleanup_child(pid);  // a SIGTERM meanwhile ends gnuplot too
-  }
-  posix_spawn_file_actions_destroy(&actions);
-  close(fds[1]);
-  GnuplotRun run;
-  if (rc != 0) {
-    close(fds[0]);
-    if (rc == ENOENT) return run;
-    throw Error(fmt::format("cannot run gnuplot: {}", std::strerror(rc)));
-  }
-  run.found = true;
-  char buf[512];
-  for (;;) {
-    const ssize_t n = read(fds[0], buf, sizeof buf);
-    if (n > 0) {
-      run.messages.append(buf, static_cast<std::size_t>(n));
-    } else if (n == 0 || errno != EINTR) {
-      break;
-    }
-  }
-  close(fds[0]);
-  // Waited for without reaping first: until waitpid the pid cannot belong to another
-  // process, so the cleanup handler never kills a stranger.
-  siginfo_t info{};
-  while (waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
-  }
-  core::set_cleanup_child(0);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  run.exited_zero = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  return run;
-}
-
 std::string read_binary(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream bytes;
@@ -456,8 +384,11 @@ void plot_png(const std::string& path, const PlotSpec& spec, core::OutputSet* ou
       throw Error(fmt::format("cannot write the gnuplot script {}", script_path.string()));
     }
   }
-  const auto run = run_gnuplot(script_path);
-  if (!run.found) {
+  // gnuplot reads the script file, not stdin; run without a shell (no quoting needed).
+  const auto run = core::run_program({"gnuplot", script_path.string()});
+  if (run.spawn_error != 0 && run.spawn_error != ENOENT)
+    throw Error(fmt::format("cannot run gnuplot: {}", std::strerror(run.spawn_error)));
+  if (run.spawn_error == ENOENT) {
     // The user's environment, like an unwritable directory: exit 2 (README).
     throw InvalidInput(
         fmt::format("cannot draw \"{}\": gnuplot is not installed (no gnuplot on PATH); install it "
@@ -468,13 +399,13 @@ void plot_png(const std::string& path, const PlotSpec& spec, core::OutputSet* ou
   std::error_code ec;
   if (!run.exited_zero || !std::filesystem::exists(png) ||
       std::filesystem::file_size(png, ec) == 0) {
-    if (run.messages.find("pngcairo") != std::string::npos) {
+    if (run.output.find("pngcairo") != std::string::npos) {
       throw InvalidInput(fmt::format(
           "cannot draw \"{}\": this gnuplot has no pngcairo terminal; install gnuplot-nox "
           "(scripts/setup.sh) or leave out the plot ({})",
-          path, run.messages));
+          path, run.output));
     }
-    throw Error(fmt::format("plotting \"{}\" failed: gnuplot said: {}", path, run.messages));
+    throw Error(fmt::format("plotting \"{}\" failed: gnuplot said: {}", path, run.output));
   }
   if (outputs) {
     outputs->add(path, read_binary(png));

@@ -4,19 +4,13 @@
 // Extrude, BooleanUnion/Difference/Fragments; mesh size fields Box, Cylinder, Min).
 #include "asperity/fem/geometry.hpp"
 
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <poll.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cerrno>
-#include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -30,11 +24,9 @@
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
-#include "asperity/core/interrupt.hpp"
+#include "asperity/core/process.hpp"
 #include "asperity/core/validate.hpp"
 #include "asperity/fem/mesh_io.hpp"
-
-extern char** environ;  // POSIX: the environment, for posix_spawnp
 
 namespace asperity::fem {
 namespace {
@@ -631,105 +623,6 @@ class WorkDir {
   int slot_ = -1;
 };
 
-struct ProgramRun {
-  int spawn_error = 0;  ///< errno of posix_spawnp (ENOENT: not found)
-  bool exited_zero = false;
-  bool timed_out = false;
-  std::string status;  ///< "exit status 1", "signal 11"
-  std::string output;  ///< the last 64 KiB of stdout and stderr
-};
-
-void reap(pid_t pid, int* status) {
-  // Waited for without reaping first: until waitpid the pid cannot belong to another
-  // process, so the cleanup handler never kills a stranger.
-  siginfo_t info{};
-  while (waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
-  }
-  core::set_cleanup_child(0);
-  while (waitpid(pid, status, 0) < 0 && errno == EINTR) {
-  }
-}
-
-/// Runs argv[0] (looked up on PATH) without a shell, stdin from /dev/null, stdout and
-/// stderr collected; killed (SIGKILL) after `time_limit` seconds or when the interrupt
-/// hook throws (then rethrown).
-ProgramRun run_program(std::vector<std::string> argv, double time_limit) {
-  ProgramRun run;
-  int fds[2];
-  if (pipe(fds) != 0) throw Error(fmt::format("cannot run {}: {}", argv[0], std::strerror(errno)));
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, fds[1], STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, fds[1], STDERR_FILENO);
-  posix_spawn_file_actions_addclose(&actions, fds[0]);
-  posix_spawn_file_actions_addclose(&actions, fds[1]);
-  std::vector<char*> args;
-  for (auto& a : argv) args.push_back(a.data());
-  args.push_back(nullptr);
-  pid_t pid = 0;
-  int rc = 0;
-  {
-    // Spawned and registered with signals blocked, so that a SIGTERM cannot fall between
-    // the two; the child starts with no signal blocked.
-    const core::SignalBlock block;
-    posix_spawnattr_t attr;
-    posix_spawnattr_init(&attr);
-    sigset_t none;
-    sigemptyset(&none);
-    posix_spawnattr_setsigmask(&attr, &none);
-    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK);
-    rc = posix_spawnp(&pid, args[0], &actions, &attr, args.data(), environ);
-    posix_spawnattr_destroy(&attr);
-    if (rc == 0) core::set_cleanup_child(pid);  // a SIGTERM meanwhile ends the child too
-  }
-  posix_spawn_file_actions_destroy(&actions);
-  close(fds[1]);
-  if (rc != 0) {
-    close(fds[0]);
-    run.spawn_error = rc;
-    return run;
-  }
-  const auto start = std::chrono::steady_clock::now();
-  constexpr std::size_t kKeep = std::size_t{1} << 16;
-  char buf[4096];
-  int status = 0;
-  try {
-    for (;;) {
-      const double elapsed =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (elapsed > time_limit) {
-        run.timed_out = true;
-        kill(pid, SIGKILL);
-        break;
-      }
-      core::check_interrupt();
-      pollfd p{fds[0], POLLIN, 0};
-      const int ready = poll(&p, 1, 100);
-      if (ready < 0 && errno != EINTR) break;
-      if (ready <= 0) continue;
-      const ssize_t n = read(fds[0], buf, sizeof buf);
-      if (n > 0) {
-        run.output.append(buf, static_cast<std::size_t>(n));
-        if (run.output.size() > 2 * kKeep) run.output.erase(0, run.output.size() - kKeep);
-      } else if (n == 0 || errno != EINTR) {
-        break;  // the child closed its output: it is ending
-      }
-    }
-  } catch (...) {
-    kill(pid, SIGKILL);
-    close(fds[0]);
-    reap(pid, &status);
-    throw;
-  }
-  close(fds[0]);
-  reap(pid, &status);
-  run.exited_zero = !run.timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  run.status = WIFEXITED(status) ? fmt::format("exit status {}", WEXITSTATUS(status))
-                                 : fmt::format("signal {}", WTERMSIG(status));
-  return run;
-}
-
 // The last `n` lines of `text` that are not blank, joined by " | ".
 std::string last_lines(const std::string& text, std::size_t n) {
   std::vector<std::string> lines;
@@ -761,9 +654,9 @@ Mesh mesh_geometry(const Geometry& geometry, const MeshOptions& options) {
   }
   std::error_code ec;
   std::filesystem::remove(msh, ec);  // a mesh of an earlier run is never read
-  const auto run = run_program({options.gmsh, geo, "-3", "-format", "msh41", "-o", msh, "-nt",
-                                std::to_string(options.threads), "-v", "2"},
-                               options.time_limit);
+  const auto run = core::run_program({options.gmsh, geo, "-3", "-format", "msh41", "-o", msh, "-nt",
+                                      std::to_string(options.threads), "-v", "2"},
+                                     options.time_limit);
   if (run.spawn_error == ENOENT) {
     throw InvalidInput(fmt::format(
         "cannot mesh: the gmsh program \"{}\" is not found{}: install the gmsh program: apt-get "

@@ -4,7 +4,9 @@
 #include <Spectra/SymGEigsShiftSolver.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -67,6 +69,60 @@ Sparse block(const Sparse& A, Eigen::Index r0, Eigen::Index c0, Eigen::Index nr,
   return Sparse(A.block(r0, c0, nr, nc));
 }
 
+// Right-hand sides solved together: one pass over the factor serves them all.
+constexpr Eigen::Index kSolveBlock = 16;
+using SolveBlock = Eigen::Matrix<double, Eigen::Dynamic, kSolveBlock, Eigen::RowMajor>;
+
+// K^-1 Y in place for a block of right-hand sides (rows of Y), with the factors of
+// P K P^T = L D L^T. The triangular solves are bound by reading L, so a block of
+// kSolveBlock columns costs about one column's read of L; the rows of Y stay contiguous.
+void solve_in_place(const Eigen::SimplicialLDLT<Sparse>& ldlt, SolveBlock& Y) {
+  const Sparse& L = ldlt.matrixL().nestedExpression();  // strictly lower, column-major
+  const Eigen::VectorXd& D = ldlt.vectorD();
+  const Eigen::Index n = L.rows();
+  const auto* outer = L.outerIndexPtr();
+  const auto* inner = L.innerIndexPtr();
+  const double* value = L.valuePtr();
+  SolveBlock Z = ldlt.permutationP() * Y;
+  double* z = Z.data();
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const double* zj = z + j * kSolveBlock;
+    for (auto p = outer[j]; p < outer[j + 1]; ++p) {
+      double* zi = z + Eigen::Index{inner[p]} * kSolveBlock;
+      const double l = value[p];
+      for (Eigen::Index k = 0; k < kSolveBlock; ++k) zi[k] -= l * zj[k];
+    }
+  }
+  for (Eigen::Index j = 0; j < n; ++j) Z.row(j) /= D[j];
+  for (Eigen::Index j = n - 1; j >= 0; --j) {
+    double* zj = z + j * kSolveBlock;
+    for (auto p = outer[j]; p < outer[j + 1]; ++p) {
+      const double* zi = z + Eigen::Index{inner[p]} * kSolveBlock;
+      const double l = value[p];
+      for (Eigen::Index k = 0; k < kSolveBlock; ++k) zj[k] -= l * zi[k];
+    }
+  }
+  Y = ldlt.permutationPinv() * Z;
+}
+
+// Wall and processor (all threads) seconds since the last call.
+class PhaseClock {
+ public:
+  ReductionPhase lap(const char* name) {
+    const auto now = std::chrono::steady_clock::now();
+    const std::clock_t cpu = std::clock();
+    ReductionPhase p{name, std::chrono::duration<double>(now - wall_).count(),
+                     static_cast<double>(cpu - cpu_) / CLOCKS_PER_SEC};
+    wall_ = now;
+    cpu_ = cpu;
+    return p;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point wall_ = std::chrono::steady_clock::now();
+  std::clock_t cpu_ = std::clock();
+};
+
 }  // namespace
 
 void ReductionOptions::validate() const {
@@ -102,6 +158,7 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
                            const ReductionOptions& options,
                            const std::vector<Eigen::VectorXd>& static_loads) {
   options.validate();
+  PhaseClock clock;
   const Eigen::Index n = K.rows();
   std::vector<const InterfacePatch*> patches;
   for (const auto& itf : interfaces)
@@ -200,8 +257,7 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
   Eigen::Index nf = 0;
   for (Eigen::Index i = 0; i < nv; ++i)
     if (!held[static_cast<std::size_t>(i)]) f_index[static_cast<std::size_t>(i)] = nf++;
-  std::vector<Eigen::Triplet<double>> tf;
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(nf, ng);
+  std::vector<Eigen::Triplet<double>> tf, tg;
   for (Eigen::Index col = 0; col < Kt.outerSize(); ++col)
     for (Sparse::InnerIterator it(Kt, col); it; ++it) {
       const Eigen::Index r = it.row();
@@ -212,12 +268,19 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
         const Eigen::Index fc = f_index[static_cast<std::size_t>(col)];
         if (fc >= 0) tf.emplace_back(fr, fc, it.value());
       } else {
-        rhs(fr, col - nv) = -it.value();
+        tg.emplace_back(fr, col - nv, it.value());
       }
     }
-  Sparse Kff(nf, nf);
+  Sparse Kff(nf, nf), Kfg(nf, ng);
   Kff.setFromTriplets(tf.begin(), tf.end());
-  Eigen::SimplicialLDLT<Sparse> ldlt(Kff);
+  Kfg.setFromTriplets(tg.begin(), tg.end());
+  cb.phases.push_back(clock.lap("transformation and support"));
+  Eigen::SimplicialLDLT<Sparse> ldlt;
+  ldlt.analyzePattern(Kff);
+  cb.phases.push_back(clock.lap("ordering"));
+  ldlt.factorize(Kff);
+  cb.phases.push_back(clock.lap("factorisation"));
+  cb.factor_nonzeros = ldlt.matrixL().nestedExpression().nonZeros() + nf;
   const auto D = ldlt.vectorD();
   if (ldlt.info() != Eigen::Success || D.minCoeff() <= 1e-12 * D.maxCoeff())
     throw InvalidInput(
@@ -255,6 +318,7 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
             "Lanczos on the inertia-relief flexibility, {} vectors, 1000 restarts)",
             count, nv, ncv));
       omega2.tail(count) = eigs.eigenvalues();
+      cb.eigensolver_operations = eigs.num_operations();
       shapes.rightCols(count) = eigs.eigenvectors();
     }
     cb.rigid_body_modes = 6;
@@ -262,26 +326,28 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
     tied.omega2 = omega2;
     tied.shapes = std::move(shapes);
   }
-  // One right-hand side per interface DOF: the triangular solves are memory-bound and
-  // independent, so blocks of columns go to the library's threads.
-  Eigen::MatrixXd psi_f(nf, ng);
-  {
-    const Eigen::Index block_cols = 16;
-    const auto blocks = static_cast<std::size_t>((ng + block_cols - 1) / block_cols);
-    core::parallel_for(blocks, [&](std::size_t k) {
-      const Eigen::Index c0 = static_cast<Eigen::Index>(k) * block_cols;
-      const Eigen::Index nc = std::min(block_cols, ng - c0);
-      psi_f.middleCols(c0, nc) = ldlt.solve(rhs.middleCols(c0, nc));
-    });
-  }
+  cb.phases.push_back(clock.lap("fixed-interface modes"));
   const Eigen::Index nt = nv + ng;
   const auto ns = static_cast<Eigen::Index>(static_loads.size());
   const Eigen::Index nm = tied.omega2.size();
   const Eigen::Index nr = ng + nm + ns;
   cb.basis = Eigen::MatrixXd::Zero(nt, nr);
-  for (Eigen::Index i = 0; i < nv; ++i)
-    if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0)
-      cb.basis.row(i).head(ng) = psi_f.row(fi);
+  // One right-hand side -K_fg e_j per interface DOF, solved kSolveBlock at a time; the
+  // blocks are independent and go to the library's threads.
+  {
+    const auto blocks = static_cast<std::size_t>((ng + kSolveBlock - 1) / kSolveBlock);
+    core::parallel_for(blocks, [&](std::size_t k) {
+      const Eigen::Index c0 = static_cast<Eigen::Index>(k) * kSolveBlock;
+      const Eigen::Index nc = std::min(kSolveBlock, ng - c0);
+      SolveBlock Y = SolveBlock::Zero(nf, kSolveBlock);
+      for (Eigen::Index j = 0; j < nc; ++j)
+        for (Sparse::InnerIterator it(Kfg, c0 + j); it; ++it) Y(it.row(), j) = -it.value();
+      solve_in_place(ldlt, Y);
+      for (Eigen::Index i = 0; i < nv; ++i)
+        if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0)
+          cb.basis.row(i).segment(c0, nc) = Y.row(fi).head(nc);
+    });
+  }
   cb.basis.block(nv, 0, ng, ng).setIdentity();
   {
     const Eigen::MatrixXd MR = Mt.topLeftCorner(nt, nt) * Rt.topRows(nt).eval();
@@ -330,12 +396,27 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
     cb.basis.col(ng + nm + s) = v / norm;
   }
   cb.static_vectors = ns;
-  const Eigen::MatrixXd KB = Kt * cb.basis;
-  const Eigen::MatrixXd MB = Mt * cb.basis;
-  cb.K = cb.basis.transpose() * KB;
-  cb.M = cb.basis.transpose() * MB;
-  cb.K = 0.5 * (cb.K + cb.K.transpose()).eval();
-  cb.M = 0.5 * (cb.M + cb.M.transpose()).eval();
+  cb.phases.push_back(clock.lap("constraint modes and load vectors"));
+  // B^T K B and B^T M B, symmetric: the upper triangle a block of columns at a time (no
+  // n_t x n_r products kept), mirrored.
+  cb.K.resize(nr, nr);
+  cb.M.resize(nr, nr);
+  {
+    constexpr Eigen::Index kProductBlock = 64;
+    const auto blocks = static_cast<std::size_t>((nr + kProductBlock - 1) / kProductBlock);
+    core::parallel_for(blocks, [&](std::size_t k) {
+      const Eigen::Index c0 = static_cast<Eigen::Index>(k) * kProductBlock;
+      const Eigen::Index nc = std::min(kProductBlock, nr - c0);
+      const auto upper = cb.basis.leftCols(c0 + nc).transpose();
+      const Eigen::MatrixXd KB = Kt * cb.basis.middleCols(c0, nc);
+      cb.K.block(0, c0, c0 + nc, nc).noalias() = upper * KB;
+      const Eigen::MatrixXd MB = Mt * cb.basis.middleCols(c0, nc);
+      cb.M.block(0, c0, c0 + nc, nc).noalias() = upper * MB;
+    });
+  }
+  for (Eigen::Index j = 0; j < nr; ++j)
+    for (Eigen::Index i = j + 1; i < nr; ++i) cb.K(i, j) = cb.K(j, i), cb.M(i, j) = cb.M(j, i);
+  cb.phases.push_back(clock.lap("reduced matrices"));
   return cb;
 }
 

@@ -34,6 +34,13 @@ struct ReductionOptions {
   void validate() const;
 };
 
+/// Time of one phase of craig_bampton().
+struct ReductionPhase {
+  std::string name;
+  double seconds = 0.0;      ///< wall time
+  double cpu_seconds = 0.0;  ///< processor time of the process, all threads
+};
+
 /// The reduction basis and its products.
 struct CraigBampton {
   Eigen::MatrixXd K, M;               ///< reduced, (3N + m) square; first 3N are the interface DOFs
@@ -44,6 +51,11 @@ struct CraigBampton {
   /// u = elimination * basis * x (elimination sparse n x n_t, basis dense n_t x n_r).
   Eigen::SparseMatrix<double> elimination;
   Eigen::MatrixXd basis;
+  /// Costs: the phases in order, the nonzeros of the factor L D L^T (L and D), and the
+  /// eigensolver's operator applications (each one forward and backward solve).
+  std::vector<ReductionPhase> phases;
+  Eigen::Index factor_nonzeros = 0;
+  Eigen::Index eigensolver_operations = 0;
   /// Physical displacement (mesh DOFs) of reduced coordinates x.
   [[nodiscard]] Eigen::VectorXd expand(const Eigen::VectorXd& x) const {
     return elimination * (basis * x);
