@@ -8,7 +8,7 @@ from the same C++ code as ``asperity vibration``. SI units throughout.
 * Joint elements, each placed by ``T`` (one row per element direction, one column per
   DOF; it acts on ``u = T x`` and returns ``T^T f``): :class:`Jenkins`, :class:`Iwan4`,
   :class:`Coulomb`, :class:`ElasticDryFriction2d`, :class:`PolynomialStiffness`,
-  :class:`CubicDamping`, :class:`RoughFlat` (any SI backbone
+  :class:`CubicDamping`, :class:`UnilateralSpring`, :class:`RoughFlat` (any SI backbone
   under Masing's rules: from :func:`asperity.epb_backbone`, a joint case file or
   :func:`asperity.predict`).
 * :func:`run_case` / :func:`run_case_text` - a case file of ``asperity vibration``
@@ -43,7 +43,7 @@ _v = _core._vibration
 
 __all__ = [
     "Structure", "Element", "Jenkins", "Iwan4", "MasingTable", "Coulomb", "ElasticDryFriction2d",
-    "PolynomialStiffness", "CubicDamping", "RoughFlat", "HarmonicBalance", "Result", "nonlinear_mode",
+    "PolynomialStiffness", "CubicDamping", "UnilateralSpring", "RoughFlat", "HarmonicBalance", "Result", "nonlinear_mode",
     "frequency_response",
     "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
     "run_case_text", "plot_mode", "plot_response", "fit_loops",
@@ -309,6 +309,16 @@ class CubicDamping(Element):
 
     def __init__(self, c3: float, T=1.0, name: str | None = None):
         super().__init__(_v.cubic_damping(c3), T, name)
+
+
+class UnilateralSpring(Element):
+    """Unilateral spring: contact force ``f_c = max(N0 + k (u - gap), 0)`` (``u > 0``
+    closes): ``k`` [N/m], a ``gap`` [m] open at rest, or a preload ``N0`` [N] carried outside
+    the model (the structure receives ``f_c - N0``, so ``u = 0`` is the rest state)."""
+
+    def __init__(self, k: float, gap: float = 0.0, N0: float = 0.0, T=1.0,
+                 name: str | None = None):
+        super().__init__(_v.unilateral_spring(k, gap, N0), T, name)
 
 
 class RoughFlat(Element):

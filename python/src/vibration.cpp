@@ -26,6 +26,7 @@
 #include "asperity/hysteresis/backbone.hpp"
 #include "asperity/vibration/analysis.hpp"
 #include "asperity/vibration/case.hpp"
+#include "asperity/vibration/contact_elements.hpp"
 #include "asperity/vibration/continuation.hpp"
 #include "asperity/vibration/elements.hpp"
 #include "asperity/vibration/harmonic_balance.hpp"
@@ -479,6 +480,14 @@ void bind_vibration(nb::module_& parent) {
       "Polynomial stiffness f = k1 u + k2 u^2 + k3 u^3 (Duffing: k3) [N/m, N/m^2, N/m^3].");
   m.def("cubic_damping", &make_cubic_damping_element, "c3"_a,
         "Cubic damping f = c3 v^3, c3 [N s^3/m^3].");
+  m.def(
+      "unilateral_spring",
+      [](double k, double gap, double N0) {
+        return make_unilateral_spring_element({.k = k, .gap = gap, .N0 = N0});
+      },
+      "k"_a, "gap"_a = 0.0, "N0"_a = 0.0,
+      "Unilateral spring f_c = max(N0 + k (u - gap), 0) (u > 0 closes): k [N/m], a gap [m]\n"
+      "or a preload N0 [N] carried outside the model (the structure receives f_c - N0).");
   m.def(
       "masing",
       [](std::shared_ptr<const hysteresis::Backbone> backbone, const std::string& type,

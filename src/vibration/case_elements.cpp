@@ -20,6 +20,7 @@
 #include "asperity/joint/case.hpp"
 #include "asperity/joint/predict.hpp"
 #include "asperity/surface/rough_flat.hpp"
+#include "asperity/vibration/contact_elements.hpp"
 
 namespace asperity::vibration::detail {
 
@@ -298,7 +299,7 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
     throw InvalidInput(fmt::format(
         "{}: needs type = \"rough_flat\" | \"jenkins\" | \"iwan4\" | \"masing_table\" | "
         "\"coulomb\" | \"elastic_dry_friction_2d\" | \"polynomial_stiffness\" | "
-        "\"cubic_damping\"{}",
+        "\"cubic_damping\" | \"unilateral_spring\"{}",
         w, at_line(t)));
   }
   const std::string type = text(t, "type", w, "");
@@ -357,6 +358,14 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
     check_keys(t, w, keys({"c3"}));
     e = make_cubic_damping_element(
         need_si(t, "c3", w, Dimension{-2, 1, 1}, "a cubic_damping element (f = c3 v^3)"));
+  } else if (type == "unilateral_spring") {
+    check_keys(t, w, keys({"k", "gap", "N0"}));
+    UnilateralSpringParameters p{
+        .k = need_si(t, "k", w, stiffness,
+                     "a unilateral_spring element (f = max(N0 + k (u - gap), 0))"),
+        .gap = si(t, "gap", w, dim::length).value_or(0.0),
+        .N0 = si(t, "N0", w, force).value_or(0.0)};
+    e = make_unilateral_spring_element(p);
   } else if (type == "rough_flat") {
     e = rough_flat_element(t, w, joint);
   } else if (type == "masing_table") {
@@ -365,7 +374,8 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
   } else {
     throw InvalidInput(
         fmt::format("{}.type = \"{}\" is not known: use rough_flat, jenkins, iwan4, masing_table, "
-                    "coulomb, elastic_dry_friction_2d, polynomial_stiffness or cubic_damping{}",
+                    "coulomb, elastic_dry_friction_2d, polynomial_stiffness, cubic_damping or "
+                    "unilateral_spring{}",
                     w, type, at_line(t)));
   }
   PlacedElement pe;

@@ -87,6 +87,8 @@ def _element_cases():
         "polynomial_stiffness": (vib.PolynomialStiffness(k1=0.5, k2=-0.3, k3=2.0, T=[1.0, -0.5]),
                                  1.0, 1.0),
         "cubic_damping": (vib.CubicDamping(0.7, T=[1.0, -0.5]), 1.0, 1.0),
+        "unilateral_spring_gap": (vib.UnilateralSpring(3.0, gap=0.2, T=[1.0, -0.5]), 1.0, 1.0),
+        "unilateral_spring_preload": (vib.UnilateralSpring(3.0, N0=0.5, T=[1.0, -0.5]), 1.0, 1.0),
     }
 
 
@@ -117,6 +119,9 @@ def test_jacobian_matches_central_differences_for_every_element(name):
             assert (0.2 + 2.0 * u[:, 1] < 0).any(), "the state must hold separation"
         if name in ("iwan4", "rough_flat"):
             assert len(resp["history"]) > 0, "the reversal points must enter the tangent"
+        if name.startswith("unilateral_spring"):
+            closed = resp["du"][:, 0] > 0.0
+            assert closed.any() and (~closed).any(), "the state must hold contact and separation"
 
         R, J, Jw = hb.residual(U, omega)
         h = 1e-6 * x_scale
@@ -669,6 +674,51 @@ def test_case_text_runs_the_same_analyses_as_the_python_api():
     np.testing.assert_array_equal(r.quasi_static_mode.damping_ratio, q.damping_ratio)
     with pytest.raises(ValueError, match="k_t"):
         vib.run_case_text(CASE.replace('k_t = "1.0 N/m"', "k_t = -1.0"))
+
+
+UNILATERAL_CASE = """
+[structure]
+mass = [[1.5]]
+stiffness = [[2.0]]
+
+[[element]]
+type = "unilateral_spring"
+T = [1.0]
+k = "6.0 N/m"
+gap = "50 mm"
+
+[harmonic_balance]
+harmonics = [0, 1]
+time_points = 256
+
+[nonlinear_mode]
+log10_amplitude = { from = -2.0, to = 0.0 }
+"""
+
+
+def test_unilateral_spring_case_matches_python_and_refuses_bad_keys():
+    # The case file's element and the Python one are the same C++ element: identical
+    # backbones. Below the gap (a1 < 0.05 m) the oscillator is linear: omega = sqrt(k0/m)
+    # to the Newton tolerance; above it, it hardens.
+    r = vib.run_case_text(UNILATERAL_CASE)
+    assert r.complete
+    mine = vib.HarmonicBalance(vib.Structure([[1.5]], [[2.0]]),
+                               [vib.UnilateralSpring(6.0, gap=0.05, T=[1.0])],
+                               harmonics=[0, 1], time_points=256)
+    m = mine.nonlinear_mode(1, (-2.0, 0.0))
+    np.testing.assert_array_equal(r.nonlinear_mode.omega, m.omega)
+    w0 = np.sqrt(2.0 / 1.5)
+    a1 = m.amplitude / np.sqrt(1.5)  # mass-normalized modal amplitude to metres
+    np.testing.assert_allclose(m.omega[a1 < 0.05], w0, rtol=1e-9)
+    assert m.omega[-1] > w0 * (1 + 1e-3)
+    for bad, key in (('gap = "50 mm"', "gap = -0.1"), ('gap = "50 mm"', 'gap = 0.1\nN0 = 1.0'),
+                     ('k = "6.0 N/m"', "k = 0.0"), ('k = "6.0 N/m"', "")):
+        with pytest.raises(ValueError, match="unilateral_spring|element\\[0\\]"):
+            vib.run_case_text(UNILATERAL_CASE.replace(bad, key))
+    with pytest.raises(ValueError, match="unilateral_spring.gap"):
+        vib.UnilateralSpring(1.0, gap=-1.0)
+    with pytest.raises(ValueError, match="both given"):
+        vib.UnilateralSpring(1.0, gap=0.1, N0=1.0)
 
 
 def test_bad_input_raises_value_errors_naming_the_field():

@@ -23,6 +23,7 @@
 //   [[element]]                 # any number, each acting on u = T x
 //   type = "jenkins"            # rough_flat | jenkins | iwan4 | masing_table | coulomb |
 //                               #   elastic_dry_friction_2d | polynomial_stiffness | cubic_damping
+//                               | #   unilateral_spring
 //   name = "bolt 1"             # optional
 //   T = [[1.0]]                 # rows: element directions; columns: structure DOFs
 //                               #    (one direction may be written as a flat list)
@@ -43,6 +44,9 @@
 //     polynomial_stiffness: k1 [N/m], k2 [N/m^2], k3 [N/m^3] (each optional, not all
 //                               zero): f = k1 u + k2 u^2 + k3 u^3 (Duffing: k3)
 //     cubic_damping: c3 [N s^3/m^3]: f = c3 v^3
+//     unilateral_spring: k [N/m], gap [m] (optional, 0) or N0 [N] (optional, 0; a preload
+//                               carried outside the model): f_c = max(N0 + k (u - gap), 0),
+//                               the structure receives f_c - N0
 //     rough_flat: the rough flat at one normal load, through Masing's rules, from
 //       backbone = "dimensional": E_star, G_star, H, sigma, R, eta, A0, P (quantities),
 //                                 nu, asperity_model (bke), mu_cfc (optional)
