@@ -8,9 +8,9 @@ from the same C++ code as ``asperity vibration``. SI units throughout.
 * Joint elements, each placed by ``T`` (one row per element direction, one column per
   DOF; it acts on ``u = T x`` and returns ``T^T f``): :class:`Jenkins`, :class:`Iwan4`,
   :class:`Coulomb`, :class:`ElasticDryFriction2d`, :class:`PolynomialStiffness`,
-  :class:`CubicDamping`, :class:`UnilateralSpring`, :class:`RoughFlat` (any SI backbone
-  under Masing's rules: from :func:`asperity.epb_backbone`, a joint case file or
-  :func:`asperity.predict`).
+  :class:`CubicDamping`, :class:`UnilateralSpring`, :class:`ElasticDryFriction3d`,
+  :class:`RoughFlat` (any SI backbone under Masing's rules: from
+  :func:`asperity.epb_backbone`, a joint case file or :func:`asperity.predict`).
 * :func:`run_case` / :func:`run_case_text` - a case file of ``asperity vibration``
   (the same parser and run function as the command): the summary (summary.json as a
   dict) and each analysis's arrays; :meth:`HarmonicBalance.from_case` - a case file's
@@ -43,7 +43,8 @@ _v = _core._vibration
 
 __all__ = [
     "Structure", "Element", "Jenkins", "Iwan4", "MasingTable", "Coulomb", "ElasticDryFriction2d",
-    "PolynomialStiffness", "CubicDamping", "UnilateralSpring", "RoughFlat", "HarmonicBalance", "Result", "nonlinear_mode",
+    "PolynomialStiffness", "CubicDamping", "UnilateralSpring", "ElasticDryFriction3d", "RoughFlat",
+    "HarmonicBalance", "Result", "nonlinear_mode",
     "frequency_response",
     "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
     "run_case_text", "plot_mode", "plot_response", "fit_loops",
@@ -309,6 +310,18 @@ class CubicDamping(Element):
 
     def __init__(self, c3: float, T=1.0, name: str | None = None):
         super().__init__(_v.cubic_damping(c3), T, name)
+
+
+class ElasticDryFriction3d(Element):
+    """Dry friction in two tangential directions (rows 0 and 1 of ``T``) and one normal (row
+    2): a tangential spring ``k_t`` in series with an isotropic slider that slips at
+    ``|f_t| = mu f_n`` along the trial force (radial return), and the normal spring
+    ``f_n = max(N0 + k_n u_n, 0)`` of :class:`ElasticDryFriction2d` (``N0 > 0`` a preload,
+    ``N0 < 0`` a gap ``-N0 / k_n``)."""
+
+    def __init__(self, k_t: float, k_n: float, mu: float, T, N0: float = 0.0,
+                 name: str | None = None):
+        super().__init__(_v.elastic_dry_friction_3d(k_t, k_n, mu, N0), T, name)
 
 
 class UnilateralSpring(Element):

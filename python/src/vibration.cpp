@@ -481,6 +481,14 @@ void bind_vibration(nb::module_& parent) {
   m.def("cubic_damping", &make_cubic_damping_element, "c3"_a,
         "Cubic damping f = c3 v^3, c3 [N s^3/m^3].");
   m.def(
+      "elastic_dry_friction_3d",
+      [](double k_t, double k_n, double mu, double N0) {
+        return make_elastic_dry_friction_3d_element({.k_t = k_t, .k_n = k_n, .mu = mu, .N0 = N0});
+      },
+      "k_t"_a, "k_n"_a, "mu"_a, "N0"_a = 0.0,
+      "Tangential (directions 0, 1) isotropic slider slipping at |f_t| = mu f_n (radial\n"
+      "return), normal (direction 2) unilateral spring f_n = max(N0 + k_n u_n, 0).");
+  m.def(
       "unilateral_spring",
       [](double k, double gap, double N0) {
         return make_unilateral_spring_element({.k = k, .gap = gap, .N0 = N0});

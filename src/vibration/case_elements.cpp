@@ -299,7 +299,7 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
     throw InvalidInput(fmt::format(
         "{}: needs type = \"rough_flat\" | \"jenkins\" | \"iwan4\" | \"masing_table\" | "
         "\"coulomb\" | \"elastic_dry_friction_2d\" | \"polynomial_stiffness\" | "
-        "\"cubic_damping\" | \"unilateral_spring\"{}",
+        "\"cubic_damping\" | \"unilateral_spring\" | \"elastic_dry_friction_3d\"{}",
         w, at_line(t)));
   }
   const std::string type = text(t, "type", w, "");
@@ -358,6 +358,15 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
     check_keys(t, w, keys({"c3"}));
     e = make_cubic_damping_element(
         need_si(t, "c3", w, Dimension{-2, 1, 1}, "a cubic_damping element (f = c3 v^3)"));
+  } else if (type == "elastic_dry_friction_3d") {
+    check_keys(t, w, keys({"k_t", "k_n", "mu", "N0"}));
+    const std::string what = "an elastic_dry_friction_3d element";
+    if (!t.get("mu")) throw InvalidInput(fmt::format("{}: {} needs mu{}", w, what, at_line(t)));
+    ElasticDryFriction3dParameters p{.k_t = need_si(t, "k_t", w, stiffness, what),
+                                     .k_n = need_si(t, "k_n", w, stiffness, what),
+                                     .mu = number(t, "mu", w, 0.0),
+                                     .N0 = si(t, "N0", w, force).value_or(0.0)};
+    e = make_elastic_dry_friction_3d_element(p);
   } else if (type == "unilateral_spring") {
     check_keys(t, w, keys({"k", "gap", "N0"}));
     UnilateralSpringParameters p{
@@ -374,8 +383,8 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
   } else {
     throw InvalidInput(
         fmt::format("{}.type = \"{}\" is not known: use rough_flat, jenkins, iwan4, masing_table, "
-                    "coulomb, elastic_dry_friction_2d, polynomial_stiffness, cubic_damping or "
-                    "unilateral_spring{}",
+                    "coulomb, elastic_dry_friction_2d, polynomial_stiffness, cubic_damping, "
+                    "unilateral_spring or elastic_dry_friction_3d{}",
                     w, type, at_line(t)));
   }
   PlacedElement pe;

@@ -87,6 +87,9 @@ def _element_cases():
         "polynomial_stiffness": (vib.PolynomialStiffness(k1=0.5, k2=-0.3, k3=2.0, T=[1.0, -0.5]),
                                  1.0, 1.0),
         "cubic_damping": (vib.CubicDamping(0.7, T=[1.0, -0.5]), 1.0, 1.0),
+        "elastic_dry_friction_3d": (
+            vib.ElasticDryFriction3d(1.0, 2.0, 0.6, T=[[1.0, -0.5], [0.4, 0.7], [0.3, 1.0]],
+                                     N0=0.2), 1.0, 1.0),
         "unilateral_spring_gap": (vib.UnilateralSpring(3.0, gap=0.2, T=[1.0, -0.5]), 1.0, 1.0),
         "unilateral_spring_preload": (vib.UnilateralSpring(3.0, N0=0.5, T=[1.0, -0.5]), 1.0, 1.0),
     }
@@ -119,6 +122,9 @@ def test_jacobian_matches_central_differences_for_every_element(name):
             assert (0.2 + 2.0 * u[:, 1] < 0).any(), "the state must hold separation"
         if name in ("iwan4", "rough_flat"):
             assert len(resp["history"]) > 0, "the reversal points must enter the tangent"
+        if name == "elastic_dry_friction_3d":
+            assert (0.2 + 2.0 * u[:, 2] < 0).any(), "the state must hold separation"
+            assert len(resp["history"]) > 0, "the slip directions must enter the tangent"
         if name.startswith("unilateral_spring"):
             closed = resp["du"][:, 0] > 0.0
             assert closed.any() and (~closed).any(), "the state must hold contact and separation"
@@ -719,6 +725,60 @@ def test_unilateral_spring_case_matches_python_and_refuses_bad_keys():
         vib.UnilateralSpring(1.0, gap=-1.0)
     with pytest.raises(ValueError, match="both given"):
         vib.UnilateralSpring(1.0, gap=0.1, N0=1.0)
+
+
+def test_elastic_dry_friction_3d_reduces_to_2d_in_a_structure_and_in_case_files():
+    # With a zero t2 row the 3-D element sees no t2 motion and performs the 2-D element's
+    # operations (tests/vibration/contact_elements_test.cpp): the same nonlinear mode, to
+    # the solver's tolerance (1e-9; measured agreement is at round-off).
+    s = vib.Structure(M2, K2, 0.02 * K2)
+    T2 = [[1.0, -0.5], [0.3, 1.0]]
+    T3 = [[1.0, -0.5], [0.0, 0.0], [0.3, 1.0]]
+    hb2 = vib.HarmonicBalance(s, [vib.ElasticDryFriction2d(1.0, 2.0, 0.6, T=T2, N0=0.2)],
+                              max_harmonic=3, time_points=64)
+    hb3 = vib.HarmonicBalance(s, [vib.ElasticDryFriction3d(1.0, 2.0, 0.6, T=T3, N0=0.2)],
+                              max_harmonic=3, time_points=64)
+    m2 = hb2.nonlinear_mode(1, (-1.5, 0.0))
+    m3 = hb3.nonlinear_mode(1, (-1.5, 0.0))
+    assert m2.omega.size == m3.omega.size
+    np.testing.assert_allclose(m3.omega, m2.omega, rtol=1e-9)
+    np.testing.assert_allclose(m3.damping_ratio, m2.damping_ratio, rtol=1e-9, atol=1e-12)
+    assert m3.damping_ratio.max() > 1.1 * m3.damping_ratio[0]  # the slider slips
+    case = """
+[structure]
+mass = [[1.0, 0.0], [0.0, 1.0]]
+stiffness = [[3.0, -1.0], [-1.0, 2.0]]
+
+[[element]]
+type = "elastic_dry_friction_3d"
+T = [[1.0, -0.5], [0.4, 0.7], [0.3, 1.0]]
+k_t = 1.0
+k_n = 2.0
+mu = 0.6
+N0 = "0.2 N"
+
+[harmonic_balance]
+max = 3
+time_points = 64
+
+[nonlinear_mode]
+log10_amplitude = { from = -1.5, to = 0.0 }
+"""
+    r = vib.run_case_text(case)
+    assert r.complete
+    mine = vib.HarmonicBalance(
+        vib.Structure(np.eye(2), K2),
+        [vib.ElasticDryFriction3d(1.0, 2.0, 0.6, T=[[1.0, -0.5], [0.4, 0.7], [0.3, 1.0]], N0=0.2)],
+        max_harmonic=3, time_points=64)
+    np.testing.assert_array_equal(r.nonlinear_mode.omega, mine.nonlinear_mode(1, (-1.5, 0.0)).omega)
+    with pytest.raises(ValueError, match="3 direction"):
+        vib.run_case_text(case.replace("[0.4, 0.7], ", ""))
+    with pytest.raises(ValueError, match="needs mu"):
+        vib.run_case_text(case.replace("mu = 0.6", ""))
+    with pytest.raises(ValueError, match="elastic_dry_friction_3d.k_n"):
+        vib.run_case_text(case.replace("k_n = 2.0", "k_n = -2.0"))
+    with pytest.raises(ValueError, match="unknown key"):
+        vib.run_case_text(case.replace("k_n = 2.0", "k_n = 2.0\nk_t2 = 1.0"))
 
 
 def test_bad_input_raises_value_errors_naming_the_field():

@@ -44,6 +44,8 @@
 //     polynomial_stiffness: k1 [N/m], k2 [N/m^2], k3 [N/m^3] (each optional, not all
 //                               zero): f = k1 u + k2 u^2 + k3 u^3 (Duffing: k3)
 //     cubic_damping: c3 [N s^3/m^3]: f = c3 v^3
+//     elastic_dry_friction_3d: k_t, k_n [N/m], mu, N0 [N] as elastic_dry_friction_2d;
+//                               T has 3 rows (t1, t2, normal); isotropic slider
 //     unilateral_spring: k [N/m], gap [m] (optional, 0) or N0 [N] (optional, 0; a preload
 //                               carried outside the model): f_c = max(N0 + k (u - gap), 0),
 //                               the structure receives f_c - N0
