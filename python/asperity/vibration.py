@@ -18,7 +18,8 @@ from the same C++ code as ``asperity vibration``. SI units throughout.
 * :class:`HarmonicBalance` - the AFT system (harmonics kept, ``N_t`` samples per
   period): residual and analytic Jacobian as numpy arrays, the force vector from cosine
   and sine parts, and the analyses :meth:`HarmonicBalance.nonlinear_mode` (EPMC, Krack
-  2015), :meth:`HarmonicBalance.frequency_response` and
+  2015), :meth:`HarmonicBalance.frequency_response`, :meth:`HarmonicBalance.force_response`
+  (continuation in the force amplitude at one frequency) and
   :meth:`HarmonicBalance.quasi_static_mode` (also as module functions of the same names).
 
 The unknowns ``U`` stack per DOF the coefficients ``[a_0, a_h1, b_h1, a_h2, b_h2, ...]``
@@ -45,7 +46,7 @@ __all__ = [
     "Structure", "Element", "Jenkins", "Iwan4", "MasingTable", "Coulomb", "ElasticDryFriction2d",
     "PolynomialStiffness", "CubicDamping", "UnilateralSpring", "ElasticDryFriction3d", "RoughFlat",
     "HarmonicBalance", "Result", "nonlinear_mode",
-    "frequency_response",
+    "frequency_response", "force_response",
     "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
     "run_case_text", "plot_mode", "plot_response", "fit_loops",
 ]
@@ -591,6 +592,29 @@ class HarmonicBalance:
             out.append(r)
         return out
 
+    def force_response(self, force, omega: float, force_scale=(0.0, 1.0),
+                       output_dofs: Sequence[int] = (), *, force_per_omega=None,
+                       force_per_omega2=None, **continuation) -> Result:
+        """Forced response at the fixed frequency ``omega`` [rad/s] by continuation in the
+        force scale ``lambda`` from ``force_scale[0]`` to ``force_scale[1]`` (both >= 0):
+        ``A(omega) U + F_nl(U) = lambda F_ex`` with ``F_ex`` as in
+        :meth:`frequency_response`. Returns ``omega, force_scale (lambda per point),
+        output_amplitude, harmonic_amplitude, max_displacement, harmonics, folds`` (the
+        turning points in ``lambda``, each ``force_scale, output_amplitude, harmonics``),
+        ``continuation``, ``warnings``; keyword options of the continuation as in
+        :meth:`frequency_response` (steps in units of the ``lambda`` range)."""
+        s0, s1 = force_scale
+
+        def vec(x):
+            return np.zeros(0) if x is None else np.ascontiguousarray(x, dtype=float)
+
+        r = Result(_v.force_response(self._core, vec(force), vec(force_per_omega),
+                                     vec(force_per_omega2), float(omega), float(s0), float(s1),
+                                     [int(d) for d in output_dofs], dict(continuation)))
+        r["folds"] = [Result(f) for f in r["folds"]]
+        _issue(r, "force_response")
+        return r
+
     def quasi_static_mode(self, mode: int = 1, amplitude=(1e-7, 1e-4), points: int = 60) -> Result:
         """Quasi-static modal estimate (static push along the stuck mode, Masing's rules):
         arrays ``amplitude (modal, log-spaced), omega, frequency_hz, damping_ratio,
@@ -619,6 +643,12 @@ def frequency_response(hb: HarmonicBalance, force, omega, force_scales=(1.0,),
     return hb.frequency_response(force, omega, force_scales, output_dofs, **kwargs)
 
 
+def force_response(hb: HarmonicBalance, force, omega: float, force_scale=(0.0, 1.0),
+                   output_dofs: Sequence[int] = (), **kwargs) -> Result:
+    """:meth:`HarmonicBalance.force_response`."""
+    return hb.force_response(force, omega, force_scale, output_dofs, **kwargs)
+
+
 def quasi_static_mode(hb: HarmonicBalance, mode: int = 1, amplitude=(1e-7, 1e-4),
                       points: int = 60) -> Result:
     """:meth:`HarmonicBalance.quasi_static_mode`."""
@@ -630,6 +660,11 @@ def _case_result(d: dict, source: str) -> Result:
                  warnings=list(d["warnings"]))
     out["nonlinear_mode"] = Result(d["nonlinear_mode"]) if d["nonlinear_mode"] is not None else None
     out["frequency_response"] = [Result(c) for c in d["frequency_response"]]
+    out["force_response"] = []
+    for c in d["force_response"]:
+        r = Result(c)
+        r["folds"] = [Result(f) for f in r["folds"]]
+        out["force_response"].append(r)
     out["quasi_static_mode"] = (Result(d["quasi_static_mode"])
                                 if d["quasi_static_mode"] is not None else None)
     out["system"] = HarmonicBalance._from_system(d["system"])
@@ -642,7 +677,8 @@ def run_case(path: str | os.PathLike) -> Result:
     ``asperity vibration``. Returns a :class:`Result` with ``summary`` (summary.json as a
     dict), ``nonlinear_mode`` and ``quasi_static_mode`` (:class:`Result` of arrays or None),
     ``frequency_response`` (one :class:`Result` per curve, ``table`` its
-    ``[[frequency_response]]`` index), ``complete`` (every continuation reached its end),
+    ``[[frequency_response]]`` index), ``force_response`` (one per ``[[force_response]]``
+    table that ran, ``table`` its index), ``complete`` (every continuation reached its end),
     ``stop_reason``, ``warnings`` (also issued as RuntimeWarning) and ``system`` (the
     case's :class:`HarmonicBalance`)."""
     return _case_result(_v.run_case(os.fspath(path)), os.fspath(path))

@@ -29,6 +29,7 @@
 #include "asperity/vibration/contact_elements.hpp"
 #include "asperity/vibration/continuation.hpp"
 #include "asperity/vibration/elements.hpp"
+#include "asperity/vibration/force_response.hpp"
 #include "asperity/vibration/harmonic_balance.hpp"
 #include "asperity/vibration/loop_fit.hpp"
 #include "asperity/vibration/structure.hpp"
@@ -213,6 +214,30 @@ nb::dict curve_dict(const FrequencyResponseCurve& c, Eigen::Index unknowns) {
   return d;
 }
 
+nb::dict force_curve_dict(const ForceResponseCurve& c, Eigen::Index unknowns) {
+  nb::dict d;
+  d["omega"] = c.omega;
+  d["force_scale"] = copy_of(c.force_scale);
+  nb::list ha;
+  for (const Matrix& h : c.harmonic_amplitude) ha.append(copy_of(h));
+  d["harmonic_amplitude"] = ha;
+  d["output_amplitude"] = copy_of(c.output_amplitude);
+  d["max_displacement"] = copy_of(c.max_displacement);
+  d["harmonics"] = copy_of(stack(c.harmonics, unknowns));
+  nb::list folds;
+  for (const ForceResponseFold& f : c.folds) {
+    nb::dict fd;
+    fd["force_scale"] = f.force_scale;
+    fd["output_amplitude"] = copy_of(f.output_amplitude);
+    fd["harmonics"] = copy_of(f.harmonics);
+    folds.append(fd);
+  }
+  d["folds"] = folds;
+  d["continuation"] = continuation_dict(c.continuation);
+  d["warnings"] = string_list(c.warnings);
+  return d;
+}
+
 nb::dict quasi_static_dict(const QuasiStaticModeResult& r) {
   nb::dict d;
   d["amplitude"] = copy_of(r.amplitude);
@@ -261,6 +286,13 @@ nb::dict case_result(const VibrationCase& c) {
     curves.append(cd);
   }
   d["frequency_response"] = curves;
+  nb::list force_curves;
+  for (std::size_t k = 0; k < r.force_response.size(); ++k) {
+    nb::dict cd = force_curve_dict(r.force_response[k], nu);
+    cd["table"] = r.force_response_table[k];
+    force_curves.append(cd);
+  }
+  d["force_response"] = force_curves;
   d["quasi_static_mode"] =
       r.quasi_static_mode ? nb::object(quasi_static_dict(*r.quasi_static_mode)) : nb::none();
   d["complete"] = r.complete;
@@ -691,6 +723,27 @@ void bind_vibration(nb::module_& parent) {
       "omega_from"_a, "omega_to"_a, "output_dofs"_a, "continuation"_a,
       "F_ex(omega) = force + omega force_per_omega + omega^2 force_per_omega2 (the last two may "
       "be empty).");
+
+  m.def(
+      "force_response",
+      [](const PyHarmonicBalance& p, const Vector& force, const Vector& force_per_omega,
+         const Vector& force_per_omega2, double omega, double scale_from, double scale_to,
+         const std::vector<long>& outputs, const nb::dict& continuation) {
+        ForceResponseOptions o;
+        o.force = force;
+        o.force_per_omega = force_per_omega;
+        o.force_per_omega2 = force_per_omega2;
+        o.omega = omega;
+        o.scale_from = scale_from;
+        o.scale_to = scale_to;
+        o.continuation = continuation_options(o.continuation, continuation);
+        const ForceResponseCurve c = locked(
+            p, [&](const HarmonicBalance& hb) { return force_response(hb, o, dof_list(outputs)); });
+        return force_curve_dict(c, p.hb.unknowns());
+      },
+      "hb"_a, "force"_a, "force_per_omega"_a, "force_per_omega2"_a, "omega"_a, "scale_from"_a,
+      "scale_to"_a, "output_dofs"_a, "continuation"_a,
+      "Continuation in the force scale lambda at fixed omega: R = A U + F_nl - lambda F_ex.");
 
   m.def(
       "quasi_static_mode",

@@ -114,6 +114,24 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
     }
     write(fmt::format("frequency_response_{}.csv", k + 1), csv(h, cols));
   }
+  for (std::size_t k = 0; k < r.force_response.size(); ++k) {
+    const auto& cv = r.force_response[k];
+    std::vector<std::string> h{"force_scale"};
+    std::vector<std::vector<double>> cols{vec(cv.force_scale)};
+    for (std::size_t o = 0; o < c.output_dofs.size(); ++o) {
+      const auto oi = static_cast<Eigen::Index>(o);
+      const auto d = c.output_dofs[o];
+      h.push_back(fmt::format("amplitude_dof{}_m", d));
+      cols.push_back(vec(cv.output_amplitude.col(oi)));
+      h.push_back(fmt::format("max_displacement_dof{}_m", d));
+      cols.push_back(vec(cv.max_displacement.col(oi)));
+      for (std::size_t hh = 0; hh < harmonics.size(); ++hh) {
+        h.push_back(fmt::format("harmonic{}_dof{}_m", harmonics[hh], d));
+        cols.push_back(vec(cv.harmonic_amplitude[o].col(static_cast<Eigen::Index>(hh))));
+      }
+    }
+    write(fmt::format("force_response_{}.csv", r.force_response_table[k] + 1), csv(h, cols));
+  }
   if (r.quasi_static_mode) {
     const auto& q = *r.quasi_static_mode;
     write("quasi_static_mode.csv",

@@ -282,9 +282,65 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     }
     j.emplace_back("frequency_response", std::move(curves));
   }
+  if (!c.force_responses.empty()) {
+    SummaryArray curves;
+    const double nk = static_cast<double>(c.force_responses.size());
+    for (std::size_t k = 0; k < c.force_responses.size(); ++k) {
+      const ForceResponseOptions& o = c.force_responses[k].options;
+      const std::string curve = fmt::format("force_response[{}]", k);
+      const auto before = counters();
+      const auto t0 = clock::now();
+      ForceResponseCurve cv;
+      try {
+        const double d0 = static_cast<double>(k);
+        cv = force_response(hb, o, c.output_dofs,
+                            progress ? ProgressFunction([&](double x) {
+                              progress("force_response", (d0 + x) / nk);
+                            })
+                                     : ProgressFunction{});
+      } catch (const NumericalError& e) {
+        r.failures.push_back(cannot_start(curve, e).what());
+        r.warnings.push_back(r.failures.back());
+        failed.emplace_back(SummaryObject{{"table", k},
+                                          {"force_scale", o.scale_from},
+                                          {"analysis", std::string("force_response")},
+                                          {"reason", r.failures.back()}});
+        continue;
+      }
+      Work w;
+      add_continuation(w, cv.continuation, o.continuation.max_points);
+      account(w, before, t0);
+      r.warnings.insert(r.warnings.end(), cv.warnings.begin(), cv.warnings.end());
+      SummaryArray ha;  // per point, per output, per harmonic
+      for (Eigen::Index p = 0; p < cv.force_scale.size(); ++p) {
+        SummaryArray per_output;
+        for (const auto& hm : cv.harmonic_amplitude)
+          per_output.emplace_back(array(hm.row(p).transpose()));
+        ha.emplace_back(std::move(per_output));
+      }
+      SummaryArray folds;
+      for (const ForceResponseFold& f : cv.folds) {
+        folds.emplace_back(SummaryObject{{"force_scale", f.force_scale},
+                                         {"output_amplitude", array(f.output_amplitude)}});
+      }
+      curves.emplace_back(SummaryObject{{"table", k},
+                                        {"omega_rad_s", cv.omega},
+                                        {"frequency_hz", cv.omega / (2.0 * std::numbers::pi)},
+                                        {"force_scale", array(cv.force_scale)},
+                                        {"output_amplitude", rows(cv.output_amplitude)},
+                                        {"max_displacement", rows(cv.max_displacement)},
+                                        {"harmonic_amplitude", std::move(ha)},
+                                        {"folds", std::move(folds)},
+                                        {"solver", solver_summary(w)}});
+      add_analysis(total, w, curve);
+      r.force_response.push_back(std::move(cv));
+      r.force_response_table.push_back(k);
+    }
+    j.emplace_back("force_response", std::move(curves));
+  }
   // Nothing computed at all: the case is bad input as a whole (exit 2).
-  if (!r.failures.empty() && r.frequency_response.empty() && !r.nonlinear_mode &&
-      !c.quasi_static_mode) {
+  if (!r.failures.empty() && r.frequency_response.empty() && r.force_response.empty() &&
+      !r.nonlinear_mode && !c.quasi_static_mode) {
     throw InvalidInput(r.failures.front());
   }
 
@@ -326,9 +382,10 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
       // unless a curve stopped early before it.
       if (total.complete) {
         total.complete = false;
-        total.stop_reason = fmt::format(
-            "{} of {} frequency response curve(s) could not start: {}", r.failures.size(),
-            r.failures.size() + r.frequency_response.size(), r.failures.front());
+        total.stop_reason =
+            fmt::format("{} of {} forced response curve(s) could not start: {}", r.failures.size(),
+                        r.failures.size() + r.frequency_response.size() + r.force_response.size(),
+                        r.failures.front());
       }
     }
     if (total.complete) total.stop_reason = "every analysis reached the end of its range";

@@ -781,6 +781,63 @@ log10_amplitude = { from = -1.5, to = 0.0 }
         vib.run_case_text(case.replace("k_n = 2.0", "k_n = 2.0\nk_t2 = 1.0"))
 
 
+def test_force_response_finds_the_duffing_folds_and_matches_the_case_file():
+    # x'' + c x' + x + gamma x^3 = lambda cos(w t) on harmonic 1 (AFT exact on 16 samples):
+    # lambda^2 = G(r^2), G(x) = x ((A + B x)^2 + C^2), A = 1 - w^2, B = 3/4 gamma, C = c w;
+    # folds in lambda where G'(x) = 3 B^2 x^2 + 4 A B x + A^2 + C^2 = 0. Tolerances as in
+    # tests/vibration/force_response_test.cpp (Newton 1e-9; fold location 1e-6).
+    c, gamma, w = 0.05, 1.0, 1.6
+    hb = vib.HarmonicBalance(vib.Structure([[1.0]], [[1.0]], [[c]]),
+                             [vib.PolynomialStiffness(k3=gamma)], harmonics=[1], time_points=16)
+    r = hb.force_response(hb.force(cos={1: [1.0]}), omega=w, force_scale=(0.0, 1.5),
+                          output_dofs=[0])
+    assert r.continuation["complete"]
+    A, B, C = 1 - w * w, 0.75 * gamma, c * w
+    G = lambda x: x * ((A + B * x) ** 2 + C * C)  # noqa: E731
+    a = r.output_amplitude[:, 0]
+    np.testing.assert_allclose(r.force_scale, np.sqrt(G(a * a)), rtol=1e-8, atol=1e-10)
+    disc = np.sqrt(16 * A * A * B * B - 12 * B * B * (A * A + C * C))
+    x = np.array([-4 * A * B - disc, -4 * A * B + disc]) / (6 * B * B)
+    assert len(r.folds) == 2
+    np.testing.assert_allclose([f.output_amplitude[0] ** 2 for f in r.folds], x, rtol=1e-6)
+    np.testing.assert_allclose([f.force_scale for f in r.folds], np.sqrt(G(x)), rtol=1e-9)
+    case = """
+[structure]
+mass = [[1.0]]
+stiffness = [[1.0]]
+damping = [[0.05]]
+
+[[element]]
+type = "polynomial_stiffness"
+T = [[1.0]]
+k3 = 1.0
+
+[harmonic_balance]
+harmonics = [1]
+time_points = 16
+
+[[force_response]]
+force_cos = [[1.0]]
+omega = 1.6
+force_scale = { from = 0.0, to = 1.5 }
+"""
+    rc = vib.run_case_text(case)
+    assert rc.complete
+    (fc,) = rc.force_response
+    assert fc.table == 0
+    np.testing.assert_array_equal(fc.force_scale, r.force_scale)
+    np.testing.assert_array_equal(fc.output_amplitude, r.output_amplitude)
+    assert [f["force_scale"] for f in rc.summary["force_response"][0]["folds"]] == \
+        [f.force_scale for f in r.folds]
+    for bad, good, key in (("omega = 1.6", "", "needs omega"),
+                           ("from = 0.0", "from = -1.0", "force_scale.from"),
+                           ("omega = 1.6", "omega = 1.6\nomega_to = 2.0", "unknown key"),
+                           ("force_cos = [[1.0]]", "", "needs force_cos"),
+                           ("omega = 1.6", "omega = -1.6", "force_response.omega")):
+        with pytest.raises(ValueError, match=key):
+            vib.run_case_text(case.replace(bad, good))
+
+
 def test_bad_input_raises_value_errors_naming_the_field():
     with pytest.raises(ValueError, match="k_t"):
         vib.Jenkins(-1.0, 0.2)

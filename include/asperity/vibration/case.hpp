@@ -83,6 +83,12 @@
 //                                      # ("10 Hz", converted by 2 pi) or rad/s ("62.8 rad/s")
 //   continuation = { ... }      # as above
 //
+//   [[force_response]]          # any number: continuation in the force scale at one omega
+//   force_cos = [[0.0], [1.0]]  # force_sin, force_per_omega*_cos/_sin as frequency_response
+//   omega = 1.6                 # the fixed frequency: rad/s, or "10 Hz", "62.8 rad/s"
+//   force_scale = { from = 0.0, to = 2.0 }   # lambda, >= 0: F_ex = lambda force
+//   continuation = { ... }      # as above (steps in units of the lambda range)
+//
 //   [quasi_static_mode]         # Masing-based estimate of one mode
 //   mode = 1
 //   amplitude = { from = 1e-3, to = 1e3 }   # modal amplitude a [sqrt(kg) m]
@@ -101,6 +107,7 @@
 #include "asperity/dynamics/case.hpp"
 #include "asperity/vibration/analysis.hpp"
 #include "asperity/vibration/elements.hpp"
+#include "asperity/vibration/force_response.hpp"
 #include "asperity/vibration/harmonic_balance.hpp"
 #include "asperity/vibration/structure.hpp"
 
@@ -118,6 +125,13 @@ struct FrequencyResponseCase {
   FrequencyResponseOptions options;
 };
 
+/// One [[force_response]] table: the force at scale 1 as given and the options.
+struct ForceResponseCase {
+  Eigen::MatrixXd force_cos;
+  Eigen::MatrixXd force_sin;
+  ForceResponseOptions options;
+};
+
 struct VibrationCase {
   std::string source;  ///< the case file (or "<string>")
   Structure structure;
@@ -128,6 +142,7 @@ struct VibrationCase {
   HarmonicBalanceOptions harmonic_balance;
   std::optional<NonlinearModeOptions> nonlinear_mode;
   std::vector<FrequencyResponseCase> frequency_responses;
+  std::vector<ForceResponseCase> force_responses;
   std::optional<QuasiStaticModeOptions> quasi_static_mode;
   /// The `joint` section when a rough_flat element comes from a [joint] table.
   std::optional<SummaryObject> joint;
@@ -150,6 +165,9 @@ struct VibrationResult {
   /// Every curve of every [[frequency_response]] table, in order (tables, then scales).
   std::vector<FrequencyResponseCurve> frequency_response;
   std::vector<std::size_t> frequency_response_table;  ///< the table (0-based) of each curve
+  /// Every [[force_response]] curve that ran, in order, and its table (0-based).
+  std::vector<ForceResponseCurve> force_response;
+  std::vector<std::size_t> force_response_table;
   std::optional<QuasiStaticModeResult> quasi_static_mode;
   /// Every continuation reached its end (false: a curve stalled, hit max_points or
   /// turned back; its points are kept and `stop_reason` says why).
