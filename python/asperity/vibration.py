@@ -19,7 +19,9 @@ from the same C++ code as ``asperity vibration``. SI units throughout.
   period): residual and analytic Jacobian as numpy arrays, the force vector from cosine
   and sine parts, and the analyses :meth:`HarmonicBalance.nonlinear_mode` (EPMC, Krack
   2015), :meth:`HarmonicBalance.frequency_response`, :meth:`HarmonicBalance.force_response`
-  (continuation in the force amplitude at one frequency) and
+  (continuation in the force amplitude at one frequency),
+  :meth:`HarmonicBalance.amplitude_control` and :meth:`HarmonicBalance.phase_resonance`
+  (response-controlled harmonic balance) and
   :meth:`HarmonicBalance.quasi_static_mode` (also as module functions of the same names).
 
 The unknowns ``U`` stack per DOF the coefficients ``[a_0, a_h1, b_h1, a_h2, b_h2, ...]``
@@ -46,7 +48,7 @@ __all__ = [
     "Structure", "Element", "Jenkins", "Iwan4", "MasingTable", "Coulomb", "ElasticDryFriction2d",
     "PolynomialStiffness", "CubicDamping", "UnilateralSpring", "ElasticDryFriction3d", "RoughFlat",
     "HarmonicBalance", "Result", "nonlinear_mode",
-    "frequency_response", "force_response",
+    "frequency_response", "force_response", "amplitude_control", "phase_resonance",
     "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
     "run_case_text", "plot_mode", "plot_response", "fit_loops",
 ]
@@ -615,6 +617,35 @@ class HarmonicBalance:
         _issue(r, "force_response")
         return r
 
+    def amplitude_control(self, force, dof: int, amplitude: float, omega,
+                          output_dofs: Sequence[int] = (), **continuation) -> Result:
+        """Amplitude-controlled harmonic balance (response-controlled testing): the first
+        harmonic of ``dof`` held at ``amplitude`` [m] while ``omega = (from, to)`` [rad/s]
+        is swept; the force scale ``lambda`` (``F_ex = lambda force``) is the unknown.
+        Returns ``omega, force_scale, output_amplitude, harmonics, continuation,
+        warnings``."""
+        w0, w1 = omega
+        r = Result(_v.amplitude_control(self._core, np.ascontiguousarray(force, dtype=float),
+                                        int(dof), float(amplitude), float(w0), float(w1),
+                                        [int(d) for d in output_dofs], dict(continuation)))
+        _issue(r, "amplitude_control")
+        return r
+
+    def phase_resonance(self, force, dof: int, log10_amplitude=(-3.0, 0.0), mode: int = 1,
+                        output_dofs: Sequence[int] = (), **continuation) -> Result:
+        """Phase resonance (phase-controlled harmonic balance): the first harmonic of ``dof``
+        lags the force at ``dof`` by 90 degrees; continuation in ``log10`` of its amplitude
+        ``a`` [m] from the stuck structure's mode ``mode``. Returns ``amplitude, omega,
+        force_scale`` (``lambda`` with ``F_ex = lambda force``), ``output_amplitude,
+        harmonics, continuation, warnings``. For one nonlinear mode this traces the
+        backbone."""
+        lo, hi = log10_amplitude
+        r = Result(_v.phase_resonance(self._core, np.ascontiguousarray(force, dtype=float),
+                                      int(dof), int(mode), float(lo), float(hi),
+                                      [int(d) for d in output_dofs], dict(continuation)))
+        _issue(r, "phase_resonance")
+        return r
+
     def quasi_static_mode(self, mode: int = 1, amplitude=(1e-7, 1e-4), points: int = 60) -> Result:
         """Quasi-static modal estimate (static push along the stuck mode, Masing's rules):
         arrays ``amplitude (modal, log-spaced), omega, frequency_hz, damping_ratio,
@@ -647,6 +678,18 @@ def force_response(hb: HarmonicBalance, force, omega: float, force_scale=(0.0, 1
                    output_dofs: Sequence[int] = (), **kwargs) -> Result:
     """:meth:`HarmonicBalance.force_response`."""
     return hb.force_response(force, omega, force_scale, output_dofs, **kwargs)
+
+
+def amplitude_control(hb: HarmonicBalance, force, dof: int, amplitude: float, omega,
+                      output_dofs: Sequence[int] = (), **continuation) -> Result:
+    """:meth:`HarmonicBalance.amplitude_control`."""
+    return hb.amplitude_control(force, dof, amplitude, omega, output_dofs, **continuation)
+
+
+def phase_resonance(hb: HarmonicBalance, force, dof: int, log10_amplitude=(-3.0, 0.0),
+                    mode: int = 1, output_dofs: Sequence[int] = (), **continuation) -> Result:
+    """:meth:`HarmonicBalance.phase_resonance`."""
+    return hb.phase_resonance(force, dof, log10_amplitude, mode, output_dofs, **continuation)
 
 
 def quasi_static_mode(hb: HarmonicBalance, mode: int = 1, amplitude=(1e-7, 1e-4),

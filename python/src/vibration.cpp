@@ -32,6 +32,7 @@
 #include "asperity/vibration/force_response.hpp"
 #include "asperity/vibration/harmonic_balance.hpp"
 #include "asperity/vibration/loop_fit.hpp"
+#include "asperity/vibration/response_control.hpp"
 #include "asperity/vibration/structure.hpp"
 #include "bindings.hpp"
 
@@ -724,6 +725,60 @@ void bind_vibration(nb::module_& parent) {
       "F_ex(omega) = force + omega force_per_omega + omega^2 force_per_omega2 (the last two may "
       "be empty).");
 
+  m.def(
+      "amplitude_control",
+      [](const PyHarmonicBalance& p, const Vector& force, long dof, double amplitude,
+         double omega_from, double omega_to, const std::vector<long>& outputs,
+         const nb::dict& continuation) {
+        AmplitudeControlOptions o;
+        o.force = force;
+        o.dof = dof;
+        o.amplitude = amplitude;
+        o.omega_from = omega_from;
+        o.omega_to = omega_to;
+        o.continuation = continuation_options(o.continuation, continuation);
+        const AmplitudeControlResult r = locked(p, [&](const HarmonicBalance& hb) {
+          return amplitude_controlled_response(hb, o, dof_list(outputs));
+        });
+        nb::dict d;
+        d["omega"] = copy_of(r.omega);
+        d["force_scale"] = copy_of(r.force_scale);
+        d["output_amplitude"] = copy_of(r.output_amplitude);
+        d["harmonics"] = copy_of(stack(r.harmonics, p.hb.unknowns()));
+        d["continuation"] = continuation_dict(r.continuation);
+        d["warnings"] = string_list(r.warnings);
+        return d;
+      },
+      "hb"_a, "force"_a, "dof"_a, "amplitude"_a, "omega_from"_a, "omega_to"_a, "output_dofs"_a,
+      "continuation"_a, "First harmonic of `dof` held at `amplitude`; continuation in omega.");
+  m.def(
+      "phase_resonance",
+      [](const PyHarmonicBalance& p, const Vector& force, long dof, int mode, double log10_from,
+         double log10_to, const std::vector<long>& outputs, const nb::dict& continuation) {
+        PhaseResonanceOptions o;
+        o.force = force;
+        o.dof = dof;
+        o.mode = mode;
+        o.log10_amplitude_from = log10_from;
+        o.log10_amplitude_to = log10_to;
+        o.continuation = continuation_options(o.continuation, continuation);
+        const PhaseResonanceResult r = locked(p, [&](const HarmonicBalance& hb) {
+          return phase_resonance(hb, o, dof_list(outputs));
+        });
+        nb::dict d;
+        d["amplitude"] = copy_of(r.amplitude);
+        d["omega"] = copy_of(r.omega);
+        d["force_scale"] = copy_of(r.force_scale);
+        d["output_amplitude"] = copy_of(r.output_amplitude);
+        d["harmonics"] = copy_of(stack(r.harmonics, p.hb.unknowns()));
+        d["continuation"] = continuation_dict(r.continuation);
+        d["warnings"] = string_list(r.warnings);
+        return d;
+      },
+      "hb"_a, "force"_a, "dof"_a, "mode"_a, "log10_from"_a, "log10_to"_a, "output_dofs"_a,
+      "continuation"_a,
+      "First harmonic of `dof` lagging the force there by 90 degrees; continuation in log10 of "
+      "its amplitude.");
   m.def(
       "force_response",
       [](const PyHarmonicBalance& p, const Vector& force, const Vector& force_per_omega,

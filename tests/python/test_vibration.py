@@ -838,6 +838,30 @@ force_scale = { from = 0.0, to = 1.5 }
             vib.run_case_text(case.replace(bad, good))
 
 
+def test_phase_resonance_traces_the_duffing_backbone_and_amplitude_control_its_force():
+    # x'' + c x' + x + gamma x^3 = lambda cos(w t) on one harmonic (AFT exact): phase
+    # resonance gives w^2 = 1 + 3/4 gamma a^2 and lambda = c w a; amplitude control at
+    # |X| = A gives lambda = A |1 - w^2 + 3/4 gamma A^2 + i c w| (Newton tolerance).
+    c, gamma = 0.02, 0.8
+    hb = vib.HarmonicBalance(vib.Structure([[1.0]], [[1.0]], [[c]]),
+                             [vib.PolynomialStiffness(k3=gamma)], harmonics=[1], time_points=16)
+    F = hb.force(cos={1: [1.0]})
+    p = hb.phase_resonance(F, dof=0, log10_amplitude=(-2.0, 0.3), output_dofs=[0])
+    assert p.continuation["complete"]
+    w = np.sqrt(1 + 0.75 * gamma * p.amplitude ** 2)
+    np.testing.assert_allclose(p.omega, w, rtol=1e-9)
+    np.testing.assert_allclose(p.force_scale, c * w * p.amplitude, rtol=1e-8)
+    a = hb.amplitude_control(F, dof=0, amplitude=1.0, omega=(0.5, 2.0), output_dofs=[0])
+    assert a.continuation["complete"]
+    np.testing.assert_allclose(a.output_amplitude[:, 0], 1.0, rtol=1e-9)
+    lam = np.hypot(1 - a.omega ** 2 + 0.75 * gamma, c * a.omega)
+    np.testing.assert_allclose(a.force_scale, lam, rtol=1e-8, atol=1e-9)
+    with pytest.raises(ValueError, match="phase_resonance.dof"):
+        hb.phase_resonance(F, dof=3)
+    with pytest.raises(ValueError, match="amplitude_control.amplitude"):
+        hb.amplitude_control(F, dof=0, amplitude=0.0, omega=(0.5, 2.0))
+
+
 def test_bad_input_raises_value_errors_naming_the_field():
     with pytest.raises(ValueError, match="k_t"):
         vib.Jenkins(-1.0, 0.2)
