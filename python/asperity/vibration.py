@@ -708,6 +708,8 @@ def _case_result(d: dict, source: str) -> Result:
         r = Result(c)
         r["folds"] = [Result(f) for f in r["folds"]]
         out["force_response"].append(r)
+    out["amplitude_control"] = [Result(c) for c in d["amplitude_control"]]
+    out["phase_resonance"] = [Result(c) for c in d["phase_resonance"]]
     out["quasi_static_mode"] = (Result(d["quasi_static_mode"])
                                 if d["quasi_static_mode"] is not None else None)
     out["system"] = HarmonicBalance._from_system(d["system"])
@@ -720,8 +722,9 @@ def run_case(path: str | os.PathLike) -> Result:
     ``asperity vibration``. Returns a :class:`Result` with ``summary`` (summary.json as a
     dict), ``nonlinear_mode`` and ``quasi_static_mode`` (:class:`Result` of arrays or None),
     ``frequency_response`` (one :class:`Result` per curve, ``table`` its
-    ``[[frequency_response]]`` index), ``force_response`` (one per ``[[force_response]]``
-    table that ran, ``table`` its index), ``complete`` (every continuation reached its end),
+    ``[[frequency_response]]`` index), ``force_response``, ``amplitude_control`` and
+    ``phase_resonance`` (one per table of that name that ran, ``table`` its index),
+    ``complete`` (every continuation reached its end),
     ``stop_reason``, ``warnings`` (also issued as RuntimeWarning) and ``system`` (the
     case's :class:`HarmonicBalance`)."""
     return _case_result(_v.run_case(os.fspath(path)), os.fspath(path))

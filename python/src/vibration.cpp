@@ -294,6 +294,34 @@ nb::dict case_result(const VibrationCase& c) {
     force_curves.append(cd);
   }
   d["force_response"] = force_curves;
+  nb::list amplitude_controls, phase_resonances;
+  for (std::size_t k = 0; k < r.amplitude_control.size(); ++k) {
+    const AmplitudeControlResult& a = r.amplitude_control[k];
+    nb::dict cd;
+    cd["table"] = r.amplitude_control_table[k];
+    cd["omega"] = copy_of(a.omega);
+    cd["force_scale"] = copy_of(a.force_scale);
+    cd["output_amplitude"] = copy_of(a.output_amplitude);
+    cd["harmonics"] = copy_of(stack(a.harmonics, nu));
+    cd["continuation"] = continuation_dict(a.continuation);
+    cd["warnings"] = string_list(a.warnings);
+    amplitude_controls.append(cd);
+  }
+  for (std::size_t k = 0; k < r.phase_resonance.size(); ++k) {
+    const PhaseResonanceResult& p = r.phase_resonance[k];
+    nb::dict cd;
+    cd["table"] = r.phase_resonance_table[k];
+    cd["amplitude"] = copy_of(p.amplitude);
+    cd["omega"] = copy_of(p.omega);
+    cd["force_scale"] = copy_of(p.force_scale);
+    cd["output_amplitude"] = copy_of(p.output_amplitude);
+    cd["harmonics"] = copy_of(stack(p.harmonics, nu));
+    cd["continuation"] = continuation_dict(p.continuation);
+    cd["warnings"] = string_list(p.warnings);
+    phase_resonances.append(cd);
+  }
+  d["amplitude_control"] = amplitude_controls;
+  d["phase_resonance"] = phase_resonances;
   d["quasi_static_mode"] =
       r.quasi_static_mode ? nb::object(quasi_static_dict(*r.quasi_static_mode)) : nb::none();
   d["complete"] = r.complete;

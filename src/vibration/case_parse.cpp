@@ -13,6 +13,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
+#include "asperity/core/validate.hpp"
 #include "case_parse.hpp"
 
 namespace asperity::vibration {
@@ -288,7 +289,8 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
   const toml::table root = core::toml_case::parse(file_text, path);
   check_keys(root, path,
              {"structure", "element", "harmonic_balance", "nonlinear_mode", "frequency_response",
-              "force_response", "quasi_static_mode", "joint", "load", "profiles", "interface"});
+              "force_response", "amplitude_control", "phase_resonance", "quasi_static_mode",
+              "joint", "load", "profiles", "interface"});
   if (!root.get("joint")) {
     for (const char* k : {"load", "profiles", "interface"}) {
       if (root.get(k)) {
@@ -583,6 +585,57 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     }
   }
 
+  // [[amplitude_control]] and [[phase_resonance]]: response-controlled harmonic balance
+  const auto tables = [&](const char* name, const auto& parse_one) {
+    const auto* node = root.get(name);
+    if (!node) return;
+    const auto* arr = node->as_array();
+    if (!arr || !arr->is_array_of_tables()) {
+      throw InvalidInput(
+          fmt::format("{} must be an array of tables: write [[{}]]{}", name, name, at_line(*node)));
+    }
+    for (std::size_t k = 0; k < arr->size(); ++k) {
+      parse_one(*arr->get(k)->as_table(), fmt::format("{}[{}]", name, k));
+    }
+  };
+  const auto control_force = [&](const toml::table& t, const std::string& w, Eigen::Index& dof) {
+    if (!t.get("force_cos") && !t.get("force_sin")) {
+      throw InvalidInput(fmt::format(
+          "{} needs force_cos and/or force_sin (rows: harmonics, columns: DOFs){}", w, at_line(t)));
+    }
+    if (!t.get("dof")) {
+      throw InvalidInput(
+          fmt::format("{} needs dof, the controlled DOF (0 .. {}){}", w, n - 1, at_line(t)));
+    }
+    dof = static_cast<Eigen::Index>(integer(t, "dof", w, 0, 0, n - 1));
+    Eigen::MatrixXd fc, fs;
+    return force_pair(t, w, "force", basis, n, nh, fc, fs);
+  };
+  tables("amplitude_control", [&](const toml::table& t, const std::string& w) {
+    check_keys(t, w, {"force_cos", "force_sin", "dof", "amplitude", "omega", "continuation"});
+    AmplitudeControlOptions o;
+    o.force = control_force(t, w, o.dof);
+    o.amplitude = detail::need_si(t, "amplitude", w, dim::length,
+                                  "amplitude control (the first-harmonic amplitude held, in m)");
+    core::require_positive(w + ".amplitude", o.amplitude);
+    const auto [from, to] = range(t, "omega", w, angular_frequency);
+    o.omega_from = from;
+    o.omega_to = to;
+    parse_continuation(t, w, o.continuation);
+    c.amplitude_controls.push_back(std::move(o));
+  });
+  tables("phase_resonance", [&](const toml::table& t, const std::string& w) {
+    check_keys(t, w, {"force_cos", "force_sin", "dof", "mode", "log10_amplitude", "continuation"});
+    PhaseResonanceOptions o;
+    o.force = control_force(t, w, o.dof);
+    o.mode = static_cast<int>(integer(t, "mode", w, 1, 1, n));
+    const auto [from, to] = range(t, "log10_amplitude", w, finite_number);
+    o.log10_amplitude_from = from;
+    o.log10_amplitude_to = to;
+    parse_continuation(t, w, o.continuation);
+    c.phase_resonances.push_back(std::move(o));
+  });
+
   // [quasi_static_mode]
   if (const auto* t = subtable(root, "quasi_static_mode", "")) {
     const std::string w = "quasi_static_mode";
@@ -597,10 +650,10 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     c.quasi_static_mode = o;
   }
   if (!c.nonlinear_mode && c.frequency_responses.empty() && c.force_responses.empty() &&
-      !c.quasi_static_mode) {
+      c.amplitude_controls.empty() && c.phase_resonances.empty() && !c.quasi_static_mode) {
     throw InvalidInput(fmt::format(
-        "{}: nothing to run: add [nonlinear_mode], [[frequency_response]], [[force_response]] or "
-        "[quasi_static_mode]",
+        "{}: nothing to run: add [nonlinear_mode], [[frequency_response]], [[force_response]], "
+        "[[amplitude_control]], [[phase_resonance]] or [quasi_static_mode]",
         path));
   }
   return c;

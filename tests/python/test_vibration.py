@@ -862,6 +862,30 @@ def test_phase_resonance_traces_the_duffing_backbone_and_amplitude_control_its_f
         hb.amplitude_control(F, dof=0, amplitude=0.0, omega=(0.5, 2.0))
 
 
+def test_response_controlled_case_file_matches_python_and_refuses_bad_keys():
+    # examples/vibration/duffing_phase_resonance.toml: the case runner and the Python API
+    # call the same C++ functions with the same settings: identical arrays.
+    path = ROOT / "examples" / "vibration" / "duffing_phase_resonance.toml"
+    r = vib.run_case(path)
+    assert r.complete
+    hb = r.system
+    F = hb.force(cos={1: [1.0]})
+    p = hb.phase_resonance(F, dof=0, log10_amplitude=(-2.0, 0.3), output_dofs=[0])
+    a = hb.amplitude_control(F, dof=0, amplitude=1.0, omega=(0.5, 2.0), output_dofs=[0])
+    (rp,), (ra,) = r.phase_resonance, r.amplitude_control
+    np.testing.assert_array_equal(rp.omega, p.omega)
+    np.testing.assert_array_equal(rp.force_scale, p.force_scale)
+    np.testing.assert_array_equal(ra.force_scale, a.force_scale)
+    assert r.summary["phase_resonance"][0]["amplitude_m"] == list(p.amplitude)
+    text = path.read_text()
+    for bad, good, key in (("dof = 0\nlog10", "log10", "needs dof"),
+                           ('amplitude = "1 m"', 'amplitude = "-1 m"', "amplitude_control\\[0\\].amplitude"),
+                           ("dof = 0\nlog10", "dof = 3\nlog10", "dof = 3"),
+                           ("dof = 0\nlog10", "dof = 0\nmodes = 1\nlog10", "unknown key")):
+        with pytest.raises(ValueError, match=key):
+            vib.run_case_text(text.replace(bad, good))
+
+
 def test_bad_input_raises_value_errors_naming_the_field():
     with pytest.raises(ValueError, match="k_t"):
         vib.Jenkins(-1.0, 0.2)

@@ -89,6 +89,20 @@
 //   force_scale = { from = 0.0, to = 2.0 }   # lambda, >= 0: F_ex = lambda force
 //   continuation = { ... }      # as above (steps in units of the lambda range)
 //
+//   [[amplitude_control]]       # any number: first harmonic of `dof` held at `amplitude`
+//   force_cos = [[0.0], [1.0]]  # force_sin as frequency_response; F_ex = lambda force
+//   dof = 0                     # the controlled DOF
+//   amplitude = "1 mm"          # its first-harmonic amplitude [m]
+//   omega = { from = 0.5, to = 2.0 }   # continuation in omega
+//   continuation = { ... }
+//
+//   [[phase_resonance]]         # any number: first harmonic of `dof` lags its force by 90 deg
+//   force_cos = [[0.0], [1.0]]  # must drive `dof` (the phase reference)
+//   dof = 0
+//   mode = 1                    # optional: the stuck mode that starts the search
+//   log10_amplitude = { from = -3.0, to = 0.0 }   # of that DOF's amplitude [m]
+//   continuation = { ... }
+//
 //   [quasi_static_mode]         # Masing-based estimate of one mode
 //   mode = 1
 //   amplitude = { from = 1e-3, to = 1e3 }   # modal amplitude a [sqrt(kg) m]
@@ -109,6 +123,7 @@
 #include "asperity/vibration/elements.hpp"
 #include "asperity/vibration/force_response.hpp"
 #include "asperity/vibration/harmonic_balance.hpp"
+#include "asperity/vibration/response_control.hpp"
 #include "asperity/vibration/structure.hpp"
 
 namespace asperity::vibration {
@@ -143,6 +158,8 @@ struct VibrationCase {
   std::optional<NonlinearModeOptions> nonlinear_mode;
   std::vector<FrequencyResponseCase> frequency_responses;
   std::vector<ForceResponseCase> force_responses;
+  std::vector<AmplitudeControlOptions> amplitude_controls;
+  std::vector<PhaseResonanceOptions> phase_resonances;
   std::optional<QuasiStaticModeOptions> quasi_static_mode;
   /// The `joint` section when a rough_flat element comes from a [joint] table.
   std::optional<SummaryObject> joint;
@@ -168,6 +185,11 @@ struct VibrationResult {
   /// Every [[force_response]] curve that ran, in order, and its table (0-based).
   std::vector<ForceResponseCurve> force_response;
   std::vector<std::size_t> force_response_table;
+  /// Every [[amplitude_control]] and [[phase_resonance]] that ran, with its table.
+  std::vector<AmplitudeControlResult> amplitude_control;
+  std::vector<std::size_t> amplitude_control_table;
+  std::vector<PhaseResonanceResult> phase_resonance;
+  std::vector<std::size_t> phase_resonance_table;
   std::optional<QuasiStaticModeResult> quasi_static_mode;
   /// Every continuation reached its end (false: a curve stalled, hit max_points or
   /// turned back; its points are kept and `stop_reason` says why).
