@@ -617,6 +617,28 @@ class HarmonicBalance:
         _issue(r, "force_response")
         return r
 
+    def mode_rom(self, mode: Mapping, force, output_dofs: Sequence[int] = (),
+                 subdivisions: int = 16) -> Result:
+        """Forced response near one nonlinear mode from its backbone (single nonlinear mode
+        theory, Krack 2015): ``mode`` a result of :meth:`nonlinear_mode` of this system,
+        ``force`` in the layout of ``U`` (its first harmonic is used). For each backbone
+        point ``(omega^2 - W^2 + i W xi) a = psi^H F`` gives the excitation frequencies
+        ``W`` below and above the backbone (``omega``, ``xi`` and ``Psi`` interpolated
+        linearly in ``log a``, ``subdivisions`` points per backbone interval). Returns ``omega`` (``W``), ``amplitude``
+        (modal), ``output_amplitude``, ``low_side_points`` (the first points, below the
+        backbone, in increasing amplitude; then the high side in decreasing amplitude) and
+        ``peak_amplitude``. Exact for one DOF on one harmonic with viscous damping;
+        docs/vibration.md gives its error on a friction joint."""
+        r = Result(_v.nonlinear_mode_rom(
+            self._core, np.ascontiguousarray(mode["amplitude"], dtype=float),
+            np.ascontiguousarray(mode["omega"], dtype=float),
+            np.ascontiguousarray(mode["xi"], dtype=float),
+            np.ascontiguousarray(np.atleast_2d(mode["harmonics"]), dtype=float),
+            np.ascontiguousarray(force, dtype=float), [int(d) for d in output_dofs],
+            int(subdivisions)))
+        _issue(r, "mode_rom")
+        return r
+
     def amplitude_control(self, force, dof: int, amplitude: float, omega,
                           output_dofs: Sequence[int] = (), **continuation) -> Result:
         """Amplitude-controlled harmonic balance (response-controlled testing): the first

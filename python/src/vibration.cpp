@@ -32,6 +32,7 @@
 #include "asperity/vibration/force_response.hpp"
 #include "asperity/vibration/harmonic_balance.hpp"
 #include "asperity/vibration/loop_fit.hpp"
+#include "asperity/vibration/mode_rom.hpp"
 #include "asperity/vibration/response_control.hpp"
 #include "asperity/vibration/structure.hpp"
 #include "bindings.hpp"
@@ -753,6 +754,39 @@ void bind_vibration(nb::module_& parent) {
       "F_ex(omega) = force + omega force_per_omega + omega^2 force_per_omega2 (the last two may "
       "be empty).");
 
+  m.def(
+      "nonlinear_mode_rom",
+      [](const PyHarmonicBalance& p, const Vector& amplitude, const Vector& omega, const Vector& xi,
+         const Matrix& harmonics, const Vector& force, const std::vector<long>& outputs,
+         int subdivisions) {
+        NonlinearModeResult mode;
+        mode.amplitude = amplitude;
+        mode.omega = omega;
+        mode.xi = xi;
+        if (omega.size() != amplitude.size() || xi.size() != amplitude.size() ||
+            harmonics.rows() != amplitude.size()) {
+          throw InvalidInput(
+              "nonlinear_mode_rom: amplitude, omega, xi and the rows of harmonics must have one "
+              "entry per backbone point");
+        }
+        for (Eigen::Index k = 0; k < harmonics.rows(); ++k) {
+          mode.harmonics.emplace_back(harmonics.row(k).transpose());
+        }
+        const ModeRomCurve c = locked(p, [&](const HarmonicBalance& hb) {
+          return nonlinear_mode_rom(hb, mode, force, dof_list(outputs), subdivisions);
+        });
+        nb::dict d;
+        d["omega"] = copy_of(c.omega);
+        d["amplitude"] = copy_of(c.amplitude);
+        d["output_amplitude"] = copy_of(c.output_amplitude);
+        d["low_side_points"] = c.low_side_points;
+        d["peak_amplitude"] = c.peak_amplitude;
+        d["warnings"] = string_list(c.warnings);
+        return d;
+      },
+      "hb"_a, "amplitude"_a, "omega"_a, "xi"_a, "harmonics"_a, "force"_a, "output_dofs"_a,
+      "subdivisions"_a,
+      "Forced response from one nonlinear mode's backbone (single nonlinear mode theory).");
   m.def(
       "amplitude_control",
       [](const PyHarmonicBalance& p, const Vector& force, long dof, double amplitude,
