@@ -722,7 +722,7 @@ def quasi_static_mode(hb: HarmonicBalance, mode: int = 1, amplitude=(1e-7, 1e-4)
 
 def _case_result(d: dict, source: str) -> Result:
     out = Result(summary=d["summary"], complete=d["complete"], stop_reason=d["stop_reason"],
-                 warnings=list(d["warnings"]))
+                 remedy=d["remedy"], failures=list(d["failures"]), warnings=list(d["warnings"]))
     out["nonlinear_mode"] = Result(d["nonlinear_mode"]) if d["nonlinear_mode"] is not None else None
     out["frequency_response"] = [Result(c) for c in d["frequency_response"]]
     out["force_response"] = []
@@ -747,7 +747,8 @@ def run_case(path: str | os.PathLike) -> Result:
     ``[[frequency_response]]`` index), ``force_response``, ``amplitude_control`` and
     ``phase_resonance`` (one per table of that name that ran, ``table`` its index),
     ``complete`` (every continuation reached its end),
-    ``stop_reason``, ``warnings`` (also issued as RuntimeWarning) and ``system`` (the
+    ``stop_reason``, ``remedy`` (what helps when it did not), ``failures`` (the curves that
+    could not start, with their reasons), ``warnings`` (also issued as RuntimeWarning) and ``system`` (the
     case's :class:`HarmonicBalance`)."""
     return _case_result(_v.run_case(os.fspath(path)), os.fspath(path))
 

@@ -459,10 +459,12 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     r.stop_reason = total.stop_reason;
     r.remedy = remedy(total, c.harmonic_balance.time_points);
     if (!r.failures.empty()) {
-      r.remedy += std::string(r.remedy.empty() ? "" : "; ") +
-                  "for the curves that could not start: start the range (omega.from) where the "
-                  "response is small or the joint stuck, lower the force, or raise "
-                  "max_iterations";
+      r.remedy +=
+          std::string(r.remedy.empty() ? "" : "; ") +
+          "for the curves that could not start: start the range (omega.from, force_scale.from, "
+          "log10_amplitude.from) where the "
+          "response is small or the joint stuck, lower the force, or raise "
+          "max_iterations";
     }
     j.emplace_back("solver", solver_summary(total));
   }

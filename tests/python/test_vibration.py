@@ -862,6 +862,26 @@ def test_phase_resonance_traces_the_duffing_backbone_and_amplitude_control_its_f
         hb.amplitude_control(F, dof=0, amplitude=0.0, omega=(0.5, 2.0))
 
 
+def test_a_force_response_that_cannot_start_is_named_and_the_others_run():
+    # Partial results (issue 23) for [[force_response]]: a table started at lambda = 1.4,
+    # beyond the jump-up fold, with one Newton iteration allowed cannot start; it is listed
+    # in `failed` with its reason, the other table's curve is computed, complete is false.
+    text = (ROOT / "examples" / "vibration" / "duffing_force_sweep.toml").read_text() + """
+[[force_response]]
+force_cos = [[1.0]]
+omega = 1.6
+force_scale = { from = 1.4, to = 1.5 }
+continuation = { max_iterations = 1, target_iterations = 1 }
+"""
+    with pytest.warns(RuntimeWarning, match="force_response\\[1\\]"):
+        r = vib.run_case_text(text)
+    assert not r.complete
+    assert [c.table for c in r.force_response] == [0]
+    (f,) = r.summary["failed"]
+    assert f["analysis"] == "force_response" and f["table"] == 1 and f["force_scale"] == 1.4
+    assert "could not start" in r.stop_reason and "force_scale.from" in r.remedy
+
+
 def test_response_controlled_case_file_matches_python_and_refuses_bad_keys():
     # examples/vibration/duffing_phase_resonance.toml: the case runner and the Python API
     # call the same C++ functions with the same settings: identical arrays.
