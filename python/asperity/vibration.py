@@ -8,9 +8,9 @@ from the same C++ code as ``asperity vibration``. SI units throughout.
 * Joint elements, each placed by ``T`` (one row per element direction, one column per
   DOF; it acts on ``u = T x`` and returns ``T^T f``): :class:`Jenkins`, :class:`Iwan4`,
   :class:`Coulomb`, :class:`ElasticDryFriction2d`, :class:`PolynomialStiffness`,
-  :class:`CubicDamping`, :class:`RoughFlat` (any SI backbone
-  under Masing's rules: from :func:`asperity.epb_backbone`, a joint case file or
-  :func:`asperity.predict`).
+  :class:`CubicDamping`, :class:`UnilateralSpring`, :class:`ElasticDryFriction3d`,
+  :class:`RoughFlat` (any SI backbone under Masing's rules: from
+  :func:`asperity.epb_backbone`, a joint case file or :func:`asperity.predict`).
 * :func:`run_case` / :func:`run_case_text` - a case file of ``asperity vibration``
   (the same parser and run function as the command): the summary (summary.json as a
   dict) and each analysis's arrays; :meth:`HarmonicBalance.from_case` - a case file's
@@ -18,7 +18,10 @@ from the same C++ code as ``asperity vibration``. SI units throughout.
 * :class:`HarmonicBalance` - the AFT system (harmonics kept, ``N_t`` samples per
   period): residual and analytic Jacobian as numpy arrays, the force vector from cosine
   and sine parts, and the analyses :meth:`HarmonicBalance.nonlinear_mode` (EPMC, Krack
-  2015), :meth:`HarmonicBalance.frequency_response` and
+  2015), :meth:`HarmonicBalance.frequency_response`, :meth:`HarmonicBalance.force_response`
+  (continuation in the force amplitude at one frequency),
+  :meth:`HarmonicBalance.amplitude_control` and :meth:`HarmonicBalance.phase_resonance`
+  (response-controlled harmonic balance) and
   :meth:`HarmonicBalance.quasi_static_mode` (also as module functions of the same names).
 
 The unknowns ``U`` stack per DOF the coefficients ``[a_0, a_h1, b_h1, a_h2, b_h2, ...]``
@@ -43,8 +46,9 @@ _v = _core._vibration
 
 __all__ = [
     "Structure", "Element", "Jenkins", "Iwan4", "MasingTable", "Coulomb", "ElasticDryFriction2d",
-    "PolynomialStiffness", "CubicDamping", "RoughFlat", "HarmonicBalance", "Result", "nonlinear_mode",
-    "frequency_response",
+    "PolynomialStiffness", "CubicDamping", "UnilateralSpring", "ElasticDryFriction3d", "RoughFlat",
+    "HarmonicBalance", "Result", "nonlinear_mode",
+    "frequency_response", "force_response", "amplitude_control", "phase_resonance",
     "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
     "run_case_text", "plot_mode", "plot_response", "fit_loops",
 ]
@@ -311,6 +315,28 @@ class CubicDamping(Element):
         super().__init__(_v.cubic_damping(c3), T, name)
 
 
+class ElasticDryFriction3d(Element):
+    """Dry friction in two tangential directions (rows 0 and 1 of ``T``) and one normal (row
+    2): a tangential spring ``k_t`` in series with an isotropic slider that slips at
+    ``|f_t| = mu f_n`` along the trial force (radial return), and the normal spring
+    ``f_n = max(N0 + k_n u_n, 0)`` of :class:`ElasticDryFriction2d` (``N0 > 0`` a preload,
+    ``N0 < 0`` a gap ``-N0 / k_n``)."""
+
+    def __init__(self, k_t: float, k_n: float, mu: float, T, N0: float = 0.0,
+                 name: str | None = None):
+        super().__init__(_v.elastic_dry_friction_3d(k_t, k_n, mu, N0), T, name)
+
+
+class UnilateralSpring(Element):
+    """Unilateral spring: contact force ``f_c = max(N0 + k (u - gap), 0)`` (``u > 0``
+    closes): ``k`` [N/m], a ``gap`` [m] open at rest, or a preload ``N0`` [N] carried outside
+    the model (the structure receives ``f_c - N0``, so ``u = 0`` is the rest state)."""
+
+    def __init__(self, k: float, gap: float = 0.0, N0: float = 0.0, T=1.0,
+                 name: str | None = None):
+        super().__init__(_v.unilateral_spring(k, gap, N0), T, name)
+
+
 class RoughFlat(Element):
     """The rough flat (or any SI backbone ``Q [N]`` against ``x [m]``) under Masing's rules.
 
@@ -573,6 +599,80 @@ class HarmonicBalance:
             out.append(r)
         return out
 
+    def force_response(self, force, omega: float, force_scale=(0.0, 1.0),
+                       output_dofs: Sequence[int] = (), *, force_per_omega=None,
+                       force_per_omega2=None, **continuation) -> Result:
+        """Forced response at the fixed frequency ``omega`` [rad/s] by continuation in the
+        force scale ``lambda`` from ``force_scale[0]`` to ``force_scale[1]`` (both >= 0):
+        ``A(omega) U + F_nl(U) = lambda F_ex`` with ``F_ex`` as in
+        :meth:`frequency_response`. Returns ``omega, force_scale (lambda per point),
+        output_amplitude, harmonic_amplitude, max_displacement, harmonics, folds`` (the
+        turning points in ``lambda``, each ``force_scale, output_amplitude, harmonics``),
+        ``continuation``, ``warnings``; keyword options of the continuation as in
+        :meth:`frequency_response` (steps in units of the ``lambda`` range)."""
+        s0, s1 = force_scale
+
+        def vec(x):
+            return np.zeros(0) if x is None else np.ascontiguousarray(x, dtype=float)
+
+        r = Result(_v.force_response(self._core, vec(force), vec(force_per_omega),
+                                     vec(force_per_omega2), float(omega), float(s0), float(s1),
+                                     [int(d) for d in output_dofs], dict(continuation)))
+        r["folds"] = [Result(f) for f in r["folds"]]
+        _issue(r, "force_response")
+        return r
+
+    def mode_rom(self, mode: Mapping, force, output_dofs: Sequence[int] = (),
+                 subdivisions: int = 16) -> Result:
+        """Forced response near one nonlinear mode from its backbone (single nonlinear mode
+        theory, Krack 2015): ``mode`` a result of :meth:`nonlinear_mode` of this system,
+        ``force`` in the layout of ``U`` (its first harmonic is used). For each backbone
+        point ``(omega^2 - W^2 + i W xi) a = psi^H F`` gives the excitation frequencies
+        ``W`` below and above the backbone (``omega``, ``xi`` and ``Psi`` interpolated
+        linearly in ``log a``, ``subdivisions`` points per backbone interval). Returns ``omega`` (``W``), ``amplitude``
+        (modal), ``output_amplitude``, ``low_side_points`` (the first points, below the
+        backbone, in increasing amplitude; then the high side in decreasing amplitude) and
+        ``peak_amplitude``. Exact for one DOF on one harmonic with viscous damping;
+        docs/vibration.md gives its error on a friction joint."""
+        r = Result(_v.nonlinear_mode_rom(
+            self._core, np.ascontiguousarray(mode["amplitude"], dtype=float),
+            np.ascontiguousarray(mode["omega"], dtype=float),
+            np.ascontiguousarray(mode["xi"], dtype=float),
+            np.ascontiguousarray(np.atleast_2d(mode["harmonics"]), dtype=float),
+            np.ascontiguousarray(force, dtype=float), [int(d) for d in output_dofs],
+            int(subdivisions)))
+        _issue(r, "mode_rom")
+        return r
+
+    def amplitude_control(self, force, dof: int, amplitude: float, omega,
+                          output_dofs: Sequence[int] = (), **continuation) -> Result:
+        """Amplitude-controlled harmonic balance (response-controlled testing): the first
+        harmonic of ``dof`` held at ``amplitude`` [m] while ``omega = (from, to)`` [rad/s]
+        is swept; the force scale ``lambda`` (``F_ex = lambda force``) is the unknown.
+        Returns ``omega, force_scale, output_amplitude, harmonics, continuation,
+        warnings``."""
+        w0, w1 = omega
+        r = Result(_v.amplitude_control(self._core, np.ascontiguousarray(force, dtype=float),
+                                        int(dof), float(amplitude), float(w0), float(w1),
+                                        [int(d) for d in output_dofs], dict(continuation)))
+        _issue(r, "amplitude_control")
+        return r
+
+    def phase_resonance(self, force, dof: int, log10_amplitude=(-3.0, 0.0), mode: int = 1,
+                        output_dofs: Sequence[int] = (), **continuation) -> Result:
+        """Phase resonance (phase-controlled harmonic balance): the first harmonic of ``dof``
+        lags the force at ``dof`` by 90 degrees; continuation in ``log10`` of its amplitude
+        ``a`` [m] from the stuck structure's mode ``mode``. Returns ``amplitude, omega,
+        force_scale`` (``lambda`` with ``F_ex = lambda force``), ``output_amplitude,
+        harmonics, continuation, warnings``. For one nonlinear mode this traces the
+        backbone."""
+        lo, hi = log10_amplitude
+        r = Result(_v.phase_resonance(self._core, np.ascontiguousarray(force, dtype=float),
+                                      int(dof), int(mode), float(lo), float(hi),
+                                      [int(d) for d in output_dofs], dict(continuation)))
+        _issue(r, "phase_resonance")
+        return r
+
     def quasi_static_mode(self, mode: int = 1, amplitude=(1e-7, 1e-4), points: int = 60) -> Result:
         """Quasi-static modal estimate (static push along the stuck mode, Masing's rules):
         arrays ``amplitude (modal, log-spaced), omega, frequency_hz, damping_ratio,
@@ -601,6 +701,24 @@ def frequency_response(hb: HarmonicBalance, force, omega, force_scales=(1.0,),
     return hb.frequency_response(force, omega, force_scales, output_dofs, **kwargs)
 
 
+def force_response(hb: HarmonicBalance, force, omega: float, force_scale=(0.0, 1.0),
+                   output_dofs: Sequence[int] = (), **kwargs) -> Result:
+    """:meth:`HarmonicBalance.force_response`."""
+    return hb.force_response(force, omega, force_scale, output_dofs, **kwargs)
+
+
+def amplitude_control(hb: HarmonicBalance, force, dof: int, amplitude: float, omega,
+                      output_dofs: Sequence[int] = (), **continuation) -> Result:
+    """:meth:`HarmonicBalance.amplitude_control`."""
+    return hb.amplitude_control(force, dof, amplitude, omega, output_dofs, **continuation)
+
+
+def phase_resonance(hb: HarmonicBalance, force, dof: int, log10_amplitude=(-3.0, 0.0),
+                    mode: int = 1, output_dofs: Sequence[int] = (), **continuation) -> Result:
+    """:meth:`HarmonicBalance.phase_resonance`."""
+    return hb.phase_resonance(force, dof, log10_amplitude, mode, output_dofs, **continuation)
+
+
 def quasi_static_mode(hb: HarmonicBalance, mode: int = 1, amplitude=(1e-7, 1e-4),
                       points: int = 60) -> Result:
     """:meth:`HarmonicBalance.quasi_static_mode`."""
@@ -620,9 +738,16 @@ def _curve_result(c: dict) -> Result:
 
 def _case_result(d: dict, source: str) -> Result:
     out = Result(summary=d["summary"], complete=d["complete"], stop_reason=d["stop_reason"],
-                 warnings=list(d["warnings"]))
+                 remedy=d["remedy"], failures=list(d["failures"]), warnings=list(d["warnings"]))
     out["nonlinear_mode"] = Result(d["nonlinear_mode"]) if d["nonlinear_mode"] is not None else None
     out["frequency_response"] = [_curve_result(c) for c in d["frequency_response"]]
+    out["force_response"] = []
+    for c in d["force_response"]:
+        r = Result(c)
+        r["folds"] = [Result(f) for f in r["folds"]]
+        out["force_response"].append(r)
+    out["amplitude_control"] = [Result(c) for c in d["amplitude_control"]]
+    out["phase_resonance"] = [Result(c) for c in d["phase_resonance"]]
     out["quasi_static_mode"] = (Result(d["quasi_static_mode"])
                                 if d["quasi_static_mode"] is not None else None)
     out["system"] = HarmonicBalance._from_system(d["system"])
@@ -635,10 +760,13 @@ def run_case(path: str | os.PathLike, *, stability: bool = False) -> Result:
     ``asperity vibration``. Returns a :class:`Result` with ``summary`` (summary.json as a
     dict), ``nonlinear_mode`` and ``quasi_static_mode`` (:class:`Result` of arrays or None),
     ``frequency_response`` (one :class:`Result` per curve, ``table`` its
-    ``[[frequency_response]]`` index), ``complete`` (every continuation reached its end),
-    ``stop_reason``, ``warnings`` (also issued as RuntimeWarning) and ``system`` (the
-    case's :class:`HarmonicBalance`). ``stability=True`` adds Hill's stability to every
-    forced-response curve (as ``stability = true`` in each table)."""
+    ``[[frequency_response]]`` index), ``force_response``, ``amplitude_control`` and
+    ``phase_resonance`` (one per table of that name that ran, ``table`` its index),
+    ``complete`` (every continuation reached its end),
+    ``stop_reason``, ``remedy`` (what helps when it did not), ``failures`` (the curves that
+    could not start, with their reasons), ``warnings`` (also issued as RuntimeWarning) and
+    ``system`` (the case's :class:`HarmonicBalance`). ``stability=True`` adds Hill's
+    stability to every forced-response curve (as ``stability = true`` in each table)."""
     return _case_result(_v.run_case(os.fspath(path), bool(stability)), os.fspath(path))
 
 

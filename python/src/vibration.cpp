@@ -26,10 +26,14 @@
 #include "asperity/hysteresis/backbone.hpp"
 #include "asperity/vibration/analysis.hpp"
 #include "asperity/vibration/case.hpp"
+#include "asperity/vibration/contact_elements.hpp"
 #include "asperity/vibration/continuation.hpp"
 #include "asperity/vibration/elements.hpp"
+#include "asperity/vibration/force_response.hpp"
 #include "asperity/vibration/harmonic_balance.hpp"
 #include "asperity/vibration/loop_fit.hpp"
+#include "asperity/vibration/mode_rom.hpp"
+#include "asperity/vibration/response_control.hpp"
 #include "asperity/vibration/structure.hpp"
 #include "bindings.hpp"
 
@@ -238,6 +242,30 @@ nb::dict curve_dict(const FrequencyResponseCurve& c, Eigen::Index unknowns) {
   return d;
 }
 
+nb::dict force_curve_dict(const ForceResponseCurve& c, Eigen::Index unknowns) {
+  nb::dict d;
+  d["omega"] = c.omega;
+  d["force_scale"] = copy_of(c.force_scale);
+  nb::list ha;
+  for (const Matrix& h : c.harmonic_amplitude) ha.append(copy_of(h));
+  d["harmonic_amplitude"] = ha;
+  d["output_amplitude"] = copy_of(c.output_amplitude);
+  d["max_displacement"] = copy_of(c.max_displacement);
+  d["harmonics"] = copy_of(stack(c.harmonics, unknowns));
+  nb::list folds;
+  for (const ForceResponseFold& f : c.folds) {
+    nb::dict fd;
+    fd["force_scale"] = f.force_scale;
+    fd["output_amplitude"] = copy_of(f.output_amplitude);
+    fd["harmonics"] = copy_of(f.harmonics);
+    folds.append(fd);
+  }
+  d["folds"] = folds;
+  d["continuation"] = continuation_dict(c.continuation);
+  d["warnings"] = string_list(c.warnings);
+  return d;
+}
+
 nb::dict quasi_static_dict(const QuasiStaticModeResult& r) {
   nb::dict d;
   d["amplitude"] = copy_of(r.amplitude);
@@ -289,6 +317,41 @@ nb::dict case_result(VibrationCase c, bool stability) {
     curves.append(cd);
   }
   d["frequency_response"] = curves;
+  nb::list force_curves;
+  for (std::size_t k = 0; k < r.force_response.size(); ++k) {
+    nb::dict cd = force_curve_dict(r.force_response[k], nu);
+    cd["table"] = r.force_response_table[k];
+    force_curves.append(cd);
+  }
+  d["force_response"] = force_curves;
+  nb::list amplitude_controls, phase_resonances;
+  for (std::size_t k = 0; k < r.amplitude_control.size(); ++k) {
+    const AmplitudeControlResult& a = r.amplitude_control[k];
+    nb::dict cd;
+    cd["table"] = r.amplitude_control_table[k];
+    cd["omega"] = copy_of(a.omega);
+    cd["force_scale"] = copy_of(a.force_scale);
+    cd["output_amplitude"] = copy_of(a.output_amplitude);
+    cd["harmonics"] = copy_of(stack(a.harmonics, nu));
+    cd["continuation"] = continuation_dict(a.continuation);
+    cd["warnings"] = string_list(a.warnings);
+    amplitude_controls.append(cd);
+  }
+  for (std::size_t k = 0; k < r.phase_resonance.size(); ++k) {
+    const PhaseResonanceResult& p = r.phase_resonance[k];
+    nb::dict cd;
+    cd["table"] = r.phase_resonance_table[k];
+    cd["amplitude"] = copy_of(p.amplitude);
+    cd["omega"] = copy_of(p.omega);
+    cd["force_scale"] = copy_of(p.force_scale);
+    cd["output_amplitude"] = copy_of(p.output_amplitude);
+    cd["harmonics"] = copy_of(stack(p.harmonics, nu));
+    cd["continuation"] = continuation_dict(p.continuation);
+    cd["warnings"] = string_list(p.warnings);
+    phase_resonances.append(cd);
+  }
+  d["amplitude_control"] = amplitude_controls;
+  d["phase_resonance"] = phase_resonances;
   d["quasi_static_mode"] =
       r.quasi_static_mode ? nb::object(quasi_static_dict(*r.quasi_static_mode)) : nb::none();
   d["complete"] = r.complete;
@@ -509,6 +572,22 @@ void bind_vibration(nb::module_& parent) {
   m.def("cubic_damping", &make_cubic_damping_element, "c3"_a,
         "Cubic damping f = c3 v^3, c3 [N s^3/m^3].");
   m.def(
+      "elastic_dry_friction_3d",
+      [](double k_t, double k_n, double mu, double N0) {
+        return make_elastic_dry_friction_3d_element({.k_t = k_t, .k_n = k_n, .mu = mu, .N0 = N0});
+      },
+      "k_t"_a, "k_n"_a, "mu"_a, "N0"_a = 0.0,
+      "Tangential (directions 0, 1) isotropic slider slipping at |f_t| = mu f_n (radial\n"
+      "return), normal (direction 2) unilateral spring f_n = max(N0 + k_n u_n, 0).");
+  m.def(
+      "unilateral_spring",
+      [](double k, double gap, double N0) {
+        return make_unilateral_spring_element({.k = k, .gap = gap, .N0 = N0});
+      },
+      "k"_a, "gap"_a = 0.0, "N0"_a = 0.0,
+      "Unilateral spring f_c = max(N0 + k (u - gap), 0) (u > 0 closes): k [N/m], a gap [m]\n"
+      "or a preload N0 [N] carried outside the model (the structure receives f_c - N0).");
+  m.def(
       "masing",
       [](std::shared_ptr<const hysteresis::Backbone> backbone, const std::string& type,
          const nb::dict& parameters) {
@@ -705,6 +784,114 @@ void bind_vibration(nb::module_& parent) {
       "omega_from"_a, "omega_to"_a, "output_dofs"_a, "continuation"_a, "stability"_a = false,
       "F_ex(omega) = force + omega force_per_omega + omega^2 force_per_omega2 (the last two may "
       "be empty).");
+
+  m.def(
+      "nonlinear_mode_rom",
+      [](const PyHarmonicBalance& p, const Vector& amplitude, const Vector& omega, const Vector& xi,
+         const Matrix& harmonics, const Vector& force, const std::vector<long>& outputs,
+         int subdivisions) {
+        NonlinearModeResult mode;
+        mode.amplitude = amplitude;
+        mode.omega = omega;
+        mode.xi = xi;
+        if (omega.size() != amplitude.size() || xi.size() != amplitude.size() ||
+            harmonics.rows() != amplitude.size()) {
+          throw InvalidInput(
+              "nonlinear_mode_rom: amplitude, omega, xi and the rows of harmonics must have one "
+              "entry per backbone point");
+        }
+        for (Eigen::Index k = 0; k < harmonics.rows(); ++k) {
+          mode.harmonics.emplace_back(harmonics.row(k).transpose());
+        }
+        const ModeRomCurve c = locked(p, [&](const HarmonicBalance& hb) {
+          return nonlinear_mode_rom(hb, mode, force, dof_list(outputs), subdivisions);
+        });
+        nb::dict d;
+        d["omega"] = copy_of(c.omega);
+        d["amplitude"] = copy_of(c.amplitude);
+        d["output_amplitude"] = copy_of(c.output_amplitude);
+        d["low_side_points"] = c.low_side_points;
+        d["peak_amplitude"] = c.peak_amplitude;
+        d["warnings"] = string_list(c.warnings);
+        return d;
+      },
+      "hb"_a, "amplitude"_a, "omega"_a, "xi"_a, "harmonics"_a, "force"_a, "output_dofs"_a,
+      "subdivisions"_a,
+      "Forced response from one nonlinear mode's backbone (single nonlinear mode theory).");
+  m.def(
+      "amplitude_control",
+      [](const PyHarmonicBalance& p, const Vector& force, long dof, double amplitude,
+         double omega_from, double omega_to, const std::vector<long>& outputs,
+         const nb::dict& continuation) {
+        AmplitudeControlOptions o;
+        o.force = force;
+        o.dof = dof;
+        o.amplitude = amplitude;
+        o.omega_from = omega_from;
+        o.omega_to = omega_to;
+        o.continuation = continuation_options(o.continuation, continuation);
+        const AmplitudeControlResult r = locked(p, [&](const HarmonicBalance& hb) {
+          return amplitude_controlled_response(hb, o, dof_list(outputs));
+        });
+        nb::dict d;
+        d["omega"] = copy_of(r.omega);
+        d["force_scale"] = copy_of(r.force_scale);
+        d["output_amplitude"] = copy_of(r.output_amplitude);
+        d["harmonics"] = copy_of(stack(r.harmonics, p.hb.unknowns()));
+        d["continuation"] = continuation_dict(r.continuation);
+        d["warnings"] = string_list(r.warnings);
+        return d;
+      },
+      "hb"_a, "force"_a, "dof"_a, "amplitude"_a, "omega_from"_a, "omega_to"_a, "output_dofs"_a,
+      "continuation"_a, "First harmonic of `dof` held at `amplitude`; continuation in omega.");
+  m.def(
+      "phase_resonance",
+      [](const PyHarmonicBalance& p, const Vector& force, long dof, int mode, double log10_from,
+         double log10_to, const std::vector<long>& outputs, const nb::dict& continuation) {
+        PhaseResonanceOptions o;
+        o.force = force;
+        o.dof = dof;
+        o.mode = mode;
+        o.log10_amplitude_from = log10_from;
+        o.log10_amplitude_to = log10_to;
+        o.continuation = continuation_options(o.continuation, continuation);
+        const PhaseResonanceResult r = locked(p, [&](const HarmonicBalance& hb) {
+          return phase_resonance(hb, o, dof_list(outputs));
+        });
+        nb::dict d;
+        d["amplitude"] = copy_of(r.amplitude);
+        d["omega"] = copy_of(r.omega);
+        d["force_scale"] = copy_of(r.force_scale);
+        d["output_amplitude"] = copy_of(r.output_amplitude);
+        d["harmonics"] = copy_of(stack(r.harmonics, p.hb.unknowns()));
+        d["continuation"] = continuation_dict(r.continuation);
+        d["warnings"] = string_list(r.warnings);
+        return d;
+      },
+      "hb"_a, "force"_a, "dof"_a, "mode"_a, "log10_from"_a, "log10_to"_a, "output_dofs"_a,
+      "continuation"_a,
+      "First harmonic of `dof` lagging the force there by 90 degrees; continuation in log10 of "
+      "its amplitude.");
+  m.def(
+      "force_response",
+      [](const PyHarmonicBalance& p, const Vector& force, const Vector& force_per_omega,
+         const Vector& force_per_omega2, double omega, double scale_from, double scale_to,
+         const std::vector<long>& outputs, const nb::dict& continuation) {
+        ForceResponseOptions o;
+        o.force = force;
+        o.force_per_omega = force_per_omega;
+        o.force_per_omega2 = force_per_omega2;
+        o.omega = omega;
+        o.scale_from = scale_from;
+        o.scale_to = scale_to;
+        o.continuation = continuation_options(o.continuation, continuation);
+        const ForceResponseCurve c = locked(
+            p, [&](const HarmonicBalance& hb) { return force_response(hb, o, dof_list(outputs)); });
+        return force_curve_dict(c, p.hb.unknowns());
+      },
+      "hb"_a, "force"_a, "force_per_omega"_a, "force_per_omega2"_a, "omega"_a, "scale_from"_a,
+      "scale_to"_a, "output_dofs"_a, "continuation"_a,
+      "Continuation in the force scale lambda at fixed omega: R = A U + F_nl - lambda F_ex.");
 
   m.def(
       "quasi_static_mode",

@@ -127,6 +127,47 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
     }
     write(fmt::format("frequency_response_{}.csv", k + 1), csv(h, cols));
   }
+  for (std::size_t k = 0; k < r.force_response.size(); ++k) {
+    const auto& cv = r.force_response[k];
+    std::vector<std::string> h{"force_scale"};
+    std::vector<std::vector<double>> cols{vec(cv.force_scale)};
+    for (std::size_t o = 0; o < c.output_dofs.size(); ++o) {
+      const auto oi = static_cast<Eigen::Index>(o);
+      const auto d = c.output_dofs[o];
+      h.push_back(fmt::format("amplitude_dof{}_m", d));
+      cols.push_back(vec(cv.output_amplitude.col(oi)));
+      h.push_back(fmt::format("max_displacement_dof{}_m", d));
+      cols.push_back(vec(cv.max_displacement.col(oi)));
+      for (std::size_t hh = 0; hh < harmonics.size(); ++hh) {
+        h.push_back(fmt::format("harmonic{}_dof{}_m", harmonics[hh], d));
+        cols.push_back(vec(cv.harmonic_amplitude[o].col(static_cast<Eigen::Index>(hh))));
+      }
+    }
+    write(fmt::format("force_response_{}.csv", r.force_response_table[k] + 1), csv(h, cols));
+  }
+  for (std::size_t k = 0; k < r.amplitude_control.size(); ++k) {
+    const auto& a = r.amplitude_control[k];
+    std::vector<std::string> h{"omega_rad_s", "frequency_hz", "force_scale"};
+    std::vector<std::vector<double>> cols{vec(a.omega), vec(a.omega / (2.0 * std::numbers::pi)),
+                                          vec(a.force_scale)};
+    for (std::size_t o = 0; o < c.output_dofs.size(); ++o) {
+      h.push_back(fmt::format("amplitude_dof{}_m", c.output_dofs[o]));
+      cols.push_back(vec(a.output_amplitude.col(static_cast<Eigen::Index>(o))));
+    }
+    write(fmt::format("amplitude_control_{}.csv", r.amplitude_control_table[k] + 1), csv(h, cols));
+  }
+  for (std::size_t k = 0; k < r.phase_resonance.size(); ++k) {
+    const auto& p = r.phase_resonance[k];
+    std::vector<std::string> h{"amplitude_m", "omega_rad_s", "frequency_hz", "force_scale"};
+    std::vector<std::vector<double>> cols{vec(p.amplitude), vec(p.omega),
+                                          vec(p.omega / (2.0 * std::numbers::pi)),
+                                          vec(p.force_scale)};
+    for (std::size_t o = 0; o < c.output_dofs.size(); ++o) {
+      h.push_back(fmt::format("amplitude_dof{}_m", c.output_dofs[o]));
+      cols.push_back(vec(p.output_amplitude.col(static_cast<Eigen::Index>(o))));
+    }
+    write(fmt::format("phase_resonance_{}.csv", r.phase_resonance_table[k] + 1), csv(h, cols));
+  }
   if (r.quasi_static_mode) {
     const auto& q = *r.quasi_static_mode;
     write("quasi_static_mode.csv",

@@ -20,6 +20,7 @@
 #include "asperity/joint/case.hpp"
 #include "asperity/joint/predict.hpp"
 #include "asperity/surface/rough_flat.hpp"
+#include "asperity/vibration/contact_elements.hpp"
 #include "asperity/vibration/rough_contact.hpp"
 
 namespace asperity::vibration::detail {
@@ -306,7 +307,8 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
     throw InvalidInput(fmt::format(
         "{}: needs type = \"rough_flat\" | \"jenkins\" | \"iwan4\" | \"masing_table\" | "
         "\"coulomb\" | \"elastic_dry_friction_2d\" | \"polynomial_stiffness\" | "
-        "\"cubic_damping\" | \"rough_contact\"{}",
+        "\"cubic_damping\" | \"unilateral_spring\" | \"elastic_dry_friction_3d\" | "
+        "\"rough_contact\"{}",
         w, at_line(t)));
   }
   const std::string type = text(t, "type", w, "");
@@ -365,6 +367,23 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
     check_keys(t, w, keys({"c3"}));
     e = make_cubic_damping_element(
         need_si(t, "c3", w, Dimension{-2, 1, 1}, "a cubic_damping element (f = c3 v^3)"));
+  } else if (type == "elastic_dry_friction_3d") {
+    check_keys(t, w, keys({"k_t", "k_n", "mu", "N0"}));
+    const std::string what = "an elastic_dry_friction_3d element";
+    if (!t.get("mu")) throw InvalidInput(fmt::format("{}: {} needs mu{}", w, what, at_line(t)));
+    ElasticDryFriction3dParameters p{.k_t = need_si(t, "k_t", w, stiffness, what),
+                                     .k_n = need_si(t, "k_n", w, stiffness, what),
+                                     .mu = number(t, "mu", w, 0.0),
+                                     .N0 = si(t, "N0", w, force).value_or(0.0)};
+    e = make_elastic_dry_friction_3d_element(p);
+  } else if (type == "unilateral_spring") {
+    check_keys(t, w, keys({"k", "gap", "N0"}));
+    UnilateralSpringParameters p{
+        .k = need_si(t, "k", w, stiffness,
+                     "a unilateral_spring element (f = max(N0 + k (u - gap), 0))"),
+        .gap = si(t, "gap", w, dim::length).value_or(0.0),
+        .N0 = si(t, "N0", w, force).value_or(0.0)};
+    e = make_unilateral_spring_element(p);
   } else if (type == "rough_flat") {
     e = rough_flat_element(t, w, joint);
   } else if (type == "masing_table") {
@@ -398,8 +417,8 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
   } else {
     throw InvalidInput(
         fmt::format("{}.type = \"{}\" is not known: use rough_flat, jenkins, iwan4, masing_table, "
-                    "coulomb, elastic_dry_friction_2d, polynomial_stiffness, cubic_damping or "
-                    "rough_contact{}",
+                    "coulomb, elastic_dry_friction_2d, polynomial_stiffness, cubic_damping, "
+                    "unilateral_spring, elastic_dry_friction_3d or rough_contact{}",
                     w, type, at_line(t)));
   }
   PlacedElement pe;

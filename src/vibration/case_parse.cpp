@@ -13,6 +13,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
+#include "asperity/core/validate.hpp"
 #include "case_parse.hpp"
 
 namespace asperity::vibration {
@@ -246,6 +247,41 @@ Eigen::VectorXd force_vector(const HarmonicBasis& basis, Eigen::Index dofs,
   return F;
 }
 
+// One (cos, sin) pair of coefficient tables `prefix`_cos, `prefix`_sin of a forced
+// response table: rows harmonics, columns DOFs; the coefficients in the unknowns' layout.
+Eigen::VectorXd force_pair(const toml::table& t, const std::string& w, const std::string& prefix,
+                           const HarmonicBasis& basis, Eigen::Index n, std::size_t nh,
+                           Eigen::MatrixXd& cos_part, Eigen::MatrixXd& sin_part) {
+  cos_part = Eigen::MatrixXd::Zero(0, n);
+  sin_part = Eigen::MatrixXd::Zero(0, n);
+  for (const std::string kind : {"_cos", "_sin"}) {
+    const std::string key = prefix + kind;
+    const auto* fnode = t.get(key);
+    if (!fnode) continue;
+    Eigen::MatrixXd m = matrix(*fnode, w + "." + key, false);
+    if (m.cols() != n) {
+      throw InvalidInput(
+          fmt::format("{}.{} has {} column(s) but the structure has {} DOFs: one column per DOF{}",
+                      w, key, m.cols(), n, at_line(*fnode)));
+    }
+    if (static_cast<std::size_t>(m.rows()) > nh) {
+      throw InvalidInput(fmt::format(
+          "{}.{} has {} rows but {} harmonics are kept: one row per harmonic in the order "
+          "of harmonic_balance.harmonics{}",
+          w, key, m.rows(), nh, at_line(*fnode)));
+    }
+    if (kind == "_sin" && basis.harmonics().front() == 0 && m.rows() > 0 &&
+        m.row(0).cwiseAbs().maxCoeff() > 0.0) {
+      throw InvalidInput(
+          fmt::format("{}.{}: the first row belongs to harmonic 0, which has no sine part: make it "
+                      "zero{}",
+                      w, key, at_line(*fnode)));
+    }
+    (kind == "_cos" ? cos_part : sin_part) = std::move(m);
+  }
+  return force_vector(basis, n, cos_part, sin_part);
+}
+
 }  // namespace
 
 VibrationCase parse_case_text(const std::string& file_text, const std::string& path,
@@ -253,7 +289,8 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
   const toml::table root = core::toml_case::parse(file_text, path);
   check_keys(root, path,
              {"structure", "element", "harmonic_balance", "nonlinear_mode", "frequency_response",
-              "quasi_static_mode", "joint", "load", "profiles", "interface"});
+              "force_response", "amplitude_control", "phase_resonance", "quasi_static_mode",
+              "joint", "load", "profiles", "interface"});
   if (!root.get("joint")) {
     for (const char* k : {"load", "profiles", "interface"}) {
       if (root.get(k)) {
@@ -460,37 +497,9 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
                   "force_per_omega2_cos", "force_per_omega2_sin", "force_scales", "omega",
                   "continuation", "stability"});
       FrequencyResponseCase fr;
-      // One (cos, sin) pair of coefficient tables: rows harmonics, columns DOFs.
       auto pair = [&](const std::string& prefix, Eigen::MatrixXd& cos_part,
                       Eigen::MatrixXd& sin_part) {
-        cos_part = Eigen::MatrixXd::Zero(0, n);
-        sin_part = Eigen::MatrixXd::Zero(0, n);
-        for (const std::string kind : {"_cos", "_sin"}) {
-          const std::string key = prefix + kind;
-          const auto* fnode = t.get(key);
-          if (!fnode) continue;
-          Eigen::MatrixXd m = matrix(*fnode, w + "." + key, false);
-          if (m.cols() != n) {
-            throw InvalidInput(fmt::format(
-                "{}.{} has {} column(s) but the structure has {} DOFs: one column per DOF{}", w,
-                key, m.cols(), n, at_line(*fnode)));
-          }
-          if (static_cast<std::size_t>(m.rows()) > nh) {
-            throw InvalidInput(fmt::format(
-                "{}.{} has {} rows but {} harmonics are kept: one row per harmonic in the order "
-                "of harmonic_balance.harmonics{}",
-                w, key, m.rows(), nh, at_line(*fnode)));
-          }
-          if (kind == "_sin" && basis.harmonics().front() == 0 && m.rows() > 0 &&
-              m.row(0).cwiseAbs().maxCoeff() > 0.0) {
-            throw InvalidInput(fmt::format(
-                "{}.{}: the first row belongs to harmonic 0, which has no sine part: make it "
-                "zero{}",
-                w, key, at_line(*fnode)));
-          }
-          (kind == "_cos" ? cos_part : sin_part) = std::move(m);
-        }
-        return force_vector(basis, n, cos_part, sin_part);
+        return force_pair(t, w, prefix, basis, n, nh, cos_part, sin_part);
       };
       FrequencyResponseOptions& o = fr.options;
       o.force = pair("force", fr.force_cos, fr.force_sin);
@@ -538,6 +547,104 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     }
   }
 
+  // [[force_response]]: continuation in the force scale at one frequency
+  if (const auto* fn = root.get("force_response")) {
+    const auto* arr = fn->as_array();
+    if (!arr || !arr->is_array_of_tables()) {
+      throw InvalidInput(fmt::format(
+          "force_response must be an array of tables: write [[force_response]]{}", at_line(*fn)));
+    }
+    for (std::size_t k = 0; k < arr->size(); ++k) {
+      const toml::table& t = *arr->get(k)->as_table();
+      const std::string w = fmt::format("force_response[{}]", k);
+      check_keys(
+          t, w,
+          {"force_cos", "force_sin", "force_per_omega_cos", "force_per_omega_sin",
+           "force_per_omega2_cos", "force_per_omega2_sin", "omega", "force_scale", "continuation"});
+      ForceResponseCase fr;
+      ForceResponseOptions& o = fr.options;
+      if (!t.get("force_cos") && !t.get("force_sin")) {
+        throw InvalidInput(
+            fmt::format("{} needs force_cos and/or force_sin (rows: harmonics, columns: DOFs){}", w,
+                        at_line(t)));
+      }
+      o.force = force_pair(t, w, "force", basis, n, nh, fr.force_cos, fr.force_sin);
+      Eigen::MatrixXd c1, s1, c2, s2;
+      if (t.get("force_per_omega_cos") || t.get("force_per_omega_sin"))
+        o.force_per_omega = force_pair(t, w, "force_per_omega", basis, n, nh, c1, s1);
+      if (t.get("force_per_omega2_cos") || t.get("force_per_omega2_sin"))
+        o.force_per_omega2 = force_pair(t, w, "force_per_omega2", basis, n, nh, c2, s2);
+      const auto* wn = t.get("omega");
+      if (!wn) {
+        throw InvalidInput(
+            fmt::format("{} needs omega, the fixed frequency (rad/s as a number, or \"10 Hz\"){}",
+                        w, at_line(t)));
+      }
+      o.omega = angular_frequency(*wn, w + ".omega");
+      const auto [from, to] = range(t, "force_scale", w, finite_number);
+      o.scale_from = from;
+      o.scale_to = to;
+      parse_continuation(t, w, o.continuation);
+      try {
+        o.validate(static_cast<Eigen::Index>(basis.coefficients()) * n);
+      } catch (const InvalidInput& e) {
+        throw InvalidInput(fmt::format("{}: {}", w, e.what()));
+      }
+      c.force_responses.push_back(std::move(fr));
+    }
+  }
+
+  // [[amplitude_control]] and [[phase_resonance]]: response-controlled harmonic balance
+  const auto tables = [&](const char* name, const auto& parse_one) {
+    const auto* node = root.get(name);
+    if (!node) return;
+    const auto* arr = node->as_array();
+    if (!arr || !arr->is_array_of_tables()) {
+      throw InvalidInput(
+          fmt::format("{} must be an array of tables: write [[{}]]{}", name, name, at_line(*node)));
+    }
+    for (std::size_t k = 0; k < arr->size(); ++k) {
+      parse_one(*arr->get(k)->as_table(), fmt::format("{}[{}]", name, k));
+    }
+  };
+  const auto control_force = [&](const toml::table& t, const std::string& w, Eigen::Index& dof) {
+    if (!t.get("force_cos") && !t.get("force_sin")) {
+      throw InvalidInput(fmt::format(
+          "{} needs force_cos and/or force_sin (rows: harmonics, columns: DOFs){}", w, at_line(t)));
+    }
+    if (!t.get("dof")) {
+      throw InvalidInput(
+          fmt::format("{} needs dof, the controlled DOF (0 .. {}){}", w, n - 1, at_line(t)));
+    }
+    dof = static_cast<Eigen::Index>(integer(t, "dof", w, 0, 0, n - 1));
+    Eigen::MatrixXd fc, fs;
+    return force_pair(t, w, "force", basis, n, nh, fc, fs);
+  };
+  tables("amplitude_control", [&](const toml::table& t, const std::string& w) {
+    check_keys(t, w, {"force_cos", "force_sin", "dof", "amplitude", "omega", "continuation"});
+    AmplitudeControlOptions o;
+    o.force = control_force(t, w, o.dof);
+    o.amplitude = detail::need_si(t, "amplitude", w, dim::length,
+                                  "amplitude control (the first-harmonic amplitude held, in m)");
+    core::require_positive(w + ".amplitude", o.amplitude);
+    const auto [from, to] = range(t, "omega", w, angular_frequency);
+    o.omega_from = from;
+    o.omega_to = to;
+    parse_continuation(t, w, o.continuation);
+    c.amplitude_controls.push_back(std::move(o));
+  });
+  tables("phase_resonance", [&](const toml::table& t, const std::string& w) {
+    check_keys(t, w, {"force_cos", "force_sin", "dof", "mode", "log10_amplitude", "continuation"});
+    PhaseResonanceOptions o;
+    o.force = control_force(t, w, o.dof);
+    o.mode = static_cast<int>(integer(t, "mode", w, 1, 1, n));
+    const auto [from, to] = range(t, "log10_amplitude", w, finite_number);
+    o.log10_amplitude_from = from;
+    o.log10_amplitude_to = to;
+    parse_continuation(t, w, o.continuation);
+    c.phase_resonances.push_back(std::move(o));
+  });
+
   // [quasi_static_mode]
   if (const auto* t = subtable(root, "quasi_static_mode", "")) {
     const std::string w = "quasi_static_mode";
@@ -551,9 +658,11 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     o.validate();
     c.quasi_static_mode = o;
   }
-  if (!c.nonlinear_mode && c.frequency_responses.empty() && !c.quasi_static_mode) {
+  if (!c.nonlinear_mode && c.frequency_responses.empty() && c.force_responses.empty() &&
+      c.amplitude_controls.empty() && c.phase_resonances.empty() && !c.quasi_static_mode) {
     throw InvalidInput(fmt::format(
-        "{}: nothing to run: add [nonlinear_mode], [[frequency_response]] or [quasi_static_mode]",
+        "{}: nothing to run: add [nonlinear_mode], [[frequency_response]], [[force_response]], "
+        "[[amplitude_control]], [[phase_resonance]] or [quasi_static_mode]",
         path));
   }
   return c;

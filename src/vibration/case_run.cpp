@@ -315,8 +315,129 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     }
     j.emplace_back("frequency_response", std::move(curves));
   }
+  if (!c.force_responses.empty()) {
+    SummaryArray curves;
+    const double nk = static_cast<double>(c.force_responses.size());
+    for (std::size_t k = 0; k < c.force_responses.size(); ++k) {
+      const ForceResponseOptions& o = c.force_responses[k].options;
+      const std::string curve = fmt::format("force_response[{}]", k);
+      const auto before = counters();
+      const auto t0 = clock::now();
+      ForceResponseCurve cv;
+      try {
+        const double d0 = static_cast<double>(k);
+        cv = force_response(hb, o, c.output_dofs,
+                            progress ? ProgressFunction([&](double x) {
+                              progress("force_response", (d0 + x) / nk);
+                            })
+                                     : ProgressFunction{});
+      } catch (const NumericalError& e) {
+        r.failures.push_back(cannot_start(curve, e).what());
+        r.warnings.push_back(r.failures.back());
+        failed.emplace_back(SummaryObject{{"table", k},
+                                          {"force_scale", o.scale_from},
+                                          {"analysis", std::string("force_response")},
+                                          {"reason", r.failures.back()}});
+        continue;
+      }
+      Work w;
+      add_continuation(w, cv.continuation, o.continuation.max_points);
+      account(w, before, t0);
+      r.warnings.insert(r.warnings.end(), cv.warnings.begin(), cv.warnings.end());
+      SummaryArray ha;  // per point, per output, per harmonic
+      for (Eigen::Index p = 0; p < cv.force_scale.size(); ++p) {
+        SummaryArray per_output;
+        for (const auto& hm : cv.harmonic_amplitude)
+          per_output.emplace_back(array(hm.row(p).transpose()));
+        ha.emplace_back(std::move(per_output));
+      }
+      SummaryArray folds;
+      for (const ForceResponseFold& f : cv.folds) {
+        folds.emplace_back(SummaryObject{{"force_scale", f.force_scale},
+                                         {"output_amplitude", array(f.output_amplitude)}});
+      }
+      curves.emplace_back(SummaryObject{{"table", k},
+                                        {"omega_rad_s", cv.omega},
+                                        {"frequency_hz", cv.omega / (2.0 * std::numbers::pi)},
+                                        {"force_scale", array(cv.force_scale)},
+                                        {"output_amplitude", rows(cv.output_amplitude)},
+                                        {"max_displacement", rows(cv.max_displacement)},
+                                        {"harmonic_amplitude", std::move(ha)},
+                                        {"folds", std::move(folds)},
+                                        {"solver", solver_summary(w)}});
+      add_analysis(total, w, curve);
+      r.force_response.push_back(std::move(cv));
+      r.force_response_table.push_back(k);
+    }
+    j.emplace_back("force_response", std::move(curves));
+  }
+  // [[amplitude_control]] and [[phase_resonance]]: one continuation per table.
+  const auto controlled = [&](const char* name, std::size_t tables, const auto& run_one) {
+    if (tables == 0) return;
+    SummaryArray curves;
+    for (std::size_t k = 0; k < tables; ++k) {
+      const std::string curve = fmt::format("{}[{}]", name, k);
+      const auto before = counters();
+      const auto t0 = clock::now();
+      Work w;
+      try {
+        const double d0 = static_cast<double>(k), nk = static_cast<double>(tables);
+        const ProgressFunction sub =
+            progress ? ProgressFunction([&](double x) { progress(name, (d0 + x) / nk); })
+                     : ProgressFunction{};
+        SummaryObject o = run_one(k, sub, w);
+        account(w, before, t0);
+        o.emplace_back("solver", solver_summary(w));
+        curves.emplace_back(std::move(o));
+        add_analysis(total, w, curve);
+      } catch (const NumericalError& e) {
+        r.failures.push_back(cannot_start(curve, e).what());
+        r.warnings.push_back(r.failures.back());
+        failed.emplace_back(SummaryObject{{"table", k},
+                                          {"force_scale", 0.0},
+                                          {"analysis", std::string(name)},
+                                          {"reason", r.failures.back()}});
+      }
+    }
+    j.emplace_back(name, std::move(curves));
+  };
+  controlled("amplitude_control", c.amplitude_controls.size(),
+             [&](std::size_t k, const ProgressFunction& sub, Work& w) {
+               const AmplitudeControlOptions& o = c.amplitude_controls[k];
+               AmplitudeControlResult a = amplitude_controlled_response(hb, o, c.output_dofs, sub);
+               add_continuation(w, a.continuation, o.continuation.max_points);
+               r.warnings.insert(r.warnings.end(), a.warnings.begin(), a.warnings.end());
+               SummaryObject out{{"table", k},
+                                 {"dof", static_cast<std::size_t>(o.dof)},
+                                 {"amplitude_m", o.amplitude},
+                                 {"omega_rad_s", array(a.omega)},
+                                 {"frequency_hz", array(a.omega / (2.0 * std::numbers::pi))},
+                                 {"force_scale", array(a.force_scale)},
+                                 {"output_amplitude", rows(a.output_amplitude)}};
+               r.amplitude_control.push_back(std::move(a));
+               r.amplitude_control_table.push_back(k);
+               return out;
+             });
+  controlled("phase_resonance", c.phase_resonances.size(),
+             [&](std::size_t k, const ProgressFunction& sub, Work& w) {
+               const PhaseResonanceOptions& o = c.phase_resonances[k];
+               PhaseResonanceResult p = phase_resonance(hb, o, c.output_dofs, sub);
+               add_continuation(w, p.continuation, o.continuation.max_points);
+               r.warnings.insert(r.warnings.end(), p.warnings.begin(), p.warnings.end());
+               SummaryObject out{{"table", k},
+                                 {"dof", static_cast<std::size_t>(o.dof)},
+                                 {"amplitude_m", array(p.amplitude)},
+                                 {"omega_rad_s", array(p.omega)},
+                                 {"frequency_hz", array(p.omega / (2.0 * std::numbers::pi))},
+                                 {"force_scale", array(p.force_scale)},
+                                 {"output_amplitude", rows(p.output_amplitude)}};
+               r.phase_resonance.push_back(std::move(p));
+               r.phase_resonance_table.push_back(k);
+               return out;
+             });
   // Nothing computed at all: the case is bad input as a whole (exit 2).
-  if (!r.failures.empty() && r.frequency_response.empty() && !r.nonlinear_mode &&
+  if (!r.failures.empty() && r.frequency_response.empty() && r.force_response.empty() &&
+      r.amplitude_control.empty() && r.phase_resonance.empty() && !r.nonlinear_mode &&
       !c.quasi_static_mode) {
     throw InvalidInput(r.failures.front());
   }
@@ -359,9 +480,11 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
       // unless a curve stopped early before it.
       if (total.complete) {
         total.complete = false;
-        total.stop_reason = fmt::format(
-            "{} of {} frequency response curve(s) could not start: {}", r.failures.size(),
-            r.failures.size() + r.frequency_response.size(), r.failures.front());
+        total.stop_reason =
+            fmt::format("{} of {} forced response curve(s) could not start: {}", r.failures.size(),
+                        r.failures.size() + r.frequency_response.size() + r.force_response.size() +
+                            r.amplitude_control.size() + r.phase_resonance.size(),
+                        r.failures.front());
       }
     }
     if (total.complete) total.stop_reason = "every analysis reached the end of its range";
@@ -369,10 +492,12 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     r.stop_reason = total.stop_reason;
     r.remedy = remedy(total, c.harmonic_balance.time_points);
     if (!r.failures.empty()) {
-      r.remedy += std::string(r.remedy.empty() ? "" : "; ") +
-                  "for the curves that could not start: start the range (omega.from) where the "
-                  "response is small or the joint stuck, lower the force, or raise "
-                  "max_iterations";
+      r.remedy +=
+          std::string(r.remedy.empty() ? "" : "; ") +
+          "for the curves that could not start: start the range (omega.from, force_scale.from, "
+          "log10_amplitude.from) where the "
+          "response is small or the joint stuck, lower the force, or raise "
+          "max_iterations";
     }
     j.emplace_back("solver", solver_summary(total));
   }

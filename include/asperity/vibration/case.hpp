@@ -23,6 +23,7 @@
 //   [[element]]                 # any number, each acting on u = T x
 //   type = "jenkins"            # rough_flat | jenkins | iwan4 | masing_table | coulomb |
 //                               #   elastic_dry_friction_2d | polynomial_stiffness | cubic_damping
+//                               | #   unilateral_spring
 //   name = "bolt 1"             # optional
 //   T = [[1.0]]                 # rows: element directions; columns: structure DOFs
 //                               #    (one direction may be written as a flat list)
@@ -43,6 +44,11 @@
 //     polynomial_stiffness: k1 [N/m], k2 [N/m^2], k3 [N/m^3] (each optional, not all
 //                               zero): f = k1 u + k2 u^2 + k3 u^3 (Duffing: k3)
 //     cubic_damping: c3 [N s^3/m^3]: f = c3 v^3
+//     elastic_dry_friction_3d: k_t, k_n [N/m], mu, N0 [N] as elastic_dry_friction_2d;
+//                               T has 3 rows (t1, t2, normal); isotropic slider
+//     unilateral_spring: k [N/m], gap [m] (optional, 0) or N0 [N] (optional, 0; a preload
+//                               carried outside the model): f_c = max(N0 + k (u - gap), 0),
+//                               the structure receives f_c - N0
 //     rough_flat: the rough flat at one normal load, through Masing's rules, from
 //       backbone = "dimensional": E_star, G_star, H, sigma, R, eta, A0, P (quantities),
 //                                 nu, asperity_model (bke), mu_cfc (optional)
@@ -79,6 +85,26 @@
 //   stability = true            # optional (default false): Hill's stability of every
 //                               #   point (stability.hpp; costly, docs/vibration.md)
 //
+//   [[force_response]]          # any number: continuation in the force scale at one omega
+//   force_cos = [[0.0], [1.0]]  # force_sin, force_per_omega*_cos/_sin as frequency_response
+//   omega = 1.6                 # the fixed frequency: rad/s, or "10 Hz", "62.8 rad/s"
+//   force_scale = { from = 0.0, to = 2.0 }   # lambda, >= 0: F_ex = lambda force
+//   continuation = { ... }      # as above (steps in units of the lambda range)
+//
+//   [[amplitude_control]]       # any number: first harmonic of `dof` held at `amplitude`
+//   force_cos = [[0.0], [1.0]]  # force_sin as frequency_response; F_ex = lambda force
+//   dof = 0                     # the controlled DOF
+//   amplitude = "1 mm"          # its first-harmonic amplitude [m]
+//   omega = { from = 0.5, to = 2.0 }   # continuation in omega
+//   continuation = { ... }
+//
+//   [[phase_resonance]]         # any number: first harmonic of `dof` lags its force by 90 deg
+//   force_cos = [[0.0], [1.0]]  # must drive `dof` (the phase reference)
+//   dof = 0
+//   mode = 1                    # optional: the stuck mode that starts the search
+//   log10_amplitude = { from = -3.0, to = 0.0 }   # of that DOF's amplitude [m]
+//   continuation = { ... }
+//
 //   [quasi_static_mode]         # Masing-based estimate of one mode
 //   mode = 1
 //   amplitude = { from = 1e-3, to = 1e3 }   # modal amplitude a [sqrt(kg) m]
@@ -97,7 +123,9 @@
 #include "asperity/dynamics/case.hpp"
 #include "asperity/vibration/analysis.hpp"
 #include "asperity/vibration/elements.hpp"
+#include "asperity/vibration/force_response.hpp"
 #include "asperity/vibration/harmonic_balance.hpp"
+#include "asperity/vibration/response_control.hpp"
 #include "asperity/vibration/structure.hpp"
 
 namespace asperity::vibration {
@@ -114,6 +142,13 @@ struct FrequencyResponseCase {
   FrequencyResponseOptions options;
 };
 
+/// One [[force_response]] table: the force at scale 1 as given and the options.
+struct ForceResponseCase {
+  Eigen::MatrixXd force_cos;
+  Eigen::MatrixXd force_sin;
+  ForceResponseOptions options;
+};
+
 struct VibrationCase {
   std::string source;  ///< the case file (or "<string>")
   Structure structure;
@@ -124,6 +159,9 @@ struct VibrationCase {
   HarmonicBalanceOptions harmonic_balance;
   std::optional<NonlinearModeOptions> nonlinear_mode;
   std::vector<FrequencyResponseCase> frequency_responses;
+  std::vector<ForceResponseCase> force_responses;
+  std::vector<AmplitudeControlOptions> amplitude_controls;
+  std::vector<PhaseResonanceOptions> phase_resonances;
   std::optional<QuasiStaticModeOptions> quasi_static_mode;
   /// The `joint` section when a rough_flat element comes from a [joint] table.
   std::optional<SummaryObject> joint;
@@ -146,6 +184,14 @@ struct VibrationResult {
   /// Every curve of every [[frequency_response]] table, in order (tables, then scales).
   std::vector<FrequencyResponseCurve> frequency_response;
   std::vector<std::size_t> frequency_response_table;  ///< the table (0-based) of each curve
+  /// Every [[force_response]] curve that ran, in order, and its table (0-based).
+  std::vector<ForceResponseCurve> force_response;
+  std::vector<std::size_t> force_response_table;
+  /// Every [[amplitude_control]] and [[phase_resonance]] that ran, with its table.
+  std::vector<AmplitudeControlResult> amplitude_control;
+  std::vector<std::size_t> amplitude_control_table;
+  std::vector<PhaseResonanceResult> phase_resonance;
+  std::vector<std::size_t> phase_resonance_table;
   std::optional<QuasiStaticModeResult> quasi_static_mode;
   /// Every continuation reached its end (false: a curve stalled, hit max_points or
   /// turned back; its points are kept and `stop_reason` says why).
