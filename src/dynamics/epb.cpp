@@ -48,16 +48,8 @@ EpbContact table_7_2_smooth() {
 std::shared_ptr<const hysteresis::Backbone> epb_backbone(const EpbContact& c) {
   c.validate();
   const double K = contact::hardness_factor(c.nu);
-  const double beta = c.sigma * c.R * c.eta;
-  const double sigma_a = c.sigma * std::sqrt(1.0 - 3.717e-4 / (beta * beta));
-  const surface::RoughFlatParameters rp{
-      .model = c.model,
-      .beta = beta,
-      .psi = 2.0 * c.E_star / (std::numbers::pi * K * c.H) * std::sqrt(sigma_a / c.R),
-      .nu = c.nu,
-      .G_over_E = c.G_star / c.E_star,
-      .friction = c.friction};
-  const surface::RoughFlat flat(rp);
+  const auto flat = surface::RoughFlat::from_combined(c.E_star, c.G_star, c.H, c.nu, c.sigma, c.R,
+                                                      c.eta, c.model, c.friction);
   const double force_scale = K * c.H * c.A0;
   const double d_star = flat.separation_star(c.P / force_scale);
   return std::make_shared<hysteresis::ScaledBackbone>(flat.backbone(d_star), c.sigma, force_scale);

@@ -231,6 +231,48 @@ RoughFlat::RoughFlat(const RoughFlatParameters& params)
   prefactor_ = 2.0 * std::numbers::pi / 3.0 * params.beta * omega_c_star_;
 }
 
+namespace {
+
+// Validates p, naming the dimensional inputs it came from.
+void validate_from_inputs(const RoughFlatParameters& p, double E_star, double H,
+                          const char* sigma_name, double sigma, double R, double eta) {
+  try {
+    p.validate();
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(
+        fmt::format("{} (from E* = {} Pa, H = {} Pa of the softer material, {} = {} m, R = {} m, "
+                    "eta = {} 1/m^2)",
+                    e.what(), core::format_value(E_star), core::format_value(H), sigma_name,
+                    core::format_value(sigma), core::format_value(R), core::format_value(eta)));
+  }
+}
+
+}  // namespace
+
+RoughFlat RoughFlat::from_combined(double E_star, double G_star, double H, double nu, double sigma,
+                                   double R, double eta, contact::ModelName model,
+                                   const contact::FrictionParameters& friction) {
+  core::require_positive("E_star", E_star);
+  core::require_positive("G_star", G_star);
+  core::require_positive("H", H);
+  core::require_positive("sigma (rms roughness)", sigma);
+  core::require_positive("R (mean asperity radius)", R);
+  core::require_positive("eta (areal density of asperities)", eta);
+  RoughFlatParameters p;
+  p.model = model;
+  p.beta = sigma * R * eta;
+  p.nu = nu;
+  p.G_over_E = G_star / E_star;
+  p.friction = friction;
+  if (!(p.beta > 0.01928)) p.validate();  // throws with the message about beta
+  const double s_a = std::sqrt(1.0 - 3.717e-4 / (p.beta * p.beta));
+  // Plasticity index on sigma_a (SEED_NOTES.md): psi = (2E*/(pi K H)) sqrt(sigma_a/R).
+  p.psi = 2.0 * E_star / (std::numbers::pi * contact::hardness_factor(nu) * H) *
+          std::sqrt(s_a * sigma / R);
+  validate_from_inputs(p, E_star, H, "sigma", sigma, R, eta);
+  return RoughFlat(p);
+}
+
 RoughFlat RoughFlat::from_summit_heights(const contact::Material& body1,
                                          const contact::Material& body2, double sigma_summits,
                                          double eta, double R, double A0, contact::ModelName model,
@@ -248,15 +290,7 @@ RoughFlat RoughFlat::from_summit_heights(const contact::Material& body1,
   p.G_over_E = pair.G_star / pair.E_star;
   p.friction = friction;
   p.psi = 2.0 * pair.E_star / (std::numbers::pi * pair.K() * pair.H) * std::sqrt(sigma_summits / R);
-  try {
-    p.validate();
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(fmt::format(
-        "{} (from E* = {} Pa, H = {} Pa of the softer material, sigma_a = {} m, R = {} m, "
-        "eta = {} 1/m^2)",
-        e.what(), core::format_value(pair.E_star), core::format_value(pair.H),
-        core::format_value(sigma_summits), core::format_value(R), core::format_value(eta)));
-  }
+  validate_from_inputs(p, pair.E_star, pair.H, "sigma_a", sigma_summits, R, eta);
   RoughFlat flat(p);
   flat.scales_ = RoughFlatScales{.sigma = sigma_summits,
                                  .force = pair.K() * pair.H * A0,
@@ -324,15 +358,7 @@ RoughFlat RoughFlat::from_dimensional(const contact::Material& body1,
   const double s_a = std::sqrt(1.0 - 3.717e-4 / (p.beta * p.beta));
   // Plasticity index on sigma_a (SEED_NOTES.md): psi = (2E*/(pi K H)) sqrt(sigma_a/R).
   p.psi = 2.0 * pair.E_star / (std::numbers::pi * pair.K() * pair.H) * std::sqrt(s_a * sigma / R);
-  try {
-    p.validate();
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(fmt::format(
-        "{} (from E* = {} Pa, H = {} Pa of the softer material, sigma = {} m, R = {} m, "
-        "eta = {} 1/m^2)",
-        e.what(), core::format_value(pair.E_star), core::format_value(pair.H),
-        core::format_value(sigma), core::format_value(R), core::format_value(eta)));
-  }
+  validate_from_inputs(p, pair.E_star, pair.H, "sigma", sigma, R, eta);
   RoughFlat flat(p);
   flat.scales_ = RoughFlatScales{
       .sigma = sigma, .force = pair.K() * pair.H * A0, .A0 = A0, .eta = eta, .R = R, .pair = pair};

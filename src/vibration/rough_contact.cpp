@@ -33,18 +33,8 @@ constexpr std::size_t kMaxPeriods = 64;
 
 surface::RoughFlat make_flat(const RoughInterfaceParameters& c) {
   c.validate();
-  const double K = contact::hardness_factor(c.nu);
-  const double beta = c.sigma * c.R * c.eta;
-  const double sigma_a = c.sigma * std::sqrt(1.0 - 3.717e-4 / (beta * beta));
-  // psi on the asperity-height spread (SEED_NOTES.md), as dynamics::epb_backbone.
-  const surface::RoughFlatParameters rp{
-      .model = c.model,
-      .beta = beta,
-      .psi = 2.0 * c.E_star / (std::numbers::pi * K * c.H) * std::sqrt(sigma_a / c.R),
-      .nu = c.nu,
-      .G_over_E = c.G_star / c.E_star,
-      .friction = c.friction};
-  return surface::RoughFlat(rp);
+  return surface::RoughFlat::from_combined(c.E_star, c.G_star, c.H, c.nu, c.sigma, c.R, c.eta,
+                                           c.model, c.friction);
 }
 
 void require_finite_samples(const Eigen::MatrixXd& u) {

@@ -17,6 +17,7 @@
 #include "asperity/vibration/analysis.hpp"
 #include "asperity/vibration/contact_elements.hpp"
 #include "asperity/vibration/harmonic_balance.hpp"
+#include "element_test_support.hpp"
 
 namespace asperity::vibration {
 namespace {
@@ -279,19 +280,7 @@ Eigen::MatrixXd random_path(Eigen::Index N, Eigen::Index dirs, double amplitude,
 }
 
 // d f_d(t_i) / d u_e(t_j) as a dense (N dirs) x (N dirs) matrix, index i + N d.
-Eigen::MatrixXd dense_tangent(const PeriodicResponse& r, Eigen::Index N, Eigen::Index dirs) {
-  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(N * dirs, N * dirs);
-  for (Eigen::Index i = 0; i < N; ++i) {
-    for (Eigen::Index d = 0; d < dirs; ++d) {
-      for (Eigen::Index e = 0; e < dirs; ++e) D(i + N * d, i + N * e) += r.du(i, d + dirs * e);
-    }
-  }
-  for (const HistoryTerm& t : r.history) {
-    D(static_cast<Eigen::Index>(t.i) + N * t.d, static_cast<Eigen::Index>(t.j) + N * t.d_src) +=
-        t.value;
-  }
-  return D;
-}
+using test_support::dense_tangent;
 
 // With no motion along t2 the trial force stays on t1, |trial| = |trial_1| and e = +-1
 // exactly, so the 3-D element performs the 2-D element's operations: forces and the

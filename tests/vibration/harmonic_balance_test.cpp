@@ -18,6 +18,7 @@
 #include "asperity/surface/rough_flat.hpp"
 #include "asperity/vibration/analysis.hpp"
 #include "asperity/vibration/harmonic_balance.hpp"
+#include "element_test_support.hpp"
 
 namespace asperity::vibration {
 namespace {
@@ -65,20 +66,7 @@ Eigen::MatrixXd periodic_samples(std::size_t N, Eigen::Index dirs, double amplit
   return u;
 }
 
-// The dense derivative d f_d(t_i) / d u_e(t_j) from an element's local tangent and history.
-Eigen::MatrixXd dense_tangent(const PeriodicResponse& r, Eigen::Index N, Eigen::Index dirs) {
-  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(N * dirs, N * dirs);
-  for (Eigen::Index i = 0; i < N; ++i) {
-    for (Eigen::Index d = 0; d < dirs; ++d) {
-      for (Eigen::Index e = 0; e < dirs; ++e) D(i + N * d, i + N * e) += r.du(i, d + dirs * e);
-    }
-  }
-  for (const HistoryTerm& t : r.history) {
-    D(static_cast<Eigen::Index>(t.i) + N * t.d, static_cast<Eigen::Index>(t.j) + N * t.d_src) +=
-        t.value;
-  }
-  return D;
-}
+using test_support::dense_tangent;
 
 // Time domain: the element's tangent (local + history) against central differences in each
 // sample, for every displacement-driven element. Samples are moved by h = 1e-7 of the

@@ -13,6 +13,7 @@
 #include "asperity/surface/rough_flat.hpp"
 #include "asperity/vibration/elements.hpp"
 #include "asperity/vibration/rough_contact.hpp"
+#include "element_test_support.hpp"
 
 namespace asperity::vibration {
 namespace {
@@ -62,19 +63,7 @@ Eigen::VectorXd signal(std::size_t N, double amplitude, std::mt19937_64& rng) {
   return u;
 }
 
-Eigen::MatrixXd dense_tangent(const PeriodicResponse& r, Eigen::Index N, Eigen::Index dirs) {
-  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(N * dirs, N * dirs);
-  for (Eigen::Index i = 0; i < N; ++i) {
-    for (Eigen::Index d = 0; d < dirs; ++d) {
-      for (Eigen::Index e = 0; e < dirs; ++e) D(i + N * d, i + N * e) += r.du(i, d + dirs * e);
-    }
-  }
-  for (const HistoryTerm& t : r.history) {
-    D(static_cast<Eigen::Index>(t.i) + N * t.d, static_cast<Eigen::Index>(t.j) + N * t.d_src) +=
-        t.value;
-  }
-  return D;
-}
+using test_support::dense_tangent;
 
 // At d* = d_set* the unloading sum is the loading sum (Eq. 4.4): both are quadratures to
 // 1e-13, so they agree to ~1e-12.
