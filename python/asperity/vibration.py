@@ -47,6 +47,7 @@ _v = _core._vibration
 __all__ = [
     "Structure", "Element", "Jenkins", "Iwan4", "MasingTable", "Coulomb", "ElasticDryFriction2d",
     "PolynomialStiffness", "CubicDamping", "UnilateralSpring", "ElasticDryFriction3d", "RoughFlat",
+    "OdfalkVingsbo",
     "HarmonicBalance", "Result", "nonlinear_mode",
     "frequency_response", "force_response", "amplitude_control", "phase_resonance",
     "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
@@ -386,9 +387,30 @@ class RoughFlat(Element):
             raise _core.InvalidInput(
                 f"load = {load}: the case has load cases 0 .. {len(loads) - 1}")
         L = loads[load]
+        if L["odfalk_vingsbo"] is not None:
+            ov = L["odfalk_vingsbo"]
+            return OdfalkVingsbo(L["backbone"], ov["fretting_yield_point"],
+                                 ov["hardening_coefficient"], T, name)
         params = {"case": os.fspath(path), "preload": L["preload"], "Q_max": L["Q_max"],
                   "stiffness": L["stiffness"]}
         return cls(L["backbone"], T, name, params)
+
+
+class OdfalkVingsbo(Element):
+    """The Odfalk-Vingsbo elastic-plastic tangential law (thesis Eq. 3.10) as an element:
+    Masing's loop on ``backbone`` (the elastic part, ``Q [N]`` against ``x [m]``) with the
+    parallelogram of plastic slip in series. ``fretting_yield_point`` Q_ty [N] and
+    ``hardening_coefficient`` k_p [N/m] are measured on the joint (docs/joints.md: asperity
+    never supplies them). Its steady response is where a period's plastic flows balance;
+    below Q_ty it is the :class:`RoughFlat` element's. :meth:`RoughFlat.from_joint_case`
+    returns one for a case with ``tangential = "odfalk_vingsbo"``.
+    """
+
+    def __init__(self, backbone, fretting_yield_point: float, hardening_coefficient: float,
+                 T=1.0, name: str | None = None):
+        super().__init__(_v.odfalk_vingsbo(backbone, fretting_yield_point,
+                                           hardening_coefficient), T, name)
+        self.backbone = backbone
 
 
 class HarmonicBalance:

@@ -89,6 +89,16 @@ nb::dict prediction_dict(const JointCase& c, const JointPrediction& p, std::size
     ld["stiffness"] = l.stiffness;
     ld["contact_area_ratio"] = l.contact_area_ratio;
     ld["backbone"] = nb::cast(std::shared_ptr<const hysteresis::Backbone>(l.backbone));
+    // tangential = "odfalk_vingsbo": its measured parameters (`backbone` is then the elastic
+    // part, in series with Eq. 3.10's plastic slip); None for Cattaneo-Mindlin.
+    if (l.odfalk_vingsbo) {
+      nb::dict ov;
+      ov["fretting_yield_point"] = l.odfalk_vingsbo->fretting_yield_point;
+      ov["hardening_coefficient"] = l.odfalk_vingsbo->hardening_coefficient;
+      ld["odfalk_vingsbo"] = ov;
+    } else {
+      ld["odfalk_vingsbo"] = nb::none();
+    }
     ld["gross_slip_amplitude"] = l.gross_slip_amplitude;
     std::vector<double> a, q, e, imp, n, slip;
     nb::list regimes, loops;
@@ -102,7 +112,8 @@ nb::dict prediction_dict(const JointCase& c, const JointPrediction& p, std::size
       q.push_back(am.Q_peak);
       e.push_back(am.energy);
       regimes.append(am.regime);
-      const auto [x, Q] = steady_loop(*l.backbone, am.delta_max, loop_points);
+      // The load case's own law: Masing, or Odfalk-Vingsbo's steady loop (Eq. 3.10).
+      const auto [x, Q] = steady_loop(l, am.delta_max, loop_points);
       nb::dict lp;
       lp["delta"] = array_of(x);
       lp["Q"] = array_of(Q);

@@ -608,6 +608,17 @@ void bind_vibration(nb::module_& parent) {
       },
       "backbone"_a, "type"_a = "rough_flat", "parameters"_a = nb::dict(),
       "Any SI backbone (Q [N] against x [m]) under Masing's rules as an element.");
+  m.def(
+      "odfalk_vingsbo",
+      [](std::shared_ptr<const hysteresis::Backbone> backbone, double fretting_yield_point,
+         double hardening_coefficient, const std::string& type) {
+        if (!backbone) throw InvalidInput("backbone is None");
+        return make_odfalk_vingsbo_element(
+            std::move(backbone), {fretting_yield_point, hardening_coefficient}, {{"type", type}});
+      },
+      "backbone"_a, "fretting_yield_point"_a, "hardening_coefficient"_a, "type"_a = "rough_flat",
+      "Eq. 3.10: Masing's loop on the elastic backbone (Q [N] against x [m]) with the\n"
+      "parallelogram of plastic slip in series; Q_ty [N] and k_p [N/m] measured.");
 
   // ---- harmonic balance ---------------------------------------------------------------
   nb::class_<PyHarmonicBalance>(

@@ -73,10 +73,53 @@ std::shared_ptr<const Element> rough_flat_element(const toml::table& t, const st
           w, at_line(t)));
     }
   }
-  const std::set<std::string> common{"type", "name", "T", "backbone"};
+  const std::set<std::string> common{"type",
+                                     "name",
+                                     "T",
+                                     "backbone",
+                                     "tangential",
+                                     "fretting_yield_point",
+                                     "hardening_coefficient"};
   auto with = [&](std::set<std::string> keys) {
     keys.insert(common.begin(), common.end());
     return keys;
+  };
+  // tangential = "odfalk_vingsbo" (Eq. 3.10) with its measured Q_ty and k_p, as in a joint
+  // case's [interface] (docs/joints.md); the joint's own law with backbone = "joint".
+  const std::set<std::string> law_keys{"tangential", "fretting_yield_point",
+                                       "hardening_coefficient"};
+  auto element_of = [&](std::shared_ptr<const hysteresis::Backbone> b, SummaryObject d) {
+    const std::string law = text(t, "tangential", w, "mindlin");
+    if (law == "mindlin") {
+      for (const char* k : {"fretting_yield_point", "hardening_coefficient"}) {
+        if (t.get(k)) {
+          throw InvalidInput(fmt::format(
+              "{}.{} is used only with tangential = \"odfalk_vingsbo\"{}", w, k, at_line(t)));
+        }
+      }
+      return make_rough_flat_element(std::move(b), std::move(d));
+    }
+    if (law != "odfalk_vingsbo") {
+      throw InvalidInput(
+          fmt::format("{}.tangential = \"{}\": use \"mindlin\" (Cattaneo-Mindlin, the default) or "
+                      "\"odfalk_vingsbo\" (Eq. 3.10, with measured fretting_yield_point and "
+                      "hardening_coefficient){}",
+                      w, law, at_line(t)));
+    }
+    for (const char* k : {"fretting_yield_point", "hardening_coefficient"}) {
+      if (!t.get(k)) {
+        throw InvalidInput(fmt::format(
+            "{}: tangential = \"odfalk_vingsbo\" needs {} (the Odfalk-Vingsbo law's fretting "
+            "yield point Q_ty and hardening coefficient k_p are measured on the joint: the thesis "
+            "says they could not be generalized, and asperity never supplies them){}",
+            w, k, at_line(t)));
+      }
+    }
+    const std::string what = "tangential = \"odfalk_vingsbo\"";
+    const hysteresis::OdfalkVingsboParameters p{
+        need_si(t, "fretting_yield_point", w, dim::force, what),
+        need_si(t, "hardening_coefficient", w, dim::stiffness, what)};
+    return make_odfalk_vingsbo_element(std::move(b), p, std::move(d));
   };
   auto friction_of = [&](contact::FrictionParameters fp) {
     if (t.get("mu_cfc")) fp.mu_cfc = number(t, "mu_cfc", w, fp.mu_cfc);
@@ -84,6 +127,14 @@ std::shared_ptr<const Element> rough_flat_element(const toml::table& t, const st
   };
   if (bb == "joint") {
     check_keys(t, w, with({}));
+    for (const auto& k : law_keys) {
+      if (t.get(k)) {
+        throw InvalidInput(fmt::format(
+            "{}.{}: with backbone = \"joint\" the tangential law is the joint's: set it in "
+            "[interface] (tangential, fretting_yield_point, hardening_coefficient){}",
+            w, k, at_line(t)));
+      }
+    }
     if (!joint) {
       throw InvalidInput(fmt::format(
           "{}: backbone = \"joint\" needs a [joint] table (and [load]) as for `asperity predict`{}",
@@ -92,6 +143,9 @@ std::shared_ptr<const Element> rough_flat_element(const toml::table& t, const st
     SummaryObject d{{"type", "rough_flat"}, {"backbone", "joint"}};
     add_backbone_summary(d, *joint->backbone,
                          std::get<double>(SummaryValue(joint->summary).find("preload_N")->data));
+    if (joint->odfalk_vingsbo) {
+      return make_odfalk_vingsbo_element(joint->backbone, *joint->odfalk_vingsbo, std::move(d));
+    }
     return make_rough_flat_element(joint->backbone, std::move(d));
   }
   if (bb == "dimensional") {
@@ -127,7 +181,7 @@ std::shared_ptr<const Element> rough_flat_element(const toml::table& t, const st
                     {"eta_per_m2", c.eta},
                     {"A0_m2", c.A0}};
     add_backbone_summary(d, *b, c.P);
-    return make_rough_flat_element(b, std::move(d));
+    return element_of(b, std::move(d));
   }
   if (bb == "normalized") {
     check_keys(t, w,
@@ -171,7 +225,7 @@ std::shared_ptr<const Element> rough_flat_element(const toml::table& t, const st
                     {"sigma_m", sigma},
                     {"force_scale_N", force_scale}};
     add_backbone_summary(d, *b, P_star * force_scale);
-    return make_rough_flat_element(b, std::move(d));
+    return element_of(b, std::move(d));
   }
   throw InvalidInput(
       fmt::format("{}.backbone = \"{}\": use \"dimensional\", \"normalized\" or \"joint\"{}", w, bb,
@@ -278,13 +332,6 @@ JointBackbone joint_backbone(const std::string& path, const std::string& base_di
                                                  : 0;
   const joint::LoadPrediction lp = joint::predict_single_load(
       jc, fmt::format("{}:{}: load: ", path, load_line), "a rough_flat element takes");
-  if (lp.odfalk_vingsbo) {
-    throw InvalidInput(fmt::format(
-        "{}: interface.tangential = \"odfalk_vingsbo\" is not yet available in a vibration "
-        "element (its harmonic-balance tangent is Masing's); predict and flat take it; use "
-        "tangential = \"mindlin\" here",
-        jc.interface.origin));
-  }
   const double P = jc.preloads.front();
   JointBackbone j;
   j.backbone = lp.backbone;
@@ -296,6 +343,7 @@ JointBackbone joint_backbone(const std::string& path, const std::string& base_di
                             {"Q_max_N", lp.Q_max},
                             {"mu", lp.mu},
                             {"stiffness_N_per_m", lp.stiffness}};
+  j.odfalk_vingsbo = lp.odfalk_vingsbo;
   return j;
 }
 

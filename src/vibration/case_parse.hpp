@@ -44,6 +44,9 @@ Eigen::MatrixXd matrix(const toml::node& n, const std::string& field, bool allow
 struct JointBackbone {
   std::shared_ptr<const hysteresis::Backbone> backbone;
   SummaryObject summary;
+  /// [interface] tangential = "odfalk_vingsbo": Eq. 3.10's plastic slip in series with
+  /// `backbone`'s Masing loop.
+  std::optional<hysteresis::OdfalkVingsboParameters> odfalk_vingsbo;
 };
 
 /// The joint part of the case file (`file_text`, parsed as `root`) read as

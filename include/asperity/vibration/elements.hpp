@@ -23,6 +23,7 @@
 #include "asperity/dynamics/case.hpp"
 #include "asperity/dynamics/friction_model.hpp"
 #include "asperity/hysteresis/backbone.hpp"
+#include "asperity/hysteresis/odfalk_vingsbo.hpp"
 
 namespace asperity::vibration {
 
@@ -54,7 +55,7 @@ class Element {
   Element& operator=(const Element&) = default;
 
   /// "rough_flat", "jenkins", "iwan4", "masing_table", "coulomb", "elastic_dry_friction_2d",
-  /// "polynomial_stiffness", "cubic_damping".
+  /// "polynomial_stiffness", "cubic_damping", ... (make_odfalk_vingsbo_element's below).
   [[nodiscard]] virtual std::string type() const = 0;
   /// Number of directions (rows of T).
   [[nodiscard]] virtual std::size_t directions() const { return 1; }
@@ -256,5 +257,15 @@ struct PlacedElement {
 /// The rough flat (or any SI backbone) as an element; `parameters` describe it.
 [[nodiscard]] std::shared_ptr<const Element> make_rough_flat_element(
     std::shared_ptr<const hysteresis::Backbone> backbone_si, dynamics::SummaryObject parameters);
+/// "odfalk_vingsbo": the elastic-plastic tangential law of Eq. 3.10 (hysteresis::
+/// OdfalkVingsboHysteresis): Masing's loop on `elastic_si` with the parallelogram of plastic
+/// slip in series, Q_ty and k_p measured (docs/joints.md). Its steady response is where the
+/// plastic flows of a period balance (found by shooting on the force at the largest elastic
+/// displacement), with the exact derivative with respect to every sample; below Q_ty it is
+/// the Masing element's response (to round-off). type() is `parameters`' "type" if given
+/// (a case file's "rough_flat"), else "odfalk_vingsbo".
+[[nodiscard]] std::shared_ptr<const Element> make_odfalk_vingsbo_element(
+    std::shared_ptr<const hysteresis::Backbone> elastic_si,
+    const hysteresis::OdfalkVingsboParameters& p, dynamics::SummaryObject parameters);
 
 }  // namespace asperity::vibration
