@@ -712,6 +712,32 @@ def backbone_rom(exe):
     return 0
 
 
+def plots_of_controlled_analyses(exe):
+    """The shipped force-sweep and phase-resonance examples write one PNG per analysis
+    (gnuplot), listed in the text summary; --no-plots writes none."""
+    want = {"duffing_force_sweep": ["force_response.png"],
+            "duffing_phase_resonance": ["amplitude_control.png", "phase_resonance.png"]}
+    for name, pngs in want.items():
+        case = open(os.path.join(EXAMPLES, name + ".toml")).read()
+        for extra in [(), ("--no-plots",)]:
+            with tempfile.TemporaryDirectory() as tmp:
+                r, out = run(exe, case, tmp, extra=extra)
+                if r.returncode != 0:
+                    return fail(f"{name}: exit {r.returncode}: {r.stderr}")
+                for png in pngs:
+                    path = os.path.join(out, png)
+                    if extra:
+                        if os.path.exists(path):
+                            return fail(f"{name}: {png} written with --no-plots")
+                        continue
+                    with open(path, "rb") as f:
+                        if f.read(8) != b"\x89PNG\r\n\x1a\n":
+                            return fail(f"{name}: {png} is not a PNG")
+                    if png not in r.stdout:
+                        return fail(f"{name}: {png} not listed: {r.stdout}")
+    return 0
+
+
 BAD = {
     "singular_mass": (JENKINS.replace("mass = [[1.0]]", "mass = [[0.0]]") + EPMC, "mass"),
     "singular_mass_2dof": (
@@ -840,6 +866,7 @@ def main():
         "rough_contact_equals_rough_flat": rough_contact_equals_rough_flat,
         "stability": stability,
         "backbone_rom": backbone_rom,
+        "plots_of_controlled_analyses": plots_of_controlled_analyses,
     }[case](exe)
 
 
