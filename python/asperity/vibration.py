@@ -839,6 +839,13 @@ def _case_result(d: dict, source: str) -> Result:
         out["force_response"].append(r)
     out["amplitude_control"] = [Result(c) for c in d["amplitude_control"]]
     out["phase_resonance"] = [Result(c) for c in d["phase_resonance"]]
+    out["backbone_rom"] = [
+        Result(table=c["table"], force_scale=c["force_scale"],
+               omega=np.asarray(c["omega_rad_s"], dtype=float),
+               amplitude=np.asarray(c["modal_amplitude"], dtype=float),
+               output_amplitude=np.asarray(c["output_amplitude"], dtype=float),
+               low_side_points=c["low_side_points"], peak_amplitude=c["peak_modal_amplitude"])
+        for c in d["summary"].get("backbone_rom", [])]
     out["quasi_static_mode"] = (Result(d["quasi_static_mode"])
                                 if d["quasi_static_mode"] is not None else None)
     out["system"] = HarmonicBalance._from_system(d["system"])
@@ -853,6 +860,8 @@ def run_case(path: str | os.PathLike, *, stability: bool = False) -> Result:
     ``frequency_response`` (one :class:`Result` per curve, ``table`` its
     ``[[frequency_response]]`` index), ``force_response``, ``amplitude_control`` and
     ``phase_resonance`` (one per table of that name that ran, ``table`` its index),
+    ``backbone_rom`` (one per ``[[backbone_rom]]`` table and force scale, with ``table``,
+    ``force_scale`` and the arrays of :meth:`HarmonicBalance.mode_rom`),
     ``complete`` (every continuation reached its end),
     ``stop_reason``, ``remedy`` (what helps when it did not), ``failures`` (the curves that
     could not start, with their reasons), ``warnings`` (also issued as RuntimeWarning) and

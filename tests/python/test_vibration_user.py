@@ -5,6 +5,7 @@ Reference: the built-in polynomial_stiffness and cubic_damping elements
 (src/vibration/elements.cpp), which evaluate the same laws in C++. A Python law equal to
 them must give the same residual, Jacobian and curves up to the round-off of evaluating
 the law in another language (a few ulp per sample, summed over the samples by the DFT).
+Also the [[backbone_rom]] curves of a case through the Python API (issue 23).
 """
 from __future__ import annotations
 
@@ -131,3 +132,24 @@ def test_two_direction_law_and_bad_laws():
     core = vib.UserElement(cubic_force, T=T).core
     with pytest.raises(ValueError, match="released"):
         core.static_response(np.array([0.1]))
+
+
+def test_backbone_rom_of_a_case_is_the_mode_rom_of_its_backbone():
+    # [[backbone_rom]] (examples/vibration/jenkins_backbone_rom.toml without its full
+    # forced responses) against HarmonicBalance.mode_rom on the run's own backbone: the
+    # same C++ function on the same numbers, so the same arrays exactly.
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[2] / "examples" / "vibration" /
+            "jenkins_backbone_rom.toml").read_text()
+    text = text[:text.index("[[frequency_response]]")] + text[text.index("[[backbone_rom]]"):]
+    r = vib.run_case_text(text)
+    assert [c.force_scale for c in r.backbone_rom] == [0.5, 1.0]
+    hb = r.system
+    mode = dict(r.nonlinear_mode)
+    for c in r.backbone_rom:
+        F = hb.force(cos={1: [0.1 * c.force_scale]})
+        m = hb.mode_rom(mode, F, output_dofs=[0], subdivisions=64)
+        np.testing.assert_array_equal(c.omega, m.omega)
+        np.testing.assert_array_equal(c.output_amplitude, m.output_amplitude)
+        assert c.low_side_points == m.low_side_points and c.peak_amplitude == m.peak_amplitude
