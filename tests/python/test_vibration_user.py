@@ -142,8 +142,10 @@ def test_backbone_rom_of_a_case_is_the_mode_rom_of_its_backbone():
 
     text = (Path(__file__).resolve().parents[2] / "examples" / "vibration" /
             "jenkins_backbone_rom.toml").read_text()
-    text = text[:text.index("[[frequency_response]]")] + text[text.index("[[backbone_rom]]"):]
+    text = (text[:text.index("\n[[frequency_response]]")]
+            + text[text.index("\n[[backbone_rom]]"):])
     r = vib.run_case_text(text)
+    assert r.frequency_response == [] and len(r.backbone_rom) == 2
     assert [c.force_scale for c in r.backbone_rom] == [0.5, 1.0]
     hb = r.system
     mode = dict(r.nonlinear_mode)
