@@ -47,7 +47,7 @@ _v = _core._vibration
 __all__ = [
     "Structure", "Element", "Jenkins", "Iwan4", "MasingTable", "Coulomb", "ElasticDryFriction2d",
     "PolynomialStiffness", "CubicDamping", "UnilateralSpring", "ElasticDryFriction3d", "RoughFlat",
-    "OdfalkVingsbo",
+    "OdfalkVingsbo", "UserElement",
     "HarmonicBalance", "Result", "nonlinear_mode",
     "frequency_response", "force_response", "amplitude_control", "phase_resonance",
     "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
@@ -336,6 +336,96 @@ class UnilateralSpring(Element):
     def __init__(self, k: float, gap: float = 0.0, N0: float = 0.0, T=1.0,
                  name: str | None = None):
         super().__init__(_v.unilateral_spring(k, gap, N0), T, name)
+
+
+class UserElement(Element):
+    """An element whose force law is a Python function, usable in every harmonic-balance
+    analysis (AFT samples it in time). The law is memoryless: ``force(u, v)`` maps the
+    displacements and velocities ``u, v`` (arrays ``N x D``: ``N`` time samples, ``D`` the
+    rows of ``T``) to the forces ``f`` (``N x D``; ``(N,)`` is accepted for ``D = 1``).
+
+    ``jacobian(u, v)`` returns ``(df_du, df_dv)``, each ``N x D x D`` with
+    ``[i, d, e] = d f_d / d x_e`` at sample ``i`` (``(N,)`` for ``D = 1``); unless
+    ``velocity_dependent`` it may return ``df_du`` alone. Without it the Jacobian is taken by central
+    differences, one call per direction and sign, with the step ``fd_step`` times the
+    larger of the samples' magnitude in that direction and ``displacement_scale`` [m]
+    (``velocity_scale`` [m/s] for velocities): accurate to about ``fd_step^2`` of the
+    law's curvature, enough for Newton, slower than an exact Jacobian. The element's
+    stiffness at rest (the linear modes) is its Jacobian at ``u = v = 0``."""
+
+    def __init__(self, force, jacobian=None, T=1.0, velocity_dependent: bool = False,
+                 name: str | None = None, *, fd_step: float = 1e-6,
+                 displacement_scale: float = 1e-6, velocity_scale: float = 1e-3):
+        if not callable(force):
+            raise _core.InvalidInput("UserElement: force must be callable as force(u, v)")
+        if jacobian is not None and not callable(jacobian):
+            raise _core.InvalidInput("UserElement: jacobian must be None or callable(u, v)")
+        for key, x in [("fd_step", fd_step), ("displacement_scale", displacement_scale),
+                       ("velocity_scale", velocity_scale)]:
+            if not (np.isfinite(x) and x > 0):
+                raise _core.InvalidInput(f"UserElement.{key} = {x}: must be finite and > 0")
+        T = _matrix(T, "T")
+        D = T.shape[0]
+        velocity_dependent = bool(velocity_dependent)
+
+        def forces(u, v):
+            f = np.asarray(force(u, v), dtype=float)
+            if D == 1 and f.shape == (u.shape[0],):
+                f = f.reshape(-1, 1)
+            if f.shape != u.shape:
+                raise _core.InvalidInput(
+                    f"UserElement {name!r}: force(u, v) returned shape {f.shape}, expected "
+                    f"{u.shape} (samples x directions)")
+            return f
+
+        def tensor(a, n, what):
+            a = np.asarray(a, dtype=float)
+            if D == 1 and a.shape == (n,):
+                a = a.reshape(n, 1, 1)
+            if a.shape != (n, D, D):
+                raise _core.InvalidInput(
+                    f"UserElement {name!r}: {what} has shape {a.shape}, expected {(n, D, D)}")
+            return a
+
+        def differences(x, scale, other, first):
+            n = x.shape[0]
+            out = np.empty((n, D, D))
+            for e in range(D):
+                h = fd_step * max(float(np.max(np.abs(x[:, e]))), scale)
+                xp, xm = x.copy(), x.copy()
+                xp[:, e] += h
+                xm[:, e] -= h
+                fp = forces(xp, other) if first else forces(other, xp)
+                fm = forces(xm, other) if first else forces(other, xm)
+                out[:, :, e] = (fp - fm) / (2.0 * h)
+            return out
+
+        def law(u, v, tangent):
+            f = forces(u, v)
+            empty = np.zeros((0, 0))
+            if not tangent:
+                return f, empty, empty
+            n = u.shape[0]
+            if jacobian is not None:
+                j = jacobian(u, v)
+                if velocity_dependent:
+                    du, dv = j
+                else:  # df_du alone, or (df_du, anything)
+                    du, dv = (j[0] if isinstance(j, tuple) else j), None
+                du = tensor(du, n, "df_du")
+                dv = tensor(dv, n, "df_dv") if velocity_dependent else None
+            else:
+                du = differences(u, displacement_scale, v, True)
+                dv = differences(v, velocity_scale, u, False) if velocity_dependent else None
+
+            def flat(a):  # column d + D e holds d f_d / d x_e
+                return np.ascontiguousarray(a.transpose(0, 2, 1).reshape(n, D * D))
+
+            return f, flat(du), (flat(dv) if dv is not None else empty)
+
+        label = name or getattr(force, "__name__", "user")
+        super().__init__(_v.user_element(law, D, velocity_dependent, str(label)), T, name)
+        self._law = law  # the C++ element holds it weakly (no cycle hidden from the GC)
 
 
 class RoughFlat(Element):
@@ -770,6 +860,13 @@ def _case_result(d: dict, source: str) -> Result:
         out["force_response"].append(r)
     out["amplitude_control"] = [Result(c) for c in d["amplitude_control"]]
     out["phase_resonance"] = [Result(c) for c in d["phase_resonance"]]
+    out["backbone_rom"] = [
+        Result(table=c["table"], force_scale=c["force_scale"],
+               omega=np.asarray(c["omega_rad_s"], dtype=float),
+               amplitude=np.asarray(c["modal_amplitude"], dtype=float),
+               output_amplitude=np.asarray(c["output_amplitude"], dtype=float),
+               low_side_points=c["low_side_points"], peak_amplitude=c["peak_modal_amplitude"])
+        for c in d["summary"].get("backbone_rom", [])]
     out["quasi_static_mode"] = (Result(d["quasi_static_mode"])
                                 if d["quasi_static_mode"] is not None else None)
     out["system"] = HarmonicBalance._from_system(d["system"])
@@ -784,6 +881,8 @@ def run_case(path: str | os.PathLike, *, stability: bool = False) -> Result:
     ``frequency_response`` (one :class:`Result` per curve, ``table`` its
     ``[[frequency_response]]`` index), ``force_response``, ``amplitude_control`` and
     ``phase_resonance`` (one per table of that name that ran, ``table`` its index),
+    ``backbone_rom`` (one per ``[[backbone_rom]]`` table and force scale, with ``table``,
+    ``force_scale`` and the arrays of :meth:`HarmonicBalance.mode_rom`),
     ``complete`` (every continuation reached its end),
     ``stop_reason``, ``remedy`` (what helps when it did not), ``failures`` (the curves that
     could not start, with their reasons), ``warnings`` (also issued as RuntimeWarning) and

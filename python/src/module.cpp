@@ -33,6 +33,10 @@ NB_MODULE(_core, m) {
   asperity::python::bind_joint(m);
   asperity::python::bind_dynamics(m);
   asperity::python::bind_vibration(m);
+  {
+    auto vibration = nanobind::borrow<nanobind::module_>(m.attr("_vibration"));
+    asperity::python::bind_vibration_user(vibration);
+  }
   asperity::python::bind_fem_structure(m);
   asperity::python::bind_fem(m);
   asperity::python::bind_signatures(m);

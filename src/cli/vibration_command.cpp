@@ -168,6 +168,20 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
     }
     write(fmt::format("phase_resonance_{}.csv", r.phase_resonance_table[k] + 1), csv(h, cols));
   }
+  for (std::size_t k = 0; k < r.backbone_rom.size(); ++k) {
+    const auto& m = r.backbone_rom[k];
+    std::vector<std::string> h{"omega_rad_s", "frequency_hz", "modal_amplitude", "side"};
+    std::vector<double> side;  // 0: below the backbone, 1: above it
+    for (Eigen::Index i = 0; i < m.omega.size(); ++i)
+      side.push_back(static_cast<std::size_t>(i) < m.low_side_points ? 0.0 : 1.0);
+    std::vector<std::vector<double>> cols{vec(m.omega), vec(m.omega / (2.0 * std::numbers::pi)),
+                                          vec(m.amplitude), std::move(side)};
+    for (std::size_t o = 0; o < c.output_dofs.size(); ++o) {
+      h.push_back(fmt::format("amplitude_dof{}_m", c.output_dofs[o]));
+      cols.push_back(vec(m.output_amplitude.col(static_cast<Eigen::Index>(o))));
+    }
+    write(fmt::format("backbone_rom_{}.csv", k + 1), csv(h, cols));
+  }
   if (r.quasi_static_mode) {
     const auto& q = *r.quasi_static_mode;
     write("quasi_static_mode.csv",
@@ -281,6 +295,116 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
       written.push_back(name);
     }
   }
+  const double two_pi = 2.0 * std::numbers::pi;
+  const auto output_name = [&](const char* stem, std::size_t o) {
+    return c.output_dofs.size() == 1 ? fmt::format("{}.png", stem)
+                                     : fmt::format("{}_dof{}.png", stem, c.output_dofs[o]);
+  };
+  // The backbone ROM's curves over the full harmonic-balance ones (when the case has them).
+  if (!r.backbone_rom.empty()) {
+    for (std::size_t o = 0; o < c.output_dofs.size(); ++o) {
+      const auto oi = static_cast<Eigen::Index>(o);
+      PlotSpec p{.title = fmt::format("Backbone ROM (dashed) and harmonic balance of DOF {}",
+                                      c.output_dofs[o]),
+                 .xlabel = "excitation frequency [Hz]",
+                 .ylabel = "first-harmonic amplitude [m]",
+                 .logy = true};
+      for (std::size_t k = 0; k < r.frequency_response.size(); ++k) {
+        const auto& cv = r.frequency_response[k];
+        p.series.push_back(positive_series(
+            fmt::format("HB {}, x{:.4g}", r.frequency_response_table[k] + 1, cv.force_scale),
+            cv.omega / two_pi, cv.output_amplitude.col(oi), true, "lines"));
+      }
+      for (std::size_t k = 0; k < r.backbone_rom.size(); ++k) {
+        const auto& m = r.backbone_rom[k];
+        p.series.push_back(
+            positive_series(fmt::format("ROM {}, x{:.4g}", r.backbone_rom_table[k] + 1,
+                                        r.backbone_rom_force_scale[k]),
+                            m.omega / two_pi, m.output_amplitude.col(oi), true, "lines dt 2"));
+      }
+      if (r.nonlinear_mode) {
+        const auto& m = *r.nonlinear_mode;
+        // The backbone within the plotted amplitudes: beyond them it would set the scale.
+        double top = 0.0;
+        for (const auto& cv : r.backbone_rom)
+          if (cv.output_amplitude.rows() > 0)
+            top = std::max(top, cv.output_amplitude.col(oi).maxCoeff());
+        Series b{.title = "backbone", .style = "lines lc rgb 'gray'"};
+        for (Eigen::Index i = 0; i < m.omega.size(); ++i) {
+          const double y = m.output_amplitude(i, oi);
+          if (y > 0.0 && y <= 1.5 * top) {
+            b.x.push_back(m.frequency_hz(i));
+            b.y.push_back(y);
+          }
+        }
+        if (!b.x.empty()) p.series.push_back(std::move(b));
+      }
+      plot_png(dir.file(output_name("backbone_rom", o)), p);
+      written.push_back(output_name("backbone_rom", o));
+    }
+  }
+  // Force responses: amplitude against the force scale, with their folds.
+  if (!r.force_response.empty()) {
+    for (std::size_t o = 0; o < c.output_dofs.size(); ++o) {
+      const auto oi = static_cast<Eigen::Index>(o);
+      PlotSpec p{
+          .title = fmt::format("Force response of DOF {} at a fixed frequency", c.output_dofs[o]),
+          .xlabel = "force scale lambda",
+          .ylabel = "first-harmonic amplitude [m]"};
+      Series folds{.title = "folds (turning points)", .style = "points pt 6 ps 1.2"};
+      for (std::size_t k = 0; k < r.force_response.size(); ++k) {
+        const auto& cv = r.force_response[k];
+        Series s{.title = fmt::format("table {}, {:.6g} Hz", r.force_response_table[k] + 1,
+                                      cv.omega / two_pi),
+                 .style = "lines"};
+        for (Eigen::Index i = 0; i < cv.force_scale.size(); ++i) {
+          s.x.push_back(cv.force_scale(i));
+          s.y.push_back(cv.output_amplitude(i, oi));
+        }
+        p.series.push_back(std::move(s));
+        for (const auto& f : cv.folds) {
+          folds.x.push_back(f.force_scale);
+          folds.y.push_back(f.output_amplitude(oi));
+        }
+      }
+      if (!folds.x.empty()) p.series.push_back(std::move(folds));
+      plot_png(dir.file(output_name("force_response", o)), p);
+      written.push_back(output_name("force_response", o));
+    }
+  }
+  // Amplitude control: the force scale that holds the amplitude, against frequency.
+  if (!r.amplitude_control.empty()) {
+    PlotSpec p{.title = "Amplitude control: force scale holding the controlled amplitude",
+               .xlabel = "excitation frequency [Hz]",
+               .ylabel = "force scale lambda",
+               .logy = true};
+    for (std::size_t k = 0; k < r.amplitude_control.size(); ++k) {
+      const auto& a = r.amplitude_control[k];
+      const auto& opt = c.amplitude_controls[r.amplitude_control_table[k]];
+      p.series.push_back(
+          positive_series(fmt::format("table {}: DOF {} at {:.4g} m",
+                                      r.amplitude_control_table[k] + 1, opt.dof, opt.amplitude),
+                          a.omega / two_pi, a.force_scale, true, "linespoints pt 7 ps 0.5"));
+    }
+    plot_png(dir.file("amplitude_control.png"), p);
+    written.push_back("amplitude_control.png");
+  }
+  // Phase resonance: the resonance frequency (the backbone) against the amplitude.
+  if (!r.phase_resonance.empty()) {
+    PlotSpec p{.title = "Phase resonance: frequency against the controlled amplitude",
+               .xlabel = "first-harmonic amplitude of the controlled DOF [m]",
+               .ylabel = "frequency [Hz]",
+               .logx = true};
+    for (std::size_t k = 0; k < r.phase_resonance.size(); ++k) {
+      const auto& ph = r.phase_resonance[k];
+      p.series.push_back(positive_series(
+          fmt::format("phase resonance, table {} (DOF {})", r.phase_resonance_table[k] + 1,
+                      c.phase_resonances[r.phase_resonance_table[k]].dof),
+          ph.amplitude, ph.omega / two_pi, false, "linespoints pt 7 ps 0.5"));
+    }
+    plot_png(dir.file("phase_resonance.png"), p);
+    written.push_back("phase_resonance.png");
+  }
   return written;
 }
 
@@ -333,6 +457,17 @@ std::string text_summary(const VibrationCase& c, const VibrationResult& r) {
                                           [](const PeriodicStability& p) { return !p.stable; });
       out.insert(out.size() - 1, fmt::format(", {} unstable point(s) (Hill)", unstable));
     }
+  }
+  for (std::size_t k = 0; k < r.backbone_rom.size(); ++k) {
+    const auto& m = r.backbone_rom[k];
+    if (m.omega.size() == 0 || c.output_dofs.empty()) continue;
+    Eigen::Index i = 0;
+    const double peak = m.output_amplitude.col(0).maxCoeff(&i);
+    out += fmt::format(
+        "backbone ROM {} (force scale {:.4g}): {} points, peak amplitude of DOF {} {:.6g} m at "
+        "{:.6g} Hz\n",
+        k + 1, r.backbone_rom_force_scale[k], m.omega.size(), c.output_dofs[0], peak,
+        m.omega(i) / (2.0 * std::numbers::pi));
   }
   if (r.quasi_static_mode) {
     const auto& q = *r.quasi_static_mode;

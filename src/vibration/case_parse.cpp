@@ -289,8 +289,8 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
   const toml::table root = core::toml_case::parse(file_text, path);
   check_keys(root, path,
              {"structure", "element", "harmonic_balance", "nonlinear_mode", "frequency_response",
-              "force_response", "amplitude_control", "phase_resonance", "quasi_static_mode",
-              "joint", "load", "profiles", "interface"});
+              "force_response", "amplitude_control", "phase_resonance", "backbone_rom",
+              "quasi_static_mode", "joint", "load", "profiles", "interface"});
   if (!root.get("joint")) {
     for (const char* k : {"load", "profiles", "interface"}) {
       if (root.get(k)) {
@@ -643,6 +643,49 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     o.log10_amplitude_to = to;
     parse_continuation(t, w, o.continuation);
     c.phase_resonances.push_back(std::move(o));
+  });
+
+  // [[backbone_rom]]: forced responses from the backbone of [nonlinear_mode]
+  tables("backbone_rom", [&](const toml::table& t, const std::string& w) {
+    check_keys(t, w, {"force_cos", "force_sin", "force_scales", "subdivisions"});
+    if (!c.nonlinear_mode) {
+      throw InvalidInput(
+          fmt::format("{} needs [nonlinear_mode] in the same case: the backbone it is built from{}",
+                      w, at_line(t)));
+    }
+    if (!t.get("force_cos") && !t.get("force_sin")) {
+      throw InvalidInput(fmt::format(
+          "{} needs force_cos and/or force_sin (rows: harmonics, columns: DOFs){}", w, at_line(t)));
+    }
+    BackboneRomCase b;
+    b.force = force_pair(t, w, "force", basis, n, nh, b.force_cos, b.force_sin);
+    const auto nc = static_cast<Eigen::Index>(basis.coefficients());
+    double f1 = 0.0;
+    for (Eigen::Index d = 0; d < n; ++d) {
+      f1 = std::max({f1, std::abs(b.force(d * nc + basis.index_of(1, 0))),
+                     std::abs(b.force(d * nc + basis.index_of(1, 1)))});
+    }
+    if (f1 == 0.0) {
+      throw InvalidInput(fmt::format(
+          "{}: the force has no first harmonic (the row of harmonic 1 in force_cos or force_sin), "
+          "the only one the model uses{}",
+          w, at_line(t)));
+    }
+    if (const auto* sn = t.get("force_scales")) {
+      const auto* a = sn->as_array();
+      if (!a || a->empty()) {
+        throw InvalidInput(
+            fmt::format("{}.force_scales must be a non-empty list of numbers{}", w, at_line(*sn)));
+      }
+      b.force_scales.clear();
+      for (std::size_t j = 0; j < a->size(); ++j) {
+        const std::string f = fmt::format("{}.force_scales[{}]", w, j);
+        b.force_scales.push_back(finite_number(*a->get(j), f));
+        core::require_positive(f, b.force_scales.back());
+      }
+    }
+    b.subdivisions = static_cast<int>(integer(t, "subdivisions", w, 16, 1, 10000));
+    c.backbone_roms.push_back(std::move(b));
   });
 
   // [quasi_static_mode]

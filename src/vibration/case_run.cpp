@@ -229,6 +229,48 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                                                    {"solver", solver_summary(w)}});
     add_analysis(total, w, "nonlinear_mode");
   }
+  // [[backbone_rom]]: forced responses from the backbone just computed (mode_rom.hpp).
+  if (!c.backbone_roms.empty() && r.nonlinear_mode) {
+    SummaryArray curves;
+    for (std::size_t k = 0; k < c.backbone_roms.size(); ++k) {
+      const BackboneRomCase& b = c.backbone_roms[k];
+      for (const double scale : b.force_scales) {
+        ModeRomCurve rom = nonlinear_mode_rom(hb, *r.nonlinear_mode, scale * b.force, c.output_dofs,
+                                              b.subdivisions);
+        for (const std::string& m : rom.warnings) {
+          r.warnings.push_back(fmt::format("backbone_rom[{}] at force scale {}: {}", k,
+                                           core::format_value(scale), m));
+        }
+        // The largest first-harmonic amplitude of each output and where it lies.
+        SummaryArray peaks;
+        for (Eigen::Index o = 0; o < rom.output_amplitude.cols(); ++o) {
+          if (rom.omega.size() == 0) break;
+          Eigen::Index i = 0;
+          rom.output_amplitude.col(o).maxCoeff(&i);
+          peaks.emplace_back(SummaryObject{
+              {"output", static_cast<std::size_t>(o)},
+              {"dof", static_cast<std::size_t>(c.output_dofs[static_cast<std::size_t>(o)])},
+              {"omega_rad_s", rom.omega(i)},
+              {"frequency_hz", rom.omega(i) / (2.0 * std::numbers::pi)},
+              {"amplitude", rom.output_amplitude(i, o)}});
+        }
+        curves.emplace_back(
+            SummaryObject{{"table", k},
+                          {"force_scale", scale},
+                          {"omega_rad_s", array(rom.omega)},
+                          {"frequency_hz", array(rom.omega / (2.0 * std::numbers::pi))},
+                          {"modal_amplitude", array(rom.amplitude)},
+                          {"output_amplitude", rows(rom.output_amplitude)},
+                          {"low_side_points", rom.low_side_points},
+                          {"peak_modal_amplitude", rom.peak_amplitude},
+                          {"peaks", std::move(peaks)}});
+        r.backbone_rom.push_back(std::move(rom));
+        r.backbone_rom_table.push_back(k);
+        r.backbone_rom_force_scale.push_back(scale);
+      }
+    }
+    j.emplace_back("backbone_rom", std::move(curves));
+  }
 
   if (!c.frequency_responses.empty()) {
     SummaryArray curves;

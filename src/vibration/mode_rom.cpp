@@ -106,7 +106,12 @@ ModeRomCurve nonlinear_mode_rom(const HarmonicBalance& hb, const NonlinearModeRe
     }
   }
   ModeRomCurve c;
-  if (peak == pts.back().a) {
+  if (a_low.empty() && a_high.empty()) {
+    c.warnings.push_back(fmt::format(
+        "nonlinear_mode_rom: the force drives no amplitude of the backbone (a = {} .. {}): "
+        "start the nonlinear mode's amplitude range lower or raise the force",
+        pts.front().a, pts.back().a));
+  } else if (peak == pts.back().a) {
     c.warnings.push_back(fmt::format(
         "nonlinear_mode_rom: the force drives the mode beyond the backbone's last amplitude "
         "(a = {}): the resonance is cut off; extend the nonlinear mode's amplitude range",

@@ -68,6 +68,12 @@ TEST(VibrationModeRom, ExactForTheOneHarmonicDuffingOscillator) {
   EXPECT_LE(fine.peak_amplitude, lo * (1.0 + 1e-3));
   EXPECT_GT(fine.peak_amplitude, lo / 1.008);
   EXPECT_LE(rom.peak_amplitude, lo * (1.0 + 1e-9));  // the coarse grid: below
+  // A force too small for the backbone's first amplitude (a = 0.01 needs F >= c w a =
+  // 5e-4): no point, and a warning that says what to change.
+  const ModeRomCurve none = nonlinear_mode_rom(hb, mode, 1e-6 * f, {0});
+  EXPECT_EQ(none.omega.size(), 0);
+  ASSERT_EQ(none.warnings.size(), 1U);
+  EXPECT_NE(none.warnings[0].find("drives no amplitude"), std::string::npos);
 }
 
 TEST(VibrationModeRom, BadInputIsRefused) {

@@ -105,6 +105,13 @@
 //   log10_amplitude = { from = -3.0, to = 0.0 }   # of that DOF's amplitude [m]
 //   continuation = { ... }
 //
+//   [[backbone_rom]]            # any number: forced responses from the [nonlinear_mode]
+//   force_cos = [[0.0], [0.1]]  #   of the same case (single nonlinear mode theory,
+//   force_sin = ..              #   mode_rom.hpp); layout as frequency_response, only the
+//                               #   first harmonic is used
+//   force_scales = [0.5, 1.0]   # optional, default [1.0]: one curve per scale
+//   subdivisions = 16           # optional: points per backbone interval (1 .. 10000)
+//
 //   [quasi_static_mode]         # Masing-based estimate of one mode
 //   mode = 1
 //   amplitude = { from = 1e-3, to = 1e3 }   # modal amplitude a [sqrt(kg) m]
@@ -125,6 +132,7 @@
 #include "asperity/vibration/elements.hpp"
 #include "asperity/vibration/force_response.hpp"
 #include "asperity/vibration/harmonic_balance.hpp"
+#include "asperity/vibration/mode_rom.hpp"
 #include "asperity/vibration/response_control.hpp"
 #include "asperity/vibration/structure.hpp"
 
@@ -149,6 +157,15 @@ struct ForceResponseCase {
   ForceResponseOptions options;
 };
 
+/// One [[backbone_rom]] table: the force at scale 1 as given and in the unknowns' layout.
+struct BackboneRomCase {
+  Eigen::MatrixXd force_cos;
+  Eigen::MatrixXd force_sin;
+  Eigen::VectorXd force;
+  std::vector<double> force_scales{1.0};
+  int subdivisions = 16;
+};
+
 struct VibrationCase {
   std::string source;  ///< the case file (or "<string>")
   Structure structure;
@@ -162,6 +179,7 @@ struct VibrationCase {
   std::vector<ForceResponseCase> force_responses;
   std::vector<AmplitudeControlOptions> amplitude_controls;
   std::vector<PhaseResonanceOptions> phase_resonances;
+  std::vector<BackboneRomCase> backbone_roms;  ///< need nonlinear_mode
   std::optional<QuasiStaticModeOptions> quasi_static_mode;
   /// The `joint` section when a rough_flat element comes from a [joint] table.
   std::optional<SummaryObject> joint;
@@ -192,6 +210,10 @@ struct VibrationResult {
   std::vector<std::size_t> amplitude_control_table;
   std::vector<PhaseResonanceResult> phase_resonance;
   std::vector<std::size_t> phase_resonance_table;
+  /// Every [[backbone_rom]] curve (tables, then scales), its table and force scale.
+  std::vector<ModeRomCurve> backbone_rom;
+  std::vector<std::size_t> backbone_rom_table;
+  std::vector<double> backbone_rom_force_scale;
   std::optional<QuasiStaticModeResult> quasi_static_mode;
   /// Every continuation reached its end (false: a curve stalled, hit max_points or
   /// turned back; its points are kept and `stop_reason` says why).
@@ -204,7 +226,7 @@ struct VibrationResult {
   std::vector<std::string> failures;
   std::vector<std::string> warnings;
   /// summary.json: case, structure, elements, harmonic_balance, joint (if any),
-  /// nonlinear_mode, frequency_response, quasi_static_mode, solver, warnings.
+  /// nonlinear_mode, frequency_response, backbone_rom, quasi_static_mode, solver, warnings.
   SummaryObject summary;
 };
 
