@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The full test command (.ci/run): scripts/test.sh (format check, the `ci` build and its ctest
 # suite with the pytest suite), then the benchmarks built with warnings as errors, the
-# downstream find_package check of the library built shared (tests/package), the
+# downstream find_package checks of the installed library, static and built shared
+# (tests/package), the
 # GoogleTest suite, the C++ example and the pytest suite (against the compiled module of that
 # build) again under AddressSanitizer and UndefinedBehaviorSanitizer (the `debug` preset), a
 # short libFuzzer smoke run of the profile readers, the Python package installed with pip into
@@ -14,10 +15,10 @@ source "$(dirname "$0")/test-common.sh"
 
 bash scripts/test.sh
 
-stage "ci preset: the benchmarks built (warnings as errors), the shared library's package checks"
+stage "ci preset: the benchmarks built (warnings as errors), the package checks (static and shared)"
 cmake --preset ci -DPython3_EXECUTABLE="$py"
 cmake --build --preset ci -j 2
-ctest --preset ci -j 2 -L second_build
+ctest --preset ci -j 2 -L package
 
 stage "C++ under ASan + UBSan (debug preset): GoogleTest suite and the C++ example"
 # The CLI-script tests are left out here: the same code paths run in the GoogleTest
