@@ -159,6 +159,22 @@ void ReducedModel::validate() const {
     throw InvalidInput(
         "reduced model: bolt_axial_stiffness and bolt_preload need one value per bolt");
   need(recovery, 3 * static_cast<Eigen::Index>(output_names.size()), n, "R (recovery)");
+  if (rough) {
+    if (rough->pressure.size() != ne || !rough->pressure.allFinite() ||
+        (rough->pressure.array() < 0.0).any() ||
+        static_cast<Eigen::Index>(rough->in_contact.size()) != ne)
+      throw InvalidInput(fmt::format(
+          "reduced model: rough_pressure and rough_in_contact need one value per interface "
+          "element ({}), pressures finite and >= 0",
+          ne));
+    for (const double v :
+         {rough->E_star, rough->G_star, rough->H, rough->sigma, rough->R, rough->eta})
+      if (!(v > 0.0) || !std::isfinite(v))
+        throw InvalidInput(fmt::format(
+            "reduced model: rough_surface [E*, G*, H, nu, sigma, R, eta, summit_sigma] has {}: "
+            "E*, G*, H, sigma, R and eta must be finite and > 0",
+            v));
+  }
 }
 
 void write_reduced_model(const std::string& path, const ReducedModel& model) {
@@ -202,6 +218,18 @@ void write_reduced_model(const std::string& path, const ReducedModel& model) {
     write_matrix(mat.get(), "fixed_interface_modes",
                  Eigen::MatrixXd::Constant(1, 1, static_cast<double>(model.fixed_interface_modes)),
                  path);
+    if (const auto& r = model.rough) {
+      Eigen::MatrixXd surface(1, 8);
+      surface << r->E_star, r->G_star, r->H, r->nu, r->sigma, r->R, r->eta,
+          r->summit_sigma ? 1.0 : 0.0;
+      write_matrix(mat.get(), "rough_surface", surface, path);
+      write_text(mat.get(), "rough_model", r->model, path);
+      write_matrix(mat.get(), "rough_pressure", Eigen::MatrixXd(r->pressure), path);
+      Eigen::MatrixXd touching(static_cast<Eigen::Index>(r->in_contact.size()), 1);
+      for (Eigen::Index e = 0; e < touching.rows(); ++e)
+        touching(e, 0) = r->in_contact[static_cast<std::size_t>(e)] ? 1.0 : 0.0;
+      write_matrix(mat.get(), "rough_in_contact", touching, path);
+    }
   }
   std::error_code ec;
   std::filesystem::rename(tmp, target, ec);
@@ -252,6 +280,29 @@ ReducedModel read_reduced_model(const std::string& path) {
                                  static_cast<std::size_t>(m.output_points.rows()));
     m.fixed_interface_modes =
         static_cast<Eigen::Index>(require(mat.get(), "fixed_interface_modes", path)(0, 0));
+    if (const auto surface = read_matrix(mat.get(), "rough_surface", path)) {
+      if (surface->size() != 8)
+        throw InvalidInput(fmt::format(
+            "\"{}\": rough_surface has {} values, expected 8 (E*, G*, H, nu, sigma, R, eta, "
+            "summit_sigma)",
+            path, surface->size()));
+      const Eigen::VectorXd v = surface->reshaped();
+      RoughInterfaceRecord r{.E_star = v[0],
+                             .G_star = v[1],
+                             .H = v[2],
+                             .nu = v[3],
+                             .sigma = v[4],
+                             .R = v[5],
+                             .eta = v[6],
+                             .summit_sigma = v[7] != 0.0,
+                             .model = read_text(mat.get(), "rough_model"),
+                             .pressure = require(mat.get(), "rough_pressure", path).reshaped(),
+                             .in_contact = {}};
+      const Eigen::MatrixXd touching = require(mat.get(), "rough_in_contact", path);
+      for (Eigen::Index e = 0; e < touching.size(); ++e)
+        r.in_contact.push_back(touching.reshaped()[e] != 0.0 ? 1 : 0);
+      m.rough = std::move(r);
+    }
   } else {
     // The published Brake-Reuss beam layout.
     const Eigen::MatrixXd L = require(mat.get(), "L", path);

@@ -561,6 +561,18 @@ StructureResult run_structure(const StructureCase& c, const StructureOptions& op
         .sigma = c.rough.sigma, .pressure_scale = flat.scales()->force, .eta = c.rough.eta};
     if (c.rough.gap) res.gap = gap_at_elements(*c.rough.gap, m, c.rough.gap_origin);
     res.rough = rough_prestress(m, flat, scales, res.gap);
+    const auto& pair = flat.scales()->pair;
+    m.rough = RoughInterfaceRecord{.E_star = pair.E_star,
+                                   .G_star = pair.G_star,
+                                   .H = pair.H,
+                                   .nu = pair.nu,
+                                   .sigma = c.rough.sigma,
+                                   .R = c.rough.R,
+                                   .eta = c.rough.eta,
+                                   .summit_sigma = c.rough.summit_sigma,
+                                   .model = std::string(contact::to_string(c.rough.model)),
+                                   .pressure = res.rough->pressure,
+                                   .in_contact = res.rough->in_contact};
     Eigen::VectorXd k = Eigen::VectorXd::Zero(ng);
     for (Eigen::Index e = 0; e < static_cast<Eigen::Index>(m.elements.size()); ++e)
       if (res.rough->in_contact[static_cast<std::size_t>(e)]) {

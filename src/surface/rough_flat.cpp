@@ -251,11 +251,13 @@ void validate_from_inputs(const RoughFlatParameters& p, double E_star, double H,
 
 RoughFlat RoughFlat::from_combined(double E_star, double G_star, double H, double nu, double sigma,
                                    double R, double eta, contact::ModelName model,
-                                   const contact::FrictionParameters& friction) {
+                                   const contact::FrictionParameters& friction, bool summit_sigma) {
   core::require_positive("E_star", E_star);
   core::require_positive("G_star", G_star);
   core::require_positive("H", H);
-  core::require_positive("sigma (rms roughness)", sigma);
+  core::require_positive(
+      summit_sigma ? "sigma_a (standard deviation of the summit heights)" : "sigma (rms roughness)",
+      sigma);
   core::require_positive("R (mean asperity radius)", R);
   core::require_positive("eta (areal density of asperities)", eta);
   RoughFlatParameters p;
@@ -264,6 +266,14 @@ RoughFlat RoughFlat::from_combined(double E_star, double G_star, double H, doubl
   p.nu = nu;
   p.G_over_E = G_star / E_star;
   p.friction = friction;
+  if (summit_sigma) {
+    // As from_summit_heights: sigma is sigma_a itself (no McCool relation).
+    p.summit_sigma = true;
+    p.psi =
+        2.0 * E_star / (std::numbers::pi * contact::hardness_factor(nu) * H) * std::sqrt(sigma / R);
+    validate_from_inputs(p, E_star, H, "sigma_a", sigma, R, eta);
+    return RoughFlat(p);
+  }
   if (!(p.beta > 0.01928)) p.validate();  // throws with the message about beta
   const double s_a = std::sqrt(1.0 - 3.717e-4 / (p.beta * p.beta));
   // Plasticity index on sigma_a (SEED_NOTES.md): psi = (2E*/(pi K H)) sqrt(sigma_a/R).

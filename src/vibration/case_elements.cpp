@@ -539,4 +539,102 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
   return pe;
 }
 
+bool places_every_interface_element(const toml::table& t) {
+  const auto* T = t.get("T") ? t.get("T")->as_table() : nullptr;
+  const auto* ie = T ? T->get("interface_element") : nullptr;
+  return ie && ie->value<std::string>() == "all";
+}
+
+std::vector<PlacedElement> parse_interface_rough_contact(const toml::table& t, std::size_t index,
+                                                         Eigen::Index dofs,
+                                                         const fem::ReducedModel* model,
+                                                         std::vector<std::string>& warnings) {
+  const std::string w = fmt::format("element[{}]", index);
+  if (text(t, "type", w, "") != "rough_contact") {
+    throw InvalidInput(
+        fmt::format("{}.T.interface_element = \"all\" places rough_contact elements only (type = "
+                    "\"rough_contact\"); other types take one interface element each{}",
+                    w, at_line(t)));
+  }
+  check_keys(t, w, {"type", "name", "T", "asperity_model", "mu_cfc"});
+  if (!model || !model->rough) {
+    throw InvalidInput(fmt::format(
+        "{}.T.interface_element = \"all\" needs [structure] model = \"FILE\" written by "
+        "`asperity structure` with a [rough_contact] table (the file holds the rough surface and "
+        "each element's prestress pressure){}",
+        w, at_line(t)));
+  }
+  const auto& T = *t.get("T")->as_table();
+  check_keys(T, w + ".T", {"interface_element", "directions"});
+  if (const auto* d = T.get("directions")) {
+    const auto* a = d->as_array();
+    const bool standard = a && a->size() == 3 && (*a)[0].value<std::string>() == "t1" &&
+                          (*a)[1].value<std::string>() == "t2" &&
+                          (*a)[2].value<std::string>() == "-n";
+    if (!standard)
+      throw InvalidInput(fmt::format(
+          "{}.T.directions: rough_contact elements on every interface element take [\"t1\", "
+          "\"t2\", \"-n\"] (the default: tangential, then the closure){}",
+          w, at_line(T)));
+  }
+  const fem::RoughInterfaceRecord& r = *model->rough;
+  RoughInterfaceParameters rp{.E_star = r.E_star,
+                              .G_star = r.G_star,
+                              .H = r.H,
+                              .nu = r.nu,
+                              .sigma = r.sigma,
+                              .R = r.R,
+                              .eta = r.eta,
+                              .model = core::toml_case::named_choice(
+                                  t, "asperity_model", w, r.model, contact::parse_model_name),
+                              .friction = {},
+                              .summit_sigma = r.summit_sigma};
+  if (t.get("mu_cfc")) rp.friction.mu_cfc = number(t, "mu_cfc", w, 0.0);
+  // The elements in contact by the prestress's rule (at least one asperity expected in
+  // contact, eta A Phi(d) >= 1): those its linearised modes stiffen.
+  std::vector<Eigen::Index> touching;
+  for (Eigen::Index e = 0; e < r.pressure.size(); ++e)
+    if (r.in_contact[static_cast<std::size_t>(e)] && r.pressure[e] > 0.0) touching.push_back(e);
+  if (touching.empty()) {
+    throw InvalidInput(fmt::format(
+        "{}: no interface element of {} is in contact at the rough prestress", w, model->source));
+  }
+  if (touching.size() < static_cast<std::size_t>(r.pressure.size())) {
+    warnings.push_back(fmt::format(
+        "{}: {} of the {} interface elements are out of contact at the rough prestress (less "
+        "than one asperity expected in contact) and are left out",
+        w, static_cast<std::size_t>(r.pressure.size()) - touching.size(), r.pressure.size()));
+  }
+  double p_min = r.pressure[touching.front()], p_max = p_min;
+  for (const Eigen::Index e : touching) {
+    p_min = std::min(p_min, r.pressure[e]);
+    p_max = std::max(p_max, r.pressure[e]);
+  }
+  // One surface for the interface: tables from p_min/8 to 8 p_max (as a single element's,
+  // docs/rough_contact.md), below the largest load the rough flat represents.
+  const double p_flat_max =
+      surface::RoughFlat::from_combined(rp.E_star, rp.G_star, rp.H, rp.nu, rp.sigma, rp.R, rp.eta,
+                                        rp.model, rp.friction, rp.summit_sigma)
+          .max_load_star() *
+      contact::hardness_factor(rp.nu) * rp.H;
+  const auto surface = std::make_shared<const RoughContactSurface>(
+      rp, p_min / 8.0, std::min(8.0 * p_max, 0.999 * p_flat_max));
+  const std::string name = text(t, "name", w, "interface element");
+  std::vector<PlacedElement> out;
+  out.reserve(touching.size());
+  for (const Eigen::Index e : touching) {
+    PlacedElement pe;
+    pe.name = fmt::format("{} {}", name, e);
+    pe.element = std::make_shared<RoughContactElement>(
+        surface, model->elements[static_cast<std::size_t>(e)].area, r.pressure[e],
+        fmt::format("{} (interface element {})", w, e));
+    pe.T.resize(3, dofs);
+    pe.T.row(0) = model->Q.row(3 * e);
+    pe.T.row(1) = model->Q.row(3 * e + 1);
+    pe.T.row(2) = -model->Q.row(3 * e + 2);
+    out.push_back(std::move(pe));
+  }
+  return out;
+}
+
 }  // namespace asperity::vibration::detail

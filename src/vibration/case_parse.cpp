@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <iterator>
 #include <numbers>
 
 #include "../core/toml_case.hpp"
@@ -396,8 +397,14 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
           fmt::format("element must be an array of tables: write [[element]]{}", at_line(*en)));
     }
     for (std::size_t k = 0; k < arr->size(); ++k) {
-      c.elements.push_back(parse_element(*arr->get(k)->as_table(), k, n, joint, base_dir,
-                                         model ? &*model : nullptr));
+      const toml::table& t = *arr->get(k)->as_table();
+      if (detail::places_every_interface_element(t)) {
+        auto placed =
+            detail::parse_interface_rough_contact(t, k, n, model ? &*model : nullptr, c.warnings);
+        std::move(placed.begin(), placed.end(), std::back_inserter(c.elements));
+        continue;
+      }
+      c.elements.push_back(parse_element(t, k, n, joint, base_dir, model ? &*model : nullptr));
     }
   }
   if (joint) {

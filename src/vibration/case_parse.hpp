@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 #include "asperity/fem/reduced_model.hpp"
 
 #include <Eigen/Dense>
@@ -58,6 +59,18 @@ JointBackbone joint_backbone(const std::string& path, const std::string& base_di
 /// is the backbone of a rough_flat element with backbone = "joint". With a reduced model
 /// (`[structure] model`), T may name one of its interface elements instead of a matrix:
 /// T = { interface_element = 12, directions = ["t1", "n"] } takes those rows of Q.
+/// True for an [[element]] whose T is { interface_element = "all" }.
+bool places_every_interface_element(const toml::table& t);
+
+/// rough_contact elements on every interface element of `model` in contact at the rough
+/// prestress that `asperity structure` stored with it (its surface and each element's
+/// pressure; elements without pressure are left out, with a warning); T rows t1, t2 and the
+/// closure. One tangential-table surface serves them all.
+std::vector<PlacedElement> parse_interface_rough_contact(const toml::table& t, std::size_t index,
+                                                         Eigen::Index dofs,
+                                                         const fem::ReducedModel* model,
+                                                         std::vector<std::string>& warnings);
+
 PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Index dofs,
                             const std::optional<JointBackbone>& joint, const std::string& base_dir,
                             const fem::ReducedModel* model = nullptr);

@@ -136,6 +136,7 @@ std::string remedy(const Work& w, std::size_t time_points) {
 VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
   using clock = std::chrono::steady_clock;
   VibrationResult r;
+  r.warnings = c.warnings;
   const HarmonicBalance hb(c.structure, c.elements, c.harmonic_balance);
   SummaryObject& j = r.summary;
   const Eigen::Index n = c.structure.dofs();

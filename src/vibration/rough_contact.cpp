@@ -34,7 +34,7 @@ constexpr std::size_t kMaxPeriods = 64;
 surface::RoughFlat make_flat(const RoughInterfaceParameters& c) {
   c.validate();
   return surface::RoughFlat::from_combined(c.E_star, c.G_star, c.H, c.nu, c.sigma, c.R, c.eta,
-                                           c.model, c.friction);
+                                           c.model, c.friction, c.summit_sigma);
 }
 
 void require_finite_samples(const Eigen::MatrixXd& u) {

@@ -134,6 +134,43 @@ points = 5
         return fail(f"vibration on the model: exit {p.returncode}: {p.stderr}")
     if "quasi_static_mode" not in json.loads(p.stdout):
         return fail("no quasi_static_mode")
+    # rough_contact on every interface element in contact at the rough prestress (the
+    # surface and pressures come with the model file): the stuck structure's linear modes
+    # are the structure run's linearised `rough` modes (two code paths: the prestress's
+    # stiffnesses and the elements' initial tangents; measured 8e-12 apart, 1e-9 asserted
+    # for two eigensolvers), and the nonlinear mode starts there (within zeta^2 = 8.4e-6,
+    # EPMC's frequency of a damped mode).
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    case = write(tmp, "rough.toml", f"""[structure]
+model = "{os.path.join(out, 'reduced_model.mat')}"
+rayleigh = {{ alpha = 0.0, beta = 1e-7 }}
+output_dofs = [0]
+[[element]]
+type = "rough_contact"
+T = {{ interface_element = "all" }}
+[harmonic_balance]
+max = 1
+time_points = 32
+[nonlinear_mode]
+mode = 7
+log10_amplitude = {{ from = -10.0, to = -8.0 }}
+""")
+    p = run(exe, ["vibration", case, "--json"])
+    if p.returncode != 0:
+        return fail(f"rough_contact on every element: exit {p.returncode}: {p.stderr}")
+    v = json.loads(p.stdout)
+    touching = summary["rough_prestress"]["elements_in_contact"]
+    if len(v["elements"]) != touching or not all(e["type"] == "rough_contact" for e in v["elements"]):
+        return fail(f"{len(v['elements'])} elements placed, {touching} in contact")
+    if touching < 24 and not any(f"{24 - touching} of the 24" in w for w in v["warnings"]):
+        return fail(f"warnings {v['warnings']}")
+    want = summary["linear_modes"]["rough"]["frequency_hz"]
+    got = v["structure"]["linear_frequencies_hz_elements_stuck"][6:6 + len(want)]
+    if any(abs(a - b) > 1e-9 * b for a, b in zip(got, want)):
+        return fail(f"stuck linear modes {got}, the structure's rough modes {want}")
+    f0 = v["nonlinear_mode"]["frequency_hz"][0]
+    if abs(f0 - want[0]) > 8.4e-6 * want[0]:
+        return fail(f"nonlinear mode starts at {f0} Hz, linear {want[0]} Hz")
     return 0
 
 
@@ -205,6 +242,20 @@ def case_bad_input_model_not_symmetric(exe, tmp):
     p = vib_on(exe, tmp, {"M": np.eye(3), "K": K, "L": np.eye(3), "Qm": np.ones((1, 1)),
                           "Tm": np.ones((1, 1)), "Fv": np.zeros((3, 1))})
     if p.returncode != 2 or "K is not symmetric" not in p.stderr:
+        return fail(f"exit {p.returncode}: {p.stderr}")
+    return 0
+
+
+def case_bad_input_all_elements_without_rough(exe, tmp):
+    # interface_element = "all" needs the rough surface and pressures a structure run stores.
+    path = os.path.join(tmp, "m.mat")
+    scipy.io.savemat(path, {"M": np.eye(3), "K": np.eye(3), "L": np.eye(3), "Qm": np.ones((1, 1)),
+                            "Tm": np.ones((1, 1)), "Fv": np.zeros((3, 1))})
+    case = write(tmp, "v.toml", f'[structure]\nmodel = "{path}"\n[[element]]\n'
+                 'type = "rough_contact"\nT = { interface_element = "all" }\n'
+                 '[harmonic_balance]\nmax = 1\n[nonlinear_mode]\nmode = 1\n')
+    p = run(exe, ["vibration", case, "--json"])
+    if p.returncode != 2 or "[rough_contact]" not in p.stderr or "element[" not in p.stderr:
         return fail(f"exit {p.returncode}: {p.stderr}")
     return 0
 

@@ -357,5 +357,23 @@ TEST(RoughFlatSummitHeights, SameFlatAsFromTheSurfaceRms) {
   }
 }
 
+// from_combined with summit_sigma (the form a reduced model's rough_surface record and
+// RoughInterfaceParameters::summit_sigma use) is from_summit_heights's flat: the same
+// parameters to the last bit (the same formulas on the combined values).
+TEST(RoughFlatSummitHeights, FromCombinedEqualsFromSummitHeights) {
+  const contact::Material steel{.E = 200e9, .nu = 0.3, .G = 0.0, .H = 5.8e9};
+  const double sigma_a = 3.17e-6, R = 30.1e-6, eta = 2.9e8;
+  const auto a =
+      RoughFlat::from_summit_heights(steel, steel, sigma_a, eta, R, 1.0, contact::ModelName::bke);
+  const auto& pair = a.scales()->pair;
+  const auto b = RoughFlat::from_combined(pair.E_star, pair.G_star, pair.H, pair.nu, sigma_a, R,
+                                          eta, contact::ModelName::bke, {}, true);
+  EXPECT_TRUE(b.parameters().summit_sigma);
+  EXPECT_EQ(b.parameters().beta, a.parameters().beta);
+  EXPECT_EQ(b.parameters().psi, a.parameters().psi);
+  EXPECT_EQ(b.parameters().G_over_E, a.parameters().G_over_E);
+  EXPECT_EQ(b.normal_load_star(1.5), a.normal_load_star(1.5));
+}
+
 }  // namespace
 }  // namespace asperity::surface

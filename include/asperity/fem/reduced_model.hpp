@@ -27,6 +27,7 @@
 // (M, K, Fv, L, Qm, Tm and optionally R: element displacements kron(Qm, I3) L[:3n_nodes]
 // and forces L[:3n_nodes]^T kron(Tm, I3), element areas the column sums of Tm) and from
 // MatrixMarket files (M and K only).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,22 @@ struct InterfaceElement {
   double area = 0.0;                                    ///< [m^2]
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();   ///< [m] (NaN when unknown)
   Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();  ///< rows t1, t2, n
+};
+
+/// The rough interface of `asperity structure`'s [rough_contact] (combined values, SI) and
+/// each element's nominal pressure and contact state at the rough prestress: what a
+/// vibration case needs to put rough_contact elements on every interface element.
+struct RoughInterfaceRecord {
+  double E_star = 0.0, G_star = 0.0, H = 0.0, nu = 0.0;  ///< [Pa], [Pa], [Pa], [-]
+  double sigma = 0.0;  ///< [m]: rms roughness, or of the summit heights if summit_sigma
+  double R = 0.0;      ///< mean asperity radius [m]
+  double eta = 0.0;    ///< areal density of asperities [1/m^2]
+  bool summit_sigma = false;
+  std::string model;         ///< asperity model name ("bke", ...)
+  Eigen::VectorXd pressure;  ///< per element [Pa]
+  /// Per element: at least one asperity expected in contact, eta A Phi(d) >= 1
+  /// (RoughPrestress::in_contact): the elements the rough linear modes stiffen.
+  std::vector<char> in_contact;
 };
 
 struct ReducedModel {
@@ -54,7 +71,8 @@ struct ReducedModel {
   std::vector<std::string> output_names;
   Eigen::MatrixXd output_points;  ///< P x 3
   Eigen::Index fixed_interface_modes = 0;
-  std::string source;  ///< where it came from (a file, `asperity structure`)
+  std::string source;                         ///< where it came from (a file, `asperity structure`)
+  std::optional<RoughInterfaceRecord> rough;  ///< with [rough_contact]
 
   [[nodiscard]] Eigen::Index dofs() const { return M.rows(); }
   /// Throws InvalidInput naming the matrix: sizes that do not agree, non-finite entries,

@@ -94,9 +94,12 @@ class RoughFlat {
   /// The normalized flat of combined properties E*, G*, hardness H and nu of the softer body,
   /// rms roughness sigma [m], R [m] and eta [1/m^2] (no scales): beta = sigma R eta, psi on
   /// sigma_a (SEED_NOTES.md), G*/E*.
+  /// With `summit_sigma`, sigma is the standard deviation of the summit heights
+  /// (RoughFlatParameters::summit_sigma, as from_summit_heights).
   static RoughFlat from_combined(double E_star, double G_star, double H, double nu, double sigma,
                                  double R, double eta, contact::ModelName model,
-                                 const contact::FrictionParameters& friction = {});
+                                 const contact::FrictionParameters& friction = {},
+                                 bool summit_sigma = false);
 
   /// As from_dimensional, with sigma_summits the standard deviation of the summit heights
   /// (RoughFlatParameters::summit_sigma): the form a measured summit distribution gives.

@@ -183,6 +183,9 @@ struct VibrationCase {
   std::optional<QuasiStaticModeOptions> quasi_static_mode;
   /// The `joint` section when a rough_flat element comes from a [joint] table.
   std::optional<SummaryObject> joint;
+  /// Notes from reading the case (e.g. interface elements left out), carried into the
+  /// result's warnings.
+  std::vector<std::string> warnings;
 };
 
 /// Parses a case file's text; `source` names it in errors, `base_dir` resolves the

@@ -42,6 +42,9 @@ struct RoughInterfaceParameters {
   double eta = 0.0;     ///< areal density of asperities [1/m^2], > 0
   contact::ModelName model = contact::ModelName::bke;
   contact::FrictionParameters friction{};
+  /// sigma is the standard deviation of the summit heights (a measured summit distribution,
+  /// RoughFlatParameters::summit_sigma), not the surface's rms roughness.
+  bool summit_sigma = false;
   void validate() const;
 };
 
