@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <iostream>
+#include <string_view>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
@@ -28,6 +29,10 @@ int main(int argc, char** argv) {
   asperity::cli::add_analyze_command(app, action);
   asperity::cli::add_synthesize_command(app, action);
   asperity::cli::add_validate_command(app, action);
+  asperity::cli::add_sweep_command(app, action);
+  // The arguments of `sweep` are the Python module's, forwarded untouched ("--" included).
+  if (argc >= 2 && std::string_view(argv[1]) == "sweep")
+    return asperity::cli::run_sweep({argv + 2, argv + argc});
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
