@@ -240,8 +240,8 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
         // One curve per call, so that each has its own counters and wall time.
         FrequencyResponseOptions one = all;
         one.force_scales = {scale};
-        const std::string curve =
-            fmt::format("frequency_response[{}] at force scale {}", k, core::format_value(scale));
+        const std::string curve = fmt::format("frequency_response[{}] at force scale {}", k + 1,
+                                              core::format_value(scale));
         const auto before = counters();
         const auto t0 = clock::now();
         std::vector<FrequencyResponseCurve> cs;
@@ -258,8 +258,8 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
           ++done_curves;
           r.failures.push_back(cannot_start(curve, e).what());
           r.warnings.push_back(r.failures.back());
-          failed.emplace_back(
-              SummaryObject{{"table", k}, {"force_scale", scale}, {"reason", r.failures.back()}});
+          failed.emplace_back(SummaryObject{
+              {"table", k + 1}, {"force_scale", scale}, {"reason", r.failures.back()}});
           continue;
         }
         ++done_curves;
@@ -275,7 +275,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
             per_output.emplace_back(array(hm.row(p).transpose()));
           ha.emplace_back(std::move(per_output));
         }
-        SummaryObject o{{"table", k},
+        SummaryObject o{{"table", k + 1},
                         {"force_scale", cv.force_scale},
                         {"omega_rad_s", array(cv.omega)},
                         {"frequency_hz", array(cv.omega / (2.0 * std::numbers::pi))},
@@ -320,7 +320,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     const double nk = static_cast<double>(c.force_responses.size());
     for (std::size_t k = 0; k < c.force_responses.size(); ++k) {
       const ForceResponseOptions& o = c.force_responses[k].options;
-      const std::string curve = fmt::format("force_response[{}]", k);
+      const std::string curve = fmt::format("force_response[{}]", k + 1);
       const auto before = counters();
       const auto t0 = clock::now();
       ForceResponseCurve cv;
@@ -334,7 +334,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
       } catch (const NumericalError& e) {
         r.failures.push_back(cannot_start(curve, e).what());
         r.warnings.push_back(r.failures.back());
-        failed.emplace_back(SummaryObject{{"table", k},
+        failed.emplace_back(SummaryObject{{"table", k + 1},
                                           {"force_scale", o.scale_from},
                                           {"analysis", std::string("force_response")},
                                           {"reason", r.failures.back()}});
@@ -356,7 +356,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
         folds.emplace_back(SummaryObject{{"force_scale", f.force_scale},
                                          {"output_amplitude", array(f.output_amplitude)}});
       }
-      curves.emplace_back(SummaryObject{{"table", k},
+      curves.emplace_back(SummaryObject{{"table", k + 1},
                                         {"omega_rad_s", cv.omega},
                                         {"frequency_hz", cv.omega / (2.0 * std::numbers::pi)},
                                         {"force_scale", array(cv.force_scale)},
@@ -376,7 +376,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     if (tables == 0) return;
     SummaryArray curves;
     for (std::size_t k = 0; k < tables; ++k) {
-      const std::string curve = fmt::format("{}[{}]", name, k);
+      const std::string curve = fmt::format("{}[{}]", name, k + 1);
       const auto before = counters();
       const auto t0 = clock::now();
       Work w;
@@ -393,7 +393,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
       } catch (const NumericalError& e) {
         r.failures.push_back(cannot_start(curve, e).what());
         r.warnings.push_back(r.failures.back());
-        failed.emplace_back(SummaryObject{{"table", k},
+        failed.emplace_back(SummaryObject{{"table", k + 1},
                                           {"force_scale", 0.0},
                                           {"analysis", std::string(name)},
                                           {"reason", r.failures.back()}});
@@ -407,7 +407,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                AmplitudeControlResult a = amplitude_controlled_response(hb, o, c.output_dofs, sub);
                add_continuation(w, a.continuation, o.continuation.max_points);
                r.warnings.insert(r.warnings.end(), a.warnings.begin(), a.warnings.end());
-               SummaryObject out{{"table", k},
+               SummaryObject out{{"table", k + 1},
                                  {"dof", static_cast<std::size_t>(o.dof)},
                                  {"amplitude_m", o.amplitude},
                                  {"omega_rad_s", array(a.omega)},
@@ -424,7 +424,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                PhaseResonanceResult p = phase_resonance(hb, o, c.output_dofs, sub);
                add_continuation(w, p.continuation, o.continuation.max_points);
                r.warnings.insert(r.warnings.end(), p.warnings.begin(), p.warnings.end());
-               SummaryObject out{{"table", k},
+               SummaryObject out{{"table", k + 1},
                                  {"dof", static_cast<std::size_t>(o.dof)},
                                  {"amplitude_m", array(p.amplitude)},
                                  {"omega_rad_s", array(p.omega)},
