@@ -16,6 +16,11 @@ int main(int argc, char** argv) {
       "asperity: friction, tangential stiffness and energy per cycle of clamped joints from "
       "materials, roughness and load (Eriten 2012), with no fitted friction coefficient."};
   app.require_subcommand(1);
+  app.footer(
+      "Examples (a case file for every command) and the JSON Schemas of every --json output: "
+      "examples/ and docs/schema/ of the source, shipped in the Python package as "
+      "asperity.data_path(\"examples\") and asperity.data_path(\"schema\") (print them: "
+      "python3 -c 'import asperity; print(asperity.data_path())').");
   // The version, the git revision of the source and the build type.
   app.set_version_flag("--version", "asperity " + asperity::cli::version_text());
   std::function<int()> action;

@@ -14,6 +14,7 @@ Usage: sweep_cases.py ASPERITY_EXE PYTHON_DIR CASE. Standard library only.
 Exit 0 = pass. Registered in tests/cli/CMakeLists.txt (cli.sweep.<case>).
 """
 import os
+import re
 import shutil
 import stat
 import subprocess
@@ -62,6 +63,26 @@ def case_listed_in_help(exe, pydir, tmp):
     lines = [ln for ln in r.stdout.splitlines() if ln.strip().startswith("sweep ")]
     if len(lines) != 1 or "ASPERITY_PYTHON" not in lines[0]:
         return fail(f"--help lists no `sweep` command naming ASPERITY_PYTHON: {r.stdout}")
+    # The shipped examples and schemas, and how to find them (issue 21 item 4).
+    for want in ('asperity.data_path("examples")', 'asperity.data_path("schema")'):
+        if want not in r.stdout:
+            return fail(f"--help does not name {want}: {r.stdout}")
+    return 0
+
+
+def case_module_help_data_path(exe, pydir, tmp):
+    """The command --help prints finds the examples and schemas of the package."""
+    r = run(exe, ["--help"], {})
+    m = re.search(r"python3 -c '([^']*)'", r.stdout)
+    if not m:
+        return fail(f"--help prints no python3 -c '...' command: {r.stdout}")
+    p = subprocess.run([sys.executable, "-c", m.group(1)], capture_output=True, text=True,
+                       env={**os.environ, **module_env(pydir)}, timeout=120)
+    root = p.stdout.strip()
+    if p.returncode != 0 or not os.path.isfile(
+            os.path.join(root, "examples", "vibration", "jenkins_sdof.toml")) \
+            or not os.path.isfile(os.path.join(root, "schema", "vibration.schema.json")):
+        return fail(f"{m.group(1)} printed {root!r} ({p.stderr}): no examples/ and schema/ there")
     return 0
 
 
