@@ -35,7 +35,9 @@ matrices or MatrixMarket files, joint elements (Jenkins, Iwan4, Coulomb,
 ElasticDryFriction2d, RoughFlat), harmonic balance with its residual and Jacobian,
 nonlinear modes (EPMC), frequency responses and the quasi-static modal estimate.
 :mod:`asperity.fem` holds the finite-element layer (issue 19): stiffness and consistent
-mass of tet10 / hex20 meshes as scipy.sparse matrices.
+mass of tet10 / hex20 meshes as scipy.sparse matrices. ``data_path("examples")`` and
+``data_path("schema")`` locate the example case files and the JSON Schemas shipped with
+the package.
 """
 from __future__ import annotations
 
@@ -99,4 +101,6 @@ def loop_arrays(loop: "FrettingLoop"):  # noqa: F405
     return np.array(loop.delta), np.array(loop.Q), np.array(loop.branch)
 
 
-__all__ += ["mindlin", "thesis_normalization", "loop_arrays", "__version__"]
+from ._data import data_path  # noqa: E402  (the shipped examples and JSON Schemas)
+
+__all__ += ["mindlin", "thesis_normalization", "loop_arrays", "data_path", "__version__"]

@@ -526,7 +526,7 @@ class HarmonicBalance:
         elements = list(elements)
         for k, e in enumerate(elements):
             if not isinstance(e, Element):
-                raise _core.InvalidInput(f"elements[{k}] is a {type(e).__name__}, not an Element")
+                raise _core.InvalidInput(f"elements[{k + 1}] is a {type(e).__name__}, not an Element")
         names = [e.name or f"element {k + 1}" for k, e in enumerate(elements)]
         self.structure = structure
         self.elements = elements
@@ -879,8 +879,9 @@ def run_case(path: str | os.PathLike, *, stability: bool = False) -> Result:
     ``asperity vibration``. Returns a :class:`Result` with ``summary`` (summary.json as a
     dict), ``nonlinear_mode`` and ``quasi_static_mode`` (:class:`Result` of arrays or None),
     ``frequency_response`` (one :class:`Result` per curve, ``table`` its
-    ``[[frequency_response]]`` index), ``force_response``, ``amplitude_control`` and
-    ``phase_resonance`` (one per table of that name that ran, ``table`` its index),
+    ``[[frequency_response]]`` table, counted from 1 as in messages and file names),
+    ``force_response``, ``amplitude_control`` and ``phase_resonance`` (one per table of
+    that name that ran, ``table`` its position, from 1),
     ``backbone_rom`` (one per ``[[backbone_rom]]`` table and force scale, with ``table``,
     ``force_scale`` and the arrays of :meth:`HarmonicBalance.mode_rom`),
     ``complete`` (every continuation reached its end),

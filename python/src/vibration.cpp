@@ -313,14 +313,14 @@ nb::dict case_result(VibrationCase c, bool stability) {
   nb::list curves;
   for (std::size_t k = 0; k < r.frequency_response.size(); ++k) {
     nb::dict cd = curve_dict(r.frequency_response[k], nu);
-    cd["table"] = r.frequency_response_table[k];
+    cd["table"] = r.frequency_response_table[k] + 1;
     curves.append(cd);
   }
   d["frequency_response"] = curves;
   nb::list force_curves;
   for (std::size_t k = 0; k < r.force_response.size(); ++k) {
     nb::dict cd = force_curve_dict(r.force_response[k], nu);
-    cd["table"] = r.force_response_table[k];
+    cd["table"] = r.force_response_table[k] + 1;
     force_curves.append(cd);
   }
   d["force_response"] = force_curves;
@@ -328,7 +328,7 @@ nb::dict case_result(VibrationCase c, bool stability) {
   for (std::size_t k = 0; k < r.amplitude_control.size(); ++k) {
     const AmplitudeControlResult& a = r.amplitude_control[k];
     nb::dict cd;
-    cd["table"] = r.amplitude_control_table[k];
+    cd["table"] = r.amplitude_control_table[k] + 1;
     cd["omega"] = copy_of(a.omega);
     cd["force_scale"] = copy_of(a.force_scale);
     cd["output_amplitude"] = copy_of(a.output_amplitude);
@@ -340,7 +340,7 @@ nb::dict case_result(VibrationCase c, bool stability) {
   for (std::size_t k = 0; k < r.phase_resonance.size(); ++k) {
     const PhaseResonanceResult& p = r.phase_resonance[k];
     nb::dict cd;
-    cd["table"] = r.phase_resonance_table[k];
+    cd["table"] = r.phase_resonance_table[k] + 1;
     cd["amplitude"] = copy_of(p.amplitude);
     cd["omega"] = copy_of(p.omega);
     cd["force_scale"] = copy_of(p.force_scale);

@@ -18,6 +18,10 @@ void add_predict_command(CLI::App& app, std::function<int()>& action);
 void add_analyze_command(CLI::App& app, std::function<int()>& action);
 void add_synthesize_command(CLI::App& app, std::function<int()>& action);
 void add_validate_command(CLI::App& app, std::function<int()>& action);
+void add_sweep_command(CLI::App& app, std::function<int()>& action);
+/// `asperity sweep ARGS...`: runs `python -m asperity.sweep ARGS...` (sweep_command.cpp)
+/// and returns its exit status; 2 when no interpreter has the package.
+int run_sweep(const std::vector<std::string>& args);
 
 }  // namespace asperity::cli
 

@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <iostream>
+#include <string_view>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
@@ -15,6 +16,11 @@ int main(int argc, char** argv) {
       "asperity: friction, tangential stiffness and energy per cycle of clamped joints from "
       "materials, roughness and load (Eriten 2012), with no fitted friction coefficient."};
   app.require_subcommand(1);
+  app.footer(
+      "Examples (a case file for every command) and the JSON Schemas of every --json output: "
+      "examples/ and docs/schema/ of the source, shipped in the Python package as "
+      "asperity.data_path(\"examples\") and asperity.data_path(\"schema\") (print them: "
+      "python3 -c 'import asperity; print(asperity.data_path())').");
   // The version, the git revision of the source and the build type.
   app.set_version_flag("--version", "asperity " + asperity::cli::version_text());
   std::function<int()> action;
@@ -28,6 +34,10 @@ int main(int argc, char** argv) {
   asperity::cli::add_analyze_command(app, action);
   asperity::cli::add_synthesize_command(app, action);
   asperity::cli::add_validate_command(app, action);
+  asperity::cli::add_sweep_command(app, action);
+  // The arguments of `sweep` are the Python module's, forwarded untouched ("--" included).
+  if (argc >= 2 && std::string_view(argv[1]) == "sweep")
+    return asperity::cli::run_sweep({argv + 2, argv + argc});
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -232,7 +232,7 @@ void validate_primitive(const std::string& item, const Cylinder& c) {
 
 void validate_primitive(const std::string& item, const Prism& p) {
   for (std::size_t i = 0; i < p.polygon.size(); ++i) {
-    require_finite_vector(item, fmt::format("polygon[{}]", i).c_str(), p.polygon[i]);
+    require_finite_vector(item, fmt::format("polygon[{}]", i + 1).c_str(), p.polygon[i]);
   }
   require_finite_vector(item, "extrusion", p.extrusion);
   const auto v = open_polygon(p);
@@ -247,7 +247,7 @@ void validate_primitive(const std::string& item, const Prism& p) {
   for (std::size_t i = 0; i < v.size(); ++i) {
     if ((v[i] - v[(i + 1) % v.size()]).norm() <= eps) {
       throw InvalidInput(fmt::format("{}: the polygon does not close: vertices {} and {} coincide",
-                                     item, i, (i + 1) % v.size()));
+                                     item, i + 1, (i + 1) % v.size() + 1));
     }
   }
   if (f.area <= eps * f.diameter) {
@@ -260,7 +260,7 @@ void validate_primitive(const std::string& item, const Prism& p) {
       throw InvalidInput(
           fmt::format("{}: the polygon is not planar: vertex {} is {} m off the "
                       "plane of the others",
-                      item, i, core::format_value(off)));
+                      item, i + 1, core::format_value(off)));
     }
   }
   const std::size_t n = v.size();
@@ -287,7 +287,7 @@ void validate_primitive(const std::string& item, const Prism& p) {
         throw InvalidInput(
             fmt::format("{}: the polygon is self-intersecting: edges {}-{} and "
                         "{}-{} meet",
-                        item, i, (i + 1) % n, j, (j + 1) % n));
+                        item, i + 1, (i + 1) % n + 1, j + 1, (j + 1) % n + 1));
       }
     }
   }
@@ -299,7 +299,7 @@ void validate_primitive(const std::string& item, const Prism& p) {
 }
 
 std::string body_item(const Geometry& g, std::size_t b) {
-  return fmt::format("bodies[{}] \"{}\"", b, core::printable(g.bodies[b].name));
+  return fmt::format("bodies[{}] \"{}\"", b + 1, core::printable(g.bodies[b].name));
 }
 
 // Pairs of bodies whose bounding boxes meet: an upper bound of the refined region, for the
@@ -340,7 +340,7 @@ void Geometry::validate() const {
   std::set<std::string> names;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const auto& body = bodies[b];
-    const auto item = fmt::format("bodies[{}]", b);
+    const auto item = fmt::format("bodies[{}]", b + 1);
     if (body.name.empty()) throw InvalidInput(fmt::format("{}: the name is empty", item));
     if (!names.insert(body.name).second) {
       throw InvalidInput(fmt::format("{} \"{}\": another body has the same name", item,
@@ -355,7 +355,7 @@ void Geometry::validate() const {
       const char* which = list == &body.add ? "add" : "cut";
       for (std::size_t i = 0; i < list->size(); ++i) {
         const auto& prim = (*list)[i];
-        const auto pitem = fmt::format("{}: {}[{}] ({})", named, which, i, kind(prim));
+        const auto pitem = fmt::format("{}: {}[{}] ({})", named, which, i + 1, kind(prim));
         std::visit([&](const auto& q) { validate_primitive(pitem, q); }, prim);
       }
     }
@@ -366,14 +366,14 @@ void Geometry::validate() const {
         throw InvalidInput(
             fmt::format("{}: cut[{}] (box) holds the whole body: nothing of it "
                         "would be left (the body vanishes)",
-                        named, i));
+                        named, i + 1));
       }
       const Box3 meet = box.intersection(cut);
       if ((meet.max() - meet.min()).minCoeff() <= 0.0) {
         throw InvalidInput(
             fmt::format("{}: cut[{}] ({}) misses the body (it does not meet the "
                         "bounding box of the added primitives)",
-                        named, i, kind(body.cut[i])));
+                        named, i + 1, kind(body.cut[i])));
       }
     }
   }
@@ -435,7 +435,7 @@ std::string gmsh_script(const Geometry& g) {
   std::vector<std::string> body_lists;
   for (std::size_t b = 0; b < g.bodies.size(); ++b) {
     const auto& body = g.bodies[b];
-    s += fmt::format("// bodies[{}]\n", b);
+    s += fmt::format("// bodies[{}]\n", b + 1);
     const auto emit = [&](const Primitive& prim, const std::string& var) {
       if (const auto* box = std::get_if<Box>(&prim)) {
         s += fmt::format("{} = newv; Box({}) = {{{}, {}}};\n", var, var, vec(box->corner),
@@ -546,7 +546,7 @@ std::string gmsh_script(const Geometry& g) {
       const double h = c->axis.norm();
       const Vector3d centre = c->base_centre + 0.5 * c->axis;
       const Vector3d half = c->axis / h * (0.5 * h + g.size.hole);
-      s += fmt::format("// hole size around bodies[{}] cut[{}]\n", b, i);
+      s += fmt::format("// hole size around bodies[{}] cut[{}]\n", b + 1, i + 1);
       s += fmt::format("Field[{}] = Cylinder;\n", next);
       s += fmt::format("Field[{0}].VIn = {1}; Field[{0}].VOut = {2}; Field[{0}].Radius = {3};\n",
                        next, num(g.size.hole), num(g.size.global),

@@ -124,7 +124,8 @@ struct Reader {
       toml::table holder;
       holder.insert("p", *(*poly)[i].as_array());
       if (!(*poly)[i].as_array()) fail(where + ".prism", "`polygon` must hold points [x, y, z]", p);
-      prism.polygon.push_back(point(holder, "p", fmt::format("{}.prism.polygon[{}]", where, i)));
+      prism.polygon.push_back(
+          point(holder, "p", fmt::format("{}.prism.polygon[{}]", where, i + 1)));
     }
     prism.extrusion = point(*p, "extrusion", where + ".prism");
     return prism;
@@ -219,7 +220,7 @@ StructureCase read_structure_case(const std::string& path) {
         }
         for (std::size_t k = 0; k < list->size(); ++k) {
           const auto* pt = (*list)[k].as_table();
-          const std::string w = fmt::format("{} \"{}\" {}[{}]", where, body.name, key, k);
+          const std::string w = fmt::format("{} \"{}\" {}[{}]", where, body.name, key, k + 1);
           if (!pt)
             r.fail(w, "must be a table {box = {...}} or {cylinder = ...} or {prism = ...}", list);
           (std::string(key) == "add" ? body.add : body.cut).push_back(r.primitive(*pt, w));

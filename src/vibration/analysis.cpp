@@ -34,7 +34,7 @@ constexpr double kFoldProminence = 1e-2;
 void require_outputs(const HarmonicBalance& hb, const std::vector<Eigen::Index>& outputs) {
   for (std::size_t k = 0; k < outputs.size(); ++k) {
     if (outputs[k] < 0 || outputs[k] >= hb.dofs()) {
-      throw InvalidInput(fmt::format("output_dofs[{}] = {}: DOFs are numbered 0 .. {}", k,
+      throw InvalidInput(fmt::format("output_dofs[{}] = {}: DOFs are numbered 0 .. {}", k + 1,
                                      outputs[k], hb.dofs() - 1));
     }
   }
@@ -217,7 +217,8 @@ void FrequencyResponseOptions::validate(Eigen::Index unknowns) const {
   }
   if (force_scales.empty()) throw InvalidInput("frequency_response.force_scales is empty");
   for (std::size_t k = 0; k < force_scales.size(); ++k) {
-    core::require_positive(fmt::format("frequency_response.force_scales[{}]", k), force_scales[k]);
+    core::require_positive(fmt::format("frequency_response.force_scales[{}]", k + 1),
+                           force_scales[k]);
   }
   core::require_positive("frequency_response.omega.from", omega_from);
   core::require_positive("frequency_response.omega.to", omega_to);

@@ -258,7 +258,7 @@ std::shared_ptr<const Element> masing_table_element(const toml::table& t, const 
         const auto v = plain_number(*a->get(i));
         if (!v) {
           throw InvalidInput(
-              fmt::format("{}.{}[{}]: not a number{}", w, key, i, at_line(*a->get(i))));
+              fmt::format("{}.{}[{}]: not a number{}", w, key, i + 1, at_line(*a->get(i))));
         }
         out->push_back(*v);
       }
@@ -350,7 +350,7 @@ JointBackbone joint_backbone(const std::string& path, const std::string& base_di
 PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Index dofs,
                             const std::optional<JointBackbone>& joint, const std::string& base_dir,
                             const fem::ReducedModel* model) {
-  const std::string w = fmt::format("element[{}]", index);
+  const std::string w = fmt::format("element[{}]", index + 1);
   if (!t.get("type")) {
     throw InvalidInput(fmt::format(
         "{}: needs type = \"rough_flat\" | \"jenkins\" | \"iwan4\" | \"masing_table\" | "
@@ -513,8 +513,8 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
                                    : -1;
       if (col < 0)
         throw InvalidInput(fmt::format(
-            "{}.T.directions[{}]: use \"t1\", \"t2\", \"n\" (opening) or \"-n\" (closure){}", w, k,
-            at_line(*T)));
+            "{}.T.directions[{}]: use \"t1\", \"t2\", \"n\" (opening) or \"-n\" (closure){}", w,
+            k + 1, at_line(*T)));
       pe.T.row(static_cast<Eigen::Index>(k)) =
           col == 3 ? Eigen::RowVectorXd(-model->Q.row(3 * *e_idx + 2))
                    : Eigen::RowVectorXd(model->Q.row(3 * *e_idx + col));
@@ -549,7 +549,7 @@ std::vector<PlacedElement> parse_interface_rough_contact(const toml::table& t, s
                                                          Eigen::Index dofs,
                                                          const fem::ReducedModel* model,
                                                          std::vector<std::string>& warnings) {
-  const std::string w = fmt::format("element[{}]", index);
+  const std::string w = fmt::format("element[{}]", index + 1);
   if (text(t, "type", w, "") != "rough_contact") {
     throw InvalidInput(
         fmt::format("{}.T.interface_element = \"all\" places rough_contact elements only (type = "

@@ -83,7 +83,7 @@ Eigen::MatrixXd matrix(const toml::node& n, const std::string& field, bool allow
       const auto x = plain_number(*a->get(j));
       if (!x || !std::isfinite(*x)) {
         throw InvalidInput(
-            fmt::format("{}[{}] must be a finite number{}", field, j, at_line(*a->get(j))));
+            fmt::format("{}[{}] must be a finite number{}", field, j + 1, at_line(*a->get(j))));
       }
       m(0, static_cast<Eigen::Index>(j)) = *x;
     }
@@ -94,14 +94,14 @@ Eigen::MatrixXd matrix(const toml::node& n, const std::string& field, bool allow
     const auto* row = a->get(i)->as_array();
     if (!row || row->empty()) {
       throw InvalidInput(fmt::format("{}[{}] must be a non-empty array of numbers (a row){}", field,
-                                     i, at_line(*a->get(i))));
+                                     i + 1, at_line(*a->get(i))));
     }
     if (i == 0) cols = row->size();
     if (row->size() != cols) {
       throw InvalidInput(
-          fmt::format("{}: row {} has {} entries, row 0 has {}: every row needs the "
+          fmt::format("{}: row {} has {} entries, row 1 has {}: every row needs the "
                       "same number of columns{}",
-                      field, i, row->size(), cols, at_line(*row)));
+                      field, i + 1, row->size(), cols, at_line(*row)));
     }
   }
   Eigen::MatrixXd m(static_cast<Eigen::Index>(a->size()), static_cast<Eigen::Index>(cols));
@@ -110,7 +110,7 @@ Eigen::MatrixXd matrix(const toml::node& n, const std::string& field, bool allow
     for (std::size_t j = 0; j < cols; ++j) {
       const auto x = plain_number(*row->get(j));
       if (!x || !std::isfinite(*x)) {
-        throw InvalidInput(fmt::format("{}[{}][{}] must be a finite number{}", field, i, j,
+        throw InvalidInput(fmt::format("{}[{}][{}] must be a finite number{}", field, i + 1, j + 1,
                                        at_line(*row->get(j))));
       }
       m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = *x;
@@ -371,8 +371,8 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     for (std::size_t k = 0; k < a->size(); ++k) {
       const auto v = (*a)[k].value<long long>();
       if (!(*a)[k].is_integer() || !v || *v < 0 || *v >= n) {
-        throw InvalidInput(fmt::format("structure.output_dofs[{}]: DOFs are numbered 0 .. {}{}", k,
-                                       n - 1, at_line((*a)[k])));
+        throw InvalidInput(fmt::format("structure.output_dofs[{}]: DOFs are numbered 0 .. {}{}",
+                                       k + 1, n - 1, at_line((*a)[k])));
       }
       c.output_dofs.push_back(static_cast<Eigen::Index>(*v));
     }
@@ -442,8 +442,8 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
         const auto v = (*a)[k].value<long long>();
         if (!(*a)[k].is_integer() || !v || *v < 0 || *v > 1000) {
           throw InvalidInput(
-              fmt::format("harmonic_balance.harmonics[{}] must be a whole number in [0, 1000]{}", k,
-                          at_line((*a)[k])));
+              fmt::format("harmonic_balance.harmonics[{}] must be a whole number in [0, 1000]{}",
+                          k + 1, at_line((*a)[k])));
         }
         c.harmonic_balance.harmonics.push_back(static_cast<int>(*v));
       }
@@ -498,7 +498,7 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     }
     for (std::size_t k = 0; k < arr->size(); ++k) {
       const toml::table& t = *arr->get(k)->as_table();
-      const std::string w = fmt::format("frequency_response[{}]", k);
+      const std::string w = fmt::format("frequency_response[{}]", k + 1);
       check_keys(t, w,
                  {"force_cos", "force_sin", "force_per_omega_cos", "force_per_omega_sin",
                   "force_per_omega2_cos", "force_per_omega2_sin", "force_scales", "omega",
@@ -529,7 +529,7 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
         o.force_scales.clear();
         for (std::size_t j = 0; j < a->size(); ++j) {
           o.force_scales.push_back(
-              finite_number(*a->get(j), fmt::format("{}.force_scales[{}]", w, j)));
+              finite_number(*a->get(j), fmt::format("{}.force_scales[{}]", w, j + 1)));
         }
       }
       const auto [from, to] = range(t, "omega", w, angular_frequency);
@@ -563,7 +563,7 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     }
     for (std::size_t k = 0; k < arr->size(); ++k) {
       const toml::table& t = *arr->get(k)->as_table();
-      const std::string w = fmt::format("force_response[{}]", k);
+      const std::string w = fmt::format("force_response[{}]", k + 1);
       check_keys(
           t, w,
           {"force_cos", "force_sin", "force_per_omega_cos", "force_per_omega_sin",
@@ -611,7 +611,7 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
           fmt::format("{} must be an array of tables: write [[{}]]{}", name, name, at_line(*node)));
     }
     for (std::size_t k = 0; k < arr->size(); ++k) {
-      parse_one(*arr->get(k)->as_table(), fmt::format("{}[{}]", name, k));
+      parse_one(*arr->get(k)->as_table(), fmt::format("{}[{}]", name, k + 1));
     }
   };
   const auto control_force = [&](const toml::table& t, const std::string& w, Eigen::Index& dof) {
@@ -686,7 +686,7 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
       }
       b.force_scales.clear();
       for (std::size_t j = 0; j < a->size(); ++j) {
-        const std::string f = fmt::format("{}.force_scales[{}]", w, j);
+        const std::string f = fmt::format("{}.force_scales[{}]", w, j + 1);
         b.force_scales.push_back(finite_number(*a->get(j), f));
         core::require_positive(f, b.force_scales.back());
       }

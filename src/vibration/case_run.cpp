@@ -239,7 +239,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
         ModeRomCurve rom = nonlinear_mode_rom(hb, *r.nonlinear_mode, scale * b.force, c.output_dofs,
                                               b.subdivisions);
         for (const std::string& m : rom.warnings) {
-          r.warnings.push_back(fmt::format("backbone_rom[{}] at force scale {}: {}", k,
+          r.warnings.push_back(fmt::format("backbone_rom[{}] at force scale {}: {}", k + 1,
                                            core::format_value(scale), m));
         }
         // The largest first-harmonic amplitude of each output and where it lies.
@@ -256,7 +256,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
               {"amplitude", rom.output_amplitude(i, o)}});
         }
         curves.emplace_back(
-            SummaryObject{{"table", k},
+            SummaryObject{{"table", k + 1},
                           {"force_scale", scale},
                           {"omega_rad_s", array(rom.omega)},
                           {"frequency_hz", array(rom.omega / (2.0 * std::numbers::pi))},
@@ -283,8 +283,8 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
         // One curve per call, so that each has its own counters and wall time.
         FrequencyResponseOptions one = all;
         one.force_scales = {scale};
-        const std::string curve =
-            fmt::format("frequency_response[{}] at force scale {}", k, core::format_value(scale));
+        const std::string curve = fmt::format("frequency_response[{}] at force scale {}", k + 1,
+                                              core::format_value(scale));
         const auto before = counters();
         const auto t0 = clock::now();
         std::vector<FrequencyResponseCurve> cs;
@@ -301,8 +301,8 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
           ++done_curves;
           r.failures.push_back(cannot_start(curve, e).what());
           r.warnings.push_back(r.failures.back());
-          failed.emplace_back(
-              SummaryObject{{"table", k}, {"force_scale", scale}, {"reason", r.failures.back()}});
+          failed.emplace_back(SummaryObject{
+              {"table", k + 1}, {"force_scale", scale}, {"reason", r.failures.back()}});
           continue;
         }
         ++done_curves;
@@ -318,7 +318,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
             per_output.emplace_back(array(hm.row(p).transpose()));
           ha.emplace_back(std::move(per_output));
         }
-        SummaryObject o{{"table", k},
+        SummaryObject o{{"table", k + 1},
                         {"force_scale", cv.force_scale},
                         {"omega_rad_s", array(cv.omega)},
                         {"frequency_hz", array(cv.omega / (2.0 * std::numbers::pi))},
@@ -363,7 +363,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     const double nk = static_cast<double>(c.force_responses.size());
     for (std::size_t k = 0; k < c.force_responses.size(); ++k) {
       const ForceResponseOptions& o = c.force_responses[k].options;
-      const std::string curve = fmt::format("force_response[{}]", k);
+      const std::string curve = fmt::format("force_response[{}]", k + 1);
       const auto before = counters();
       const auto t0 = clock::now();
       ForceResponseCurve cv;
@@ -377,7 +377,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
       } catch (const NumericalError& e) {
         r.failures.push_back(cannot_start(curve, e).what());
         r.warnings.push_back(r.failures.back());
-        failed.emplace_back(SummaryObject{{"table", k},
+        failed.emplace_back(SummaryObject{{"table", k + 1},
                                           {"force_scale", o.scale_from},
                                           {"analysis", std::string("force_response")},
                                           {"reason", r.failures.back()}});
@@ -399,7 +399,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
         folds.emplace_back(SummaryObject{{"force_scale", f.force_scale},
                                          {"output_amplitude", array(f.output_amplitude)}});
       }
-      curves.emplace_back(SummaryObject{{"table", k},
+      curves.emplace_back(SummaryObject{{"table", k + 1},
                                         {"omega_rad_s", cv.omega},
                                         {"frequency_hz", cv.omega / (2.0 * std::numbers::pi)},
                                         {"force_scale", array(cv.force_scale)},
@@ -419,7 +419,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     if (tables == 0) return;
     SummaryArray curves;
     for (std::size_t k = 0; k < tables; ++k) {
-      const std::string curve = fmt::format("{}[{}]", name, k);
+      const std::string curve = fmt::format("{}[{}]", name, k + 1);
       const auto before = counters();
       const auto t0 = clock::now();
       Work w;
@@ -436,7 +436,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
       } catch (const NumericalError& e) {
         r.failures.push_back(cannot_start(curve, e).what());
         r.warnings.push_back(r.failures.back());
-        failed.emplace_back(SummaryObject{{"table", k},
+        failed.emplace_back(SummaryObject{{"table", k + 1},
                                           {"force_scale", 0.0},
                                           {"analysis", std::string(name)},
                                           {"reason", r.failures.back()}});
@@ -450,7 +450,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                AmplitudeControlResult a = amplitude_controlled_response(hb, o, c.output_dofs, sub);
                add_continuation(w, a.continuation, o.continuation.max_points);
                r.warnings.insert(r.warnings.end(), a.warnings.begin(), a.warnings.end());
-               SummaryObject out{{"table", k},
+               SummaryObject out{{"table", k + 1},
                                  {"dof", static_cast<std::size_t>(o.dof)},
                                  {"amplitude_m", o.amplitude},
                                  {"omega_rad_s", array(a.omega)},
@@ -467,7 +467,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                PhaseResonanceResult p = phase_resonance(hb, o, c.output_dofs, sub);
                add_continuation(w, p.continuation, o.continuation.max_points);
                r.warnings.insert(r.warnings.end(), p.warnings.begin(), p.warnings.end());
-               SummaryObject out{{"table", k},
+               SummaryObject out{{"table", k + 1},
                                  {"dof", static_cast<std::size_t>(o.dof)},
                                  {"amplitude_m", array(p.amplitude)},
                                  {"omega_rad_s", array(p.omega)},

@@ -58,7 +58,7 @@ ForceResponseCurve force_response(const HarmonicBalance& hb, const ForceResponse
   opt.validate(hb.unknowns());
   for (std::size_t k = 0; k < outputs.size(); ++k) {
     if (outputs[k] < 0 || outputs[k] >= hb.dofs()) {
-      throw InvalidInput(fmt::format("output_dofs[{}] = {}: DOFs are numbered 0 .. {}", k,
+      throw InvalidInput(fmt::format("output_dofs[{}] = {}: DOFs are numbered 0 .. {}", k + 1,
                                      outputs[k], hb.dofs() - 1));
     }
   }

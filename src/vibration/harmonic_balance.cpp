@@ -19,8 +19,8 @@ void HarmonicBalanceOptions::validate() const {
   for (std::size_t k = 0; k < harmonics.size(); ++k) {
     if (harmonics[k] < 0 || harmonics[k] > 4096) {
       throw InvalidInput(
-          fmt::format("harmonic_balance.harmonics[{}] = {}: harmonics are integers in [0, 4096]", k,
-                      harmonics[k]));
+          fmt::format("harmonic_balance.harmonics[{}] = {}: harmonics are integers in [0, 4096]",
+                      k + 1, harmonics[k]));
     }
     if (k > 0 && harmonics[k] <= harmonics[k - 1]) {
       throw InvalidInput(

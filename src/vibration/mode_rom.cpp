@@ -29,7 +29,7 @@ ModeRomCurve nonlinear_mode_rom(const HarmonicBalance& hb, const NonlinearModeRe
   }
   for (std::size_t k = 0; k < outputs.size(); ++k) {
     if (outputs[k] < 0 || outputs[k] >= hb.dofs()) {
-      throw InvalidInput(fmt::format("output_dofs[{}] = {}: DOFs are numbered 0 .. {}", k,
+      throw InvalidInput(fmt::format("output_dofs[{}] = {}: DOFs are numbered 0 .. {}", k + 1,
                                      outputs[k], hb.dofs() - 1));
     }
   }

@@ -38,7 +38,7 @@ void require_dof(const HarmonicBalance& hb, Eigen::Index dof, const char* what) 
 void require_outputs(const HarmonicBalance& hb, const std::vector<Eigen::Index>& outputs) {
   for (std::size_t k = 0; k < outputs.size(); ++k) {
     if (outputs[k] < 0 || outputs[k] >= hb.dofs()) {
-      throw InvalidInput(fmt::format("output_dofs[{}] = {}: DOFs are numbered 0 .. {}", k,
+      throw InvalidInput(fmt::format("output_dofs[{}] = {}: DOFs are numbered 0 .. {}", k + 1,
                                      outputs[k], hb.dofs() - 1));
     }
   }

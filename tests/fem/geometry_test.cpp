@@ -49,30 +49,30 @@ TEST(FemGeometry, ValidateNamesTheItem) {
   EXPECT_EQ(validate_msg(two_boxes()), "");
   auto g = two_boxes();
   g.bodies[1].name = "left";
-  EXPECT_CONTAINS(validate_msg(g), "bodies[1] \"left\": another body has the same name");
+  EXPECT_CONTAINS(validate_msg(g), "bodies[2] \"left\": another body has the same name");
   g = two_boxes();
   g.bodies[0].name = "";
-  EXPECT_CONTAINS(validate_msg(g), "bodies[0]: the name is empty");
+  EXPECT_CONTAINS(validate_msg(g), "bodies[1]: the name is empty");
   g = two_boxes();
   g.size.interface = 0;
   EXPECT_CONTAINS(validate_msg(g), "size.interface = 0 is not allowed");
   g = two_boxes();
   g.bodies[0].add.clear();
-  EXPECT_CONTAINS(validate_msg(g), "bodies[0] \"left\": nothing to add");
+  EXPECT_CONTAINS(validate_msg(g), "bodies[1] \"left\": nothing to add");
   g = two_boxes();
   std::get<fem::Box>(g.bodies[1].add[0]).size.y() = 0;
   EXPECT_CONTAINS(validate_msg(g),
-                  "bodies[1] \"right\": add[0] (box): size = (0.02, 0, 0.01) m is degenerate");
+                  "bodies[2] \"right\": add[1] (box): size = (0.02, 0, 0.01) m is degenerate");
   g = two_boxes();
   g.bodies[0].cut.push_back(fem::Cylinder{Vector3d(0.01, 0.005, 0), Vector3d(0, 0, 0.01), 0.0});
   EXPECT_CONTAINS(validate_msg(g),
-                  "bodies[0] \"left\": cut[0] (cylinder): radius = 0 is not allowed");
+                  "bodies[1] \"left\": cut[1] (cylinder): radius = 0 is not allowed");
   g = two_boxes();
   g.bodies[0].cut.push_back(fem::Cylinder{Vector3d(0.1, 0.005, 0), Vector3d(0, 0, 0.01), 0.002});
-  EXPECT_CONTAINS(validate_msg(g), "bodies[0] \"left\": cut[0] (cylinder) misses the body");
+  EXPECT_CONTAINS(validate_msg(g), "bodies[1] \"left\": cut[1] (cylinder) misses the body");
   g = two_boxes();
   g.bodies[0].cut.push_back(fem::Box{Vector3d(-1, -1, -1), Vector3d(2, 2, 2)});
-  EXPECT_CONTAINS(validate_msg(g), "bodies[0] \"left\": cut[0] (box) holds the whole body");
+  EXPECT_CONTAINS(validate_msg(g), "bodies[1] \"left\": cut[1] (box) holds the whole body");
   g = two_boxes();
   g.size.global = 1e-5;
   EXPECT_CONTAINS(validate_msg(g), "more than 10 million");
@@ -95,14 +95,14 @@ TEST(FemGeometry, PrismPolygonsAreChecked) {
   EXPECT_EQ(with_prism(ell, up), "");
   EXPECT_CONTAINS(
       with_prism({{0, 0, 0}, {0.01, 0, 0}}, up),
-      "bodies[0] \"p\": add[0] (prism): the polygon does not close: 2 distinct vertices");
+      "bodies[1] \"p\": add[1] (prism): the polygon does not close: 2 distinct vertices");
   EXPECT_CONTAINS(with_prism({{0, 0, 0}, {0.01, 0, 0}, {0.02, 0, 0}}, up),
                   "the polygon does not close: its area is zero");
   EXPECT_CONTAINS(with_prism({{0, 0, 0}, {0.01, 0, 0}, {0.01, 0.01, 0.001}, {0, 0.01, 0}}, up),
                   "the polygon is not planar");
-  // An uneven bow tie (net area not zero): edges 0-1 and 2-3 cross.
+  // An uneven bow tie (net area not zero): edges 1-2 and 3-4 cross (vertices counted from 1).
   EXPECT_CONTAINS(with_prism({{0, 0, 0}, {0.02, 0.01, 0}, {0.02, 0, 0}, {0, 0.005, 0}}, up),
-                  "add[0] (prism): the polygon is self-intersecting: edges 0-1 and 2-3 meet");
+                  "add[1] (prism): the polygon is self-intersecting: edges 1-2 and 3-4 meet");
   EXPECT_CONTAINS(with_prism({{0, 0, 0}, {0.01, 0, 0}, {0, 0.01, 0}}, Vector3d(0.01, 0, 0)),
                   "the extrusion is parallel to the polygon's plane");
 }
@@ -322,7 +322,7 @@ TEST(FemGeometry, OverlappingBodiesAreRefused) {
   auto g = two_boxes();
   std::get<fem::Box>(g.bodies[1].add[0]).corner.x() = 0.015;  // 5 mm into "left"
   const auto msg = invalid_input_message([&] { (void)fem::mesh_geometry(g); });
-  EXPECT_CONTAINS(msg, "bodies[0] \"left\" and bodies[1] \"right\" overlap in volume");
+  EXPECT_CONTAINS(msg, "bodies[1] \"left\" and bodies[2] \"right\" overlap in volume");
 }
 
 TEST(FemGeometry, VanishedBodyIsRefused) {
@@ -332,7 +332,7 @@ TEST(FemGeometry, VanishedBodyIsRefused) {
   g.bodies[1].cut.push_back(
       fem::Cylinder{Vector3d(0.03, 0.005, -0.01), Vector3d(0, 0, 0.03), 0.02});
   const auto msg = invalid_input_message([&] { (void)fem::mesh_geometry(g); });
-  EXPECT_CONTAINS(msg, "bodies[1] \"right\" vanished");
+  EXPECT_CONTAINS(msg, "bodies[2] \"right\" vanished");
 }
 
 TEST(FemGeometry, MissingOrFailingGmsh) {

@@ -673,7 +673,7 @@ def test_case_text_runs_the_same_analyses_as_the_python_api():
     (c,) = mine.frequency_response(mine.force(cos={1: [0.0, 0.2]}), omega=(0.8, 1.6),
                                    output_dofs=[1])
     (rc,) = r.frequency_response
-    assert rc.table == 0
+    assert rc.table == 1  # tables counted from 1, as in messages and file names
     np.testing.assert_array_equal(rc.omega, c.omega)
     np.testing.assert_array_equal(rc.output_amplitude, c.output_amplitude)
     q = mine.quasi_static_mode(1, (0.1, 1.0), 12)
@@ -719,7 +719,7 @@ def test_unilateral_spring_case_matches_python_and_refuses_bad_keys():
     assert m.omega[-1] > w0 * (1 + 1e-3)
     for bad, key in (('gap = "50 mm"', "gap = -0.1"), ('gap = "50 mm"', 'gap = 0.1\nN0 = 1.0'),
                      ('k = "6.0 N/m"', "k = 0.0"), ('k = "6.0 N/m"', "")):
-        with pytest.raises(ValueError, match="unilateral_spring|element\\[0\\]"):
+        with pytest.raises(ValueError, match="unilateral_spring|element\\[1\\]"):
             vib.run_case_text(UNILATERAL_CASE.replace(bad, key))
     with pytest.raises(ValueError, match="unilateral_spring.gap"):
         vib.UnilateralSpring(1.0, gap=-1.0)
@@ -824,7 +824,7 @@ force_scale = { from = 0.0, to = 1.5 }
     rc = vib.run_case_text(case)
     assert rc.complete
     (fc,) = rc.force_response
-    assert fc.table == 0
+    assert fc.table == 1
     np.testing.assert_array_equal(fc.force_scale, r.force_scale)
     np.testing.assert_array_equal(fc.output_amplitude, r.output_amplitude)
     assert [f["force_scale"] for f in rc.summary["force_response"][0]["folds"]] == \
@@ -873,12 +873,12 @@ omega = 1.6
 force_scale = { from = 1.4, to = 1.5 }
 continuation = { max_iterations = 1, target_iterations = 1 }
 """
-    with pytest.warns(RuntimeWarning, match="force_response\\[1\\]"):
+    with pytest.warns(RuntimeWarning, match="force_response\\[2\\]"):
         r = vib.run_case_text(text)
     assert not r.complete
-    assert [c.table for c in r.force_response] == [0]
+    assert [c.table for c in r.force_response] == [1]
     (f,) = r.summary["failed"]
-    assert f["analysis"] == "force_response" and f["table"] == 1 and f["force_scale"] == 1.4
+    assert f["analysis"] == "force_response" and f["table"] == 2 and f["force_scale"] == 1.4
     assert "could not start" in r.stop_reason and "force_scale.from" in r.remedy
 
 
@@ -899,7 +899,7 @@ def test_response_controlled_case_file_matches_python_and_refuses_bad_keys():
     assert r.summary["phase_resonance"][0]["amplitude_m"] == list(p.amplitude)
     text = path.read_text()
     for bad, good, key in (("dof = 0\nlog10", "log10", "needs dof"),
-                           ('amplitude = "1 m"', 'amplitude = "-1 m"', "amplitude_control\\[0\\].amplitude"),
+                           ('amplitude = "1 m"', 'amplitude = "-1 m"', "amplitude_control\\[1\\].amplitude"),
                            ("dof = 0\nlog10", "dof = 3\nlog10", "dof = 3"),
                            ("dof = 0\nlog10", "dof = 0\nmodes = 1\nlog10", "unknown key")):
         with pytest.raises(ValueError, match=key):

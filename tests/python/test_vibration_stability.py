@@ -81,5 +81,5 @@ def test_api_switch_and_plot(tmp_path):
 
 def test_bad_stability_key_is_refused():
     with pytest.raises(asperity.InvalidInput,
-                       match=r"frequency_response\[0\]\.stability must be true or false"):
+                       match=r"frequency_response\[1\]\.stability must be true or false"):
         vib.run_case_text(CASE + "stability = 1\n")

@@ -5,9 +5,9 @@
 // it gives the curves and the summary that summary.json holds; the CLI and Python share
 // this code, so both report the same numbers under the same names.
 //
-// Case file (SI throughout; every value that has a dimension may instead be a quantity
-// string with units, "2.5e7 N/m", see core/units.hpp; unknown keys are errors naming the
-// key and its line):
+// Case file (documented key by key in docs/vibration_cases.md; SI throughout; every value that has
+// a dimension may instead be a quantity string with units, "2.5e7 N/m", see core/units.hpp; unknown
+// keys are errors naming the key and its line):
 //
 //   [structure]
 //   mass = [[1.0]]              # or mass_file = "M.mtx" (MatrixMarket, relative to the

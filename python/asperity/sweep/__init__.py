@@ -11,7 +11,7 @@ with ``summary.csv``, ``sensitivity.csv``, ``failures.csv`` and plots
 (:mod:`asperity.sweep.stats`). Command: ``python -m asperity.sweep --help``.
 
 >>> from asperity import sweep
->>> s = sweep.load("examples/sweeps/steel420_nut_factor.toml")        # doctest: +SKIP
+>>> s = sweep.load("examples/sweeps/steel420_bolt_load.toml")        # doctest: +SKIP
 >>> info = sweep.run(s, "out/sweep")                                  # doctest: +SKIP
 >>> ds = sweep.open_results("out/sweep")                              # doctest: +SKIP
 """

@@ -1,4 +1,5 @@
-"""python -m asperity.sweep: run a sweep (see --help)."""
+"""python -m asperity.sweep (or `asperity sweep`, the C++ command that runs this module):
+run a sweep (see --help)."""
 from __future__ import annotations
 
 import argparse
@@ -9,8 +10,8 @@ import tomllib
 
 EPILOG = """\
 examples:
-  python -m asperity.sweep examples/sweeps/steel420_nut_factor.toml --out out/sweep
-  python -m asperity.sweep examples/joints/steel420_two_bolts.toml \\
+  {prog} examples/sweeps/steel420_bolt_load.toml --out out/sweep
+  {prog} examples/joints/steel420_two_bolts.toml \\
       --vary 'load.bolts.nut_factor ~ uniform(0.158, 0.267)' \\
       --vary 'joint.half[*].material.H ~ normal(5.8 GPa, 5 %)' \\
       --samples 1000 --seed 1 --method sobol --out out/sweep --scheduler tcp://host:8786
@@ -32,18 +33,20 @@ class _Parser(argparse.ArgumentParser):
 _SCHEDULER = re.compile(r"^(tcp|tls|ucx|ws|wss)://[^:/\s]+:\d+/?$|^inproc://\S+$")
 
 
-def main(argv=None) -> int:
+def main(argv=None, prog: str = "python -m asperity.sweep") -> int:
+    """Runs the command with the arguments `argv` (default: sys.argv[1:]); `prog` names it
+    in the usage and help (`asperity sweep` when the C++ command runs it)."""
     try:
-        return _main(argv)
+        return _main(argv, prog)
     except KeyboardInterrupt:
         print("asperity sweep: interrupted (SIGINT); the output directory is left as it was",
               file=sys.stderr)
         return 130
 
 
-def _main(argv=None) -> int:
+def _main(argv, prog) -> int:
     ap = _Parser(
-        prog="python -m asperity.sweep", epilog=EPILOG,
+        prog=prog, epilog=EPILOG.format(prog=prog),
         formatter_class=argparse.RawDescriptionHelpFormatter,
         description="Sweeps and Monte Carlo of asperity cases on Dask: a sweep file, or a "
         "case file with --vary.")
