@@ -4,6 +4,7 @@ from __future__ import annotations
 import argparse
 import json
 import re
+import signal
 import sys
 import tomllib
 
@@ -32,13 +33,32 @@ class _Parser(argparse.ArgumentParser):
 _SCHEDULER = re.compile(r"^(tcp|tls|ucx|ws|wss)://[^:/\s]+:\d+/?$|^inproc://\S+$")
 
 
+class _Terminated(BaseException):
+    """SIGTERM, raised where the process is so that the partial output is removed."""
+
+
+def _on_sigterm(signum, frame):
+    raise _Terminated()
+
+
 def main(argv=None) -> int:
+    try:
+        previous = signal.signal(signal.SIGTERM, _on_sigterm)
+    except ValueError:  # not the main thread: SIGTERM keeps its handler
+        previous = None
     try:
         return _main(argv)
     except KeyboardInterrupt:
         print("asperity sweep: interrupted (SIGINT); the output directory is left as it was",
               file=sys.stderr)
         return 130
+    except _Terminated:
+        print("asperity sweep: terminated (SIGTERM); the output directory is left as it was",
+              file=sys.stderr)
+        return 143
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
 
 
 def _main(argv=None) -> int:
@@ -61,6 +81,8 @@ def _main(argv=None) -> int:
                     "(default: DASK_SCHEDULER_ADDRESS, else a LocalCluster)")
     ap.add_argument("--workers", type=int, help="LocalCluster workers (default: one per core)")
     ap.add_argument("--threads-per-worker", type=int, default=1)
+    ap.add_argument("--worker-timeout", type=float, default=60.0, metavar="SECONDS",
+                    help="give up when no Dask worker is connected for this long (default 60)")
     ap.add_argument("--serial", action="store_true", help="no Dask: run in this process")
     ap.add_argument("--batch", type=int, help="samples per task (default: automatic)")
     ap.add_argument("--block", type=int, default=1024, help="samples per file part")
@@ -71,7 +93,7 @@ def _main(argv=None) -> int:
     a = ap.parse_args(argv)
 
     from . import spec
-    from .engine import run
+    from .engine import ClusterError, OutputError, run
     from .sweepfile import load
 
     try:
@@ -109,10 +131,13 @@ def _main(argv=None) -> int:
         info = run(s, a.out, scheduler=a.scheduler, workers=a.workers,
                    threads_per_worker=a.threads_per_worker, serial=a.serial, batch=a.batch,
                    block=a.block, formats=formats,
-                   plots=not a.no_plots, progress=a.progress)
+                   plots=not a.no_plots, progress=a.progress, worker_timeout=a.worker_timeout)
     except spec.SweepError as e:
         print(f"asperity sweep: error: {e}", file=sys.stderr)
         return 2
+    except (OutputError, ClusterError) as e:
+        print(f"asperity sweep: error: {e}", file=sys.stderr)
+        return 1
     except Exception as e:  # noqa: BLE001
         from .. import _core
 
