@@ -457,7 +457,8 @@ def test_full_disk_names_the_file_in_one_line(tmp_path, capsys, monkeypatch):
                                 "0.267)", "--samples", "2", "--serial", "--no-plots", "--out",
                                 str(tmp_path / "out"))
     assert code == 1, err
-    assert len(err.splitlines()) == 1 and err.startswith("asperity sweep: error: cannot write "), err
+    assert len(err.splitlines()) == 1, err
+    assert err.startswith("asperity sweep: error: cannot write "), err
     assert "part-00000.nc" in err and "No space left on device" in err, err
     assert not (tmp_path / "out").exists() and not list(tmp_path.glob(".out.partial-*"))
 

@@ -239,28 +239,7 @@ class VibrationRunner:
             out["response_peak_amplitude"] = np.asarray(peak)
             out["response_peak_frequency_hz"] = np.asarray(at)
             out["response_force_amplitude"] = np.asarray(
-                self.force_amplitudes(text, curves), dtype=float)
-        return out
-
-    @staticmethod
-    def force_amplitudes(text: str, curves) -> list:
-        """Each curve's forcing amplitude [N]: the Euclidean norm of its table's harmonic
-        force vector (force_cos and force_sin, every harmonic and DOF) times the curve's
-        force scale; for one forced DOF and one harmonic, the force amplitude itself."""
-        try:
-            tables = tomllib.loads(text).get("frequency_response", [])
-        except tomllib.TOMLDecodeError:
-            tables = []
-        out = []
-        for c in curves:
-            t = tables[c["table"]] if 0 <= c.get("table", -1) < len(tables) else {}
-            f = [x for key in ("force_cos", "force_sin") for row in t.get(key, [])
-                 for x in (row if isinstance(row, list) else [row])]
-            try:
-                norm = math.sqrt(sum(float(x) ** 2 for x in f)) if f else math.nan
-            except (TypeError, ValueError):
-                norm = math.nan
-            out.append(norm * float(c["force_scale"]))
+                [c.get("force_amplitude", math.nan) for c in curves], dtype=float)
         return out
 
     def dims(self, name: str) -> tuple:

@@ -268,9 +268,12 @@ def plot_all(out_dir, sweep, schema, parts, ok, inputs):
             if nl > 1:
                 ax.legend(fontsize=8)
         if constant:
-            fig.suptitle("constant over the samples (no histogram): " + ", ".join(constant[:6])
-                         + (f" and {len(constant) - 6} more" if len(constant) > 6 else ""),
-                         fontsize=8)
+            import textwrap
+
+            fig.suptitle(textwrap.fill(
+                "constant over the samples (no histogram): " + ", ".join(constant[:8])
+                + (f" and {len(constant) - 8} more (summary.csv)" if len(constant) > 8
+                   else ""), 90), fontsize=8)
         fig.tight_layout()
         _save(fig, out_dir, "histograms.png")
         plt.close(fig)
