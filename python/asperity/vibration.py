@@ -761,7 +761,8 @@ def run_case(path: str | os.PathLike, *, stability: bool = False) -> Result:
     dict), ``nonlinear_mode`` and ``quasi_static_mode`` (:class:`Result` of arrays or None),
     ``frequency_response`` (one :class:`Result` per curve, ``table`` its
     ``[[frequency_response]]`` index, ``force_amplitude`` its forcing amplitude [N]: the
-    norm of the table's force vector times the force scale), ``force_response``, ``amplitude_control`` and
+    norm of the table's force vector times the force scale), ``force_response``,
+    ``amplitude_control`` and
     ``phase_resonance`` (one per table of that name that ran, ``table`` its index),
     ``complete`` (every continuation reached its end),
     ``stop_reason``, ``remedy`` (what helps when it did not), ``failures`` (the curves that
@@ -821,7 +822,8 @@ def force_label(curve: Mapping, force=None) -> str:
     ``force``, the excitation at scale 1); ``force x SCALE`` when neither is known."""
     amp = curve.get("force_amplitude") if hasattr(curve, "get") else None
     if amp is None and force is not None:
-        amp = float(curve["force_scale"]) * float(np.linalg.norm(np.asarray(force, dtype=float)))
+        norm = float(np.linalg.norm(np.asarray(force, dtype=float)))
+        amp = float(curve["force_scale"]) * norm
     if amp is None or not np.isfinite(amp) or amp <= 0:
         return f"force x {float(curve['force_scale']):g}"
     return f"F = {amp:.4g} N"

@@ -33,12 +33,16 @@ class _Parser(argparse.ArgumentParser):
 _SCHEDULER = re.compile(r"^(tcp|tls|ucx|ws|wss)://[^:/\s]+:\d+/?$|^inproc://\S+$")
 
 
-class _Terminated(BaseException):
-    """SIGTERM, raised where the process is so that the partial output is removed."""
-
-
 def _on_sigterm(signum, frame):
-    raise _Terminated()
+    from . import engine
+
+    engine.request_termination()
+
+
+def _terminated():
+    from .engine import Terminated
+
+    return Terminated
 
 
 def main(argv=None) -> int:
@@ -52,7 +56,7 @@ def main(argv=None) -> int:
         print("asperity sweep: interrupted (SIGINT); the output directory is left as it was",
               file=sys.stderr)
         return 130
-    except _Terminated:
+    except _terminated():
         print("asperity sweep: terminated (SIGTERM); the output directory is left as it was",
               file=sys.stderr)
         return 143

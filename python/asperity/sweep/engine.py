@@ -73,6 +73,27 @@ def run_batch(kind: str, base_dir: str, case: dict, items: list,
 
 # --------------------------------------------------------------------------- output
 
+class Terminated(BaseException):
+    """SIGTERM (python -m asperity.sweep): the run stops and removes its partial output."""
+
+
+_termination = {"requested": False, "in_loop": False}
+
+
+def request_termination() -> None:
+    """The SIGTERM handler's action. Outside the sample loop it raises at once; inside,
+    the loop raises after the current batch (a signal raised anywhere could land in a
+    finalizer, where Python prints the exception and drops it)."""
+    _termination["requested"] = True
+    if not _termination["in_loop"]:
+        raise Terminated()
+
+
+def _check_termination() -> None:
+    if _termination["requested"]:
+        raise Terminated()
+
+
 # Seconds between checks of the cluster while no batch finishes.
 HEARTBEAT_S = 1.0
 
@@ -551,6 +572,7 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
 
         def write_ready():
             nonlocal next_write, count
+            _check_termination()
             while next_write in done:
                 res = done.pop(next_write)
                 inputs = pending.pop(next_write)
@@ -562,6 +584,7 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
             if on_progress:
                 on_progress(count, sweep.size)
 
+        _termination["in_loop"] = True
         if serial:
             for j in range(n_batches):
                 inputs, items = make(j)
@@ -595,6 +618,7 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
                                     return_when="FIRST_COMPLETED").done
                 except TimeoutError:
                     finished = set()
+                _check_termination()
                 if not finished:
                     # Heartbeat: tasks wait for a worker silently when every worker is
                     # gone; say so after worker_timeout seconds instead of waiting forever.
@@ -627,6 +651,8 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
                     f.release()
                 write_ready()
                 submit_more()
+        _termination["in_loop"] = False
+        _check_termination()
         writer.close()
         bar.close()
         elapsed = time.monotonic() - t0
@@ -660,9 +686,11 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
             finish_out_dir(tmp, out)
         return info
     except BaseException:
+        _termination["in_loop"] = False
         shutil.rmtree(tmp, ignore_errors=True)
         raise
     finally:
+        _termination["in_loop"] = False
         if own_client:
             cluster = client.cluster
             client.close()

@@ -173,6 +173,21 @@ def _bands(ax, x, y, bins=24, color="#1f4e9a", label=None):
     ax.plot(xc, qs[:, 2], color=color, label=label or "median")
 
 
+def _load_label(schema, i: int) -> str:
+    """``load 2 (331 N)``: the load case by number and its preload in the unvaried case."""
+    values, attrs = schema.coords.get("load", (None, {}))
+    if values is not None and attrs.get("units") == "N" and i < len(values):
+        return f"load {i + 1} ({values[i]:.0f} N)"
+    return f"load {i + 1}"
+
+
+def _amplitude_label(schema, j: int) -> str:
+    values, attrs = schema.coords.get("amplitude", (None, {}))
+    if values is not None and attrs.get("units") == "m" and j < len(values):
+        return f"{values[j] * 1e6:.3g} um"
+    return f"amplitude {j + 1}"
+
+
 def _save(fig, out_dir, name):
     from .engine import writing
 
@@ -218,7 +233,7 @@ def plot_all(out_dir, sweep, schema, parts, ok, inputs):
         colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
         for i in range(E.shape[1]):
             c = colors[i % len(colors)]
-            lab = f"load {i + 1} (P ~ {np.nanmedian(P[:, i]):.0f} N)"
+            lab = f"{_load_label(schema, i)}, median P {np.nanmedian(P[:, i]):.0f} N"
             j = np.flatnonzero(~imposed)  # joint amplitudes: a band over amplitude
             if j.size:
                 q = np.nanquantile(E[:, i][:, j], QUANTILES, axis=0)
@@ -261,7 +276,7 @@ def plot_all(out_dir, sweep, schema, parts, ok, inputs):
                 yy = y[:, i][np.isfinite(y[:, i])]
                 if yy.size:
                     ax.hist(yy * (1e-6 if k == "stiffness" else 1), bins=40, alpha=0.6,
-                            label=f"load {i + 1}" if nl > 1 else None)
+                            label=_load_label(schema, i) if nl > 1 else None)
             ax.set_xlabel(k + (" [N/um]" if k == "stiffness" else _units(schema, k)))
             ax.ticklabel_format(axis="x", useOffset=False)
             ax.set_ylabel("samples")
@@ -291,8 +306,8 @@ def plot_all(out_dir, sweep, schema, parts, ok, inputs):
                 continue
             na = schema.sizes.get("amplitude", 1)
             lab = k if y.shape[1] == 1 else (
-                f"{k} load {i // na + 1}, amplitude {na}" if k == "energy"
-                else f"{k} load {i + 1}")
+                f"{k}, {_load_label(schema, i // na)}, {_amplitude_label(schema, na - 1)}"
+                if k == "energy" else f"{k}, {_load_label(schema, i)}")
             labels.append(lab)
             rows.append([spearman(x[ok], y[ok, i]) for x in inputs.values()])
     if rows:
