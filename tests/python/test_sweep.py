@@ -579,3 +579,23 @@ def test_results_carry_cf_attributes_and_value_coordinates(tmp_path):
     np.testing.assert_allclose(ds["amplitude"].values,
                                np.array([0.05, 0.1, 0.25, 0.5, 1, 2, 4]) * 1e-6, rtol=1e-12)
     assert ds["amplitude"].attrs["units"] == "m"
+
+
+def test_output_of_an_earlier_sweep_without_a_file_list_is_replaced(tmp_path):
+    # The marker of sweeps before issue 21 lists no files; their output stays replaceable,
+    # while a hand-made (empty) marker does not make a directory asperity's.
+    from asperity.sweep.engine import MARKER
+
+    old = tmp_path / "old"
+    (old / "samples").mkdir(parents=True)
+    (old / "samples" / "part-00000.nc").write_text("x")
+    (old / MARKER).write_text("written by asperity sweep; replaced as a whole by the next run\n")
+    s = spec.build(CASE, {"load.bolts.nut_factor": [0.2]})
+    sweep.run(s, str(old), serial=True, plots=False)
+    assert "files:" in (old / MARKER).read_text()
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / MARKER).write_text("")
+    (mine / "notes.txt").write_text("keep")
+    with pytest.raises(sweep.SweepError, match="notes.txt"):
+        sweep.run(s, str(mine), serial=True, plots=False)

@@ -165,6 +165,11 @@ def _foreign_entries(out: str) -> list:
     try:
         with open(os.path.join(out, MARKER)) as f:
             lines = f.read().splitlines()
+        if MARKER_LIST_HEADER not in lines and lines[:1] == [
+                "written by asperity sweep; replaced as a whole by the next run"]:
+            # A marker of a sweep before the list (issue 21): its directory was replaced
+            # as a whole, so everything in it is taken as asperity's.
+            return []
         if MARKER_LIST_HEADER in lines:
             listed = {x for x in lines[lines.index(MARKER_LIST_HEADER) + 1:] if x}
     except (OSError, UnicodeDecodeError):
