@@ -358,10 +358,11 @@ std::string text_summary(const VibrationCase& c, const VibrationResult& r) {
       }
     }
     out += fmt::format(
-        "frequency response {} (force scale {:.4g}): {} points, peak amplitude of DOF {} {:.6g} m "
-        "at {:.6g} Hz, {} fold(s)\n",
-        k + 1, cv.force_scale, cv.omega.size(), c.output_dofs[0], peak,
-        peak_omega / (2.0 * std::numbers::pi), cv.folds.size());
+        "frequency response {} ({}, force scale {:.4g}): {} points, peak amplitude of DOF {} "
+        "{:.6g} m at {:.6g} Hz, {} fold(s)\n",
+        k + 1, force_label(c, r.frequency_response_table[k], cv.force_scale), cv.force_scale,
+        cv.omega.size(), c.output_dofs[0], peak, peak_omega / (2.0 * std::numbers::pi),
+        cv.folds.size());
     if (!cv.stability.empty()) {
       const auto unstable = std::count_if(cv.stability.begin(), cv.stability.end(),
                                           [](const PeriodicStability& p) { return !p.stable; });
