@@ -432,6 +432,13 @@ def test_sweep_sigint_prints_no_traceback(tmp_path):
 
 
 # Issue 21, item 8: the sweep's output and input rules (as the C++ commands').
+def _one_cheap_sample():
+    """One sample of the case cut to one load case and one amplitude (fast)."""
+    return spec.build(CASE, {"load.bolts.nut_factor": [0.2]},
+                      set_={"load.bolts.total_torques": ["2.7 lbf*in"],
+                            "excitation.amplitudes": ["1 um"]})
+
+
 def _cli_in_process(capsys, *args):
     from asperity.sweep.__main__ import main
 
@@ -465,51 +472,44 @@ def test_full_disk_names_the_file_in_one_line(tmp_path, capsys, monkeypatch):
 
 def test_every_worker_gone_is_named_not_waited_on(tmp_path, dask_cluster):
     address, workers = dask_cluster
-    out = tmp_path / "gone"
-    cmd = [sys.executable, "-m", "asperity.sweep", CASE, "--samples", "64", "--scheduler",
-           address, "--batch", "2", "--block", "8", "--no-plots", "--worker-timeout", "2",
-           "--out", str(out), "--vary", "load.bolts.nut_factor ~ uniform(0.158, 0.267)"]
-    run = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                           env=ENV)
-    try:
-        deadline = time.monotonic() + 90
-        while time.monotonic() < deadline and run.poll() is None:
-            if list(tmp_path.glob(".gone.partial-*/samples/part-*.nc")):
-                break
-            time.sleep(0.05)
-        for w in workers:  # every worker gone mid-run
-            w.send_signal(signal.SIGKILL)
-            w.wait(timeout=15)
-        _, err = run.communicate(timeout=60)  # not forever: the 2 s worker timeout
-    finally:
-        if run.poll() is None:
-            run.kill()
-    msg = err.strip()
-    assert run.returncode == 1, msg
-    assert len(msg.splitlines()) == 1 and "no Dask worker connected" in msg, msg
-    assert address in msg and "for 2 s" in msg, msg
-    assert not out.exists() and not list(tmp_path.glob(".gone.partial-*"))
+    from asperity.sweep.engine import ClusterError
+
+    def kill_every_worker(done, total):  # after the first batch: mid-run
+        for w in workers:
+            if w.poll() is None:
+                w.send_signal(signal.SIGKILL)
+                w.wait(timeout=15)
+
+    s = spec.build(CASE, {"load.bolts.nut_factor": "uniform(0.158, 0.267)"}, samples=64)
+    t0 = time.monotonic()
+    with pytest.raises(ClusterError) as e:
+        sweep.run(s, str(tmp_path / "gone"), scheduler=address, batch=2, block=8, plots=False,
+                  worker_timeout=1.0, on_progress=kill_every_worker)
+    # Not forever: the 1 s timeout after the 1 s heartbeat (60 s is a generous bound on
+    # a loaded machine).
+    assert time.monotonic() - t0 < 60
+    msg = str(e.value)
+    assert "no Dask worker connected" in msg and address in msg and "for 1 s" in msg, msg
+    assert not (tmp_path / "gone").exists() and not list(tmp_path.glob(".gone.partial-*"))
 
 
-def test_sigterm_removes_the_partial_output(tmp_path):
-    cmd = [sys.executable, "-m", "asperity.sweep", CASE, "--vary",
-           "load.bolts.nut_factor ~ uniform(0.158, 0.267)", "--samples", "5000", "--serial",
-           "--no-plots", "--block", "4", "--out", "out"]
-    run = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                           env=ENV, cwd=tmp_path)
-    try:
-        deadline = time.monotonic() + 60
-        while time.monotonic() < deadline and run.poll() is None:
-            if list(tmp_path.glob(".out.partial-*/samples/part-*.nc")):
-                break
-            time.sleep(0.05)
-        assert run.poll() is None, "the sweep ended before SIGTERM"
-        run.send_signal(signal.SIGTERM)
-        _, err = run.communicate(timeout=60)
-    finally:
-        if run.poll() is None:
-            run.kill()
-    assert run.returncode == 143, err
+def test_sigterm_removes_the_partial_output(tmp_path, capsys, monkeypatch):
+    # SIGTERM to this process once the first block is on disk (mid-run), through the
+    # command's handler.
+    from asperity.sweep import engine
+
+    flush = engine.BlockWriter.flush
+
+    def flush_then_sigterm(self):
+        flush(self)
+        if self.parts:
+            os.kill(os.getpid(), signal.SIGTERM)
+
+    monkeypatch.setattr(engine.BlockWriter, "flush", flush_then_sigterm)
+    code, err = _cli_in_process(capsys, CASE, "--vary", "load.bolts.nut_factor ~ uniform(0.158, "
+                                "0.267)", "--samples", "40", "--serial", "--no-plots", "--block",
+                                "4", "--batch", "4", "--out", str(tmp_path / "out"))
+    assert code == 143, err
     assert "Traceback" not in err and "terminated (SIGTERM)" in err, err
     assert not (tmp_path / "out").exists() and not list(tmp_path.glob(".out.partial-*"))
 
@@ -517,21 +517,21 @@ def test_sigterm_removes_the_partial_output(tmp_path):
 def test_stale_partial_of_a_dead_run_is_removed(tmp_path):
     from asperity.sweep.engine import MARKER
 
-    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead = subprocess.Popen(["true"])
     dead.wait(timeout=30)  # its PID is now free (reuse within this test is unlikely)
     stale = tmp_path / f".out.partial-{dead.pid}"
     (stale / "samples").mkdir(parents=True)
     (stale / MARKER).write_text("written by asperity sweep\n")
     alive = tmp_path / f".out.partial-{os.getpid()}x"  # not a partial name: kept
     alive.mkdir()
-    s = spec.build(CASE, {"load.bolts.nut_factor": [0.2]})
+    s = _one_cheap_sample()
     sweep.run(s, str(tmp_path / "out"), serial=True, plots=False)
     assert not stale.exists() and alive.exists()
     assert (tmp_path / "out" / "sweep.json").exists()
 
 
 def test_foreign_files_in_out_are_named(tmp_path):
-    s = spec.build(CASE, {"load.bolts.nut_factor": [0.2]})
+    s = _one_cheap_sample()
     out = tmp_path / "out"
     sweep.run(s, str(out), serial=True, plots=False)
     sweep.run(s, str(out), serial=True, plots=False)  # its own output: replaced
@@ -590,7 +590,7 @@ def test_output_of_an_earlier_sweep_without_a_file_list_is_replaced(tmp_path):
     (old / "samples").mkdir(parents=True)
     (old / "samples" / "part-00000.nc").write_text("x")
     (old / MARKER).write_text("written by asperity sweep; replaced as a whole by the next run\n")
-    s = spec.build(CASE, {"load.bolts.nut_factor": [0.2]})
+    s = _one_cheap_sample()
     sweep.run(s, str(old), serial=True, plots=False)
     assert "files:" in (old / MARKER).read_text()
     mine = tmp_path / "mine"

@@ -695,7 +695,7 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
         shutil.rmtree(tmp, ignore_errors=True)
         raise
     finally:
-        _termination["in_loop"] = False
+        _termination.update(in_loop=False, requested=False)
         if own_client:
             cluster = client.cluster
             client.close()
