@@ -19,7 +19,9 @@ examples:
 Key paths: dotted, [i] 1-based, [*] every element (as the case-file errors name keys).
 Variations: grids 'LOW .. HIGH, N steps[, log]', uniform(LOW, HIGH), normal(MEAN, SD or
 N %), choice(A, B, ...). Exit codes: 0 done (failed samples are in failures.csv),
-2 bad input (refused before any work), 3 every sample failed, 1 anything else."""
+2 bad input (refused before any work), 3 every sample failed, 1 anything else (a file
+that cannot be written, every Dask worker gone for --worker-timeout), 130 SIGINT, 143
+SIGTERM (the partial output removed)."""
 
 
 class _Parser(argparse.ArgumentParser):
