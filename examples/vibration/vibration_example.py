@@ -69,7 +69,7 @@ def main(figure: str | None = None) -> None:
 
         fig, ax = plt.subplots(3, 1, figsize=(6, 9))
         vib.plot_mode(mode, axes=ax[:2], label="EPMC, mode 2", quasi_static=qs)
-        vib.plot_response(curves, ax=ax[2])
+        vib.plot_response(curves, ax=ax[2], force=F, backbone=mode)
         fig.tight_layout()
         fig.savefig(figure, dpi=120)
         print(f"\nwrote {figure}")

@@ -51,7 +51,7 @@ __all__ = [
     "HarmonicBalance", "Result", "nonlinear_mode",
     "frequency_response", "force_response", "amplitude_control", "phase_resonance",
     "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
-    "run_case_text", "plot_mode", "plot_response", "fit_loops",
+    "run_case_text", "plot_mode", "plot_response", "force_label", "fit_loops",
 ]
 
 
@@ -879,9 +879,10 @@ def run_case(path: str | os.PathLike, *, stability: bool = False) -> Result:
     ``asperity vibration``. Returns a :class:`Result` with ``summary`` (summary.json as a
     dict), ``nonlinear_mode`` and ``quasi_static_mode`` (:class:`Result` of arrays or None),
     ``frequency_response`` (one :class:`Result` per curve, ``table`` its
-    ``[[frequency_response]]`` table, counted from 1 as in messages and file names),
-    ``force_response``, ``amplitude_control`` and ``phase_resonance`` (one per table of
-    that name that ran, ``table`` its position, from 1),
+    ``[[frequency_response]]`` table, counted from 1 as in messages and file names,
+    ``force_amplitude`` its forcing amplitude [N]: the norm of the table's force vector times
+    the force scale), ``force_response``, ``amplitude_control`` and ``phase_resonance`` (one
+    per table of that name that ran, ``table`` its position, from 1),
     ``backbone_rom`` (one per ``[[backbone_rom]]`` table and force scale, with ``table``,
     ``force_scale`` and the arrays of :meth:`HarmonicBalance.mode_rom`),
     ``complete`` (every continuation reached its end),
@@ -889,15 +890,22 @@ def run_case(path: str | os.PathLike, *, stability: bool = False) -> Result:
     could not start, with their reasons), ``warnings`` (also issued as RuntimeWarning) and
     ``system`` (the case's :class:`HarmonicBalance`). ``stability=True`` adds Hill's
     stability to every forced-response curve (as ``stability = true`` in each table)."""
-    return _case_result(_v.run_case(os.fspath(path), bool(stability)), os.fspath(path))
+    r = _case_result(_v.run_case(os.fspath(path), bool(stability)), os.fspath(path))
+    try:
+        with open(path, "rb") as f:
+            text = f.read().decode("utf-8")
+    except (OSError, UnicodeDecodeError):
+        return r
+    return _with_force_amplitudes(r, text)
 
 
 def run_case_text(text: str, base_dir: str | os.PathLike = ".", *,
                   stability: bool = False) -> Result:
     """:func:`run_case` for case-file text (``base_dir`` resolves .mtx files and a
     [joint]'s profiles)."""
-    return _case_result(_v.run_case_text(text, os.fspath(base_dir), bool(stability)),
-                        "<string>")
+    return _with_force_amplitudes(
+        _case_result(_v.run_case_text(text, os.fspath(base_dir), bool(stability)), "<string>"),
+        text)
 
 
 # -- matplotlib helpers ----------------------------------------------------------------------
@@ -929,22 +937,88 @@ def plot_mode(mode: Mapping, axes=None, label: str | None = None, quasi_static: 
     return ax_f, ax_z
 
 
-def plot_response(curves: Sequence[Mapping], output: int = 0, ax=None):
-    """First-harmonic amplitude of output ``output`` against frequency [rad/s] of
-    :meth:`HarmonicBalance.frequency_response` curves, one line per force scale; with
-    ``stability`` (Hill's method), the unstable stretches dashed red over them."""
+def force_label(curve: Mapping, force=None) -> str:
+    """The legend of a forced-response curve: its forcing amplitude in N (the curve's
+    ``force_amplitude``, from :func:`run_case`, or ``force_scale`` times the norm of
+    ``force``, the excitation at scale 1); ``force x SCALE`` when neither is known."""
+    amp = curve.get("force_amplitude") if hasattr(curve, "get") else None
+    if amp is None and force is not None:
+        norm = float(np.linalg.norm(np.asarray(force, dtype=float)))
+        amp = float(curve["force_scale"]) * norm
+    if amp is None or not np.isfinite(amp) or amp <= 0:
+        return f"force x {float(curve['force_scale']):g}"
+    return f"F = {amp:.4g} N"
+
+
+def plot_response(curves: Sequence[Mapping], output: int = 0, ax=None, *, force=None,
+                  backbone: Mapping | None = None):
+    """First-harmonic amplitude of output ``output`` [m] (log axis) against the excitation
+    frequency [Hz] of :meth:`HarmonicBalance.frequency_response` curves (or
+    :func:`run_case`'s), one line per force amplitude, labelled in N (:func:`force_label`;
+    ``force``: the excitation vector at scale 1 for curves that do not carry it); with
+    ``stability`` (Hill's method), the unstable stretches dashed red over them; with
+    ``backbone`` (a :meth:`HarmonicBalance.nonlinear_mode` result computed with the same
+    output DOFs), the backbone dashed black within the curves' range. The axes follow the
+    CLI's ``frequency_response.png`` (docs/vibration.md, "Plots")."""
     (ax,) = _axes(ax)
     labelled = False
+    f_lo, f_hi, a_hi = np.inf, 0.0, 0.0
     for c in curves:
-        y = c["output_amplitude"][:, output]
-        ax.plot(c["omega"], y, label=f"force x {c['force_scale']:g}")
+        y = np.asarray(c["output_amplitude"])[:, output]
+        f = np.asarray(c["omega"]) / (2.0 * np.pi)
+        f_lo, f_hi = min(f_lo, f.min()), max(f_hi, f.max())
+        a_hi = max(a_hi, float(np.nanmax(y)))
+        ax.plot(f, y, label=force_label(c, force))
         if c.get("stability") is not None:
             yu = np.where(c["stability"]["stable"], np.nan, y)
             if np.isfinite(yu).any():
-                ax.plot(c["omega"], yu, "--", color="#d62728", lw=2.5,
+                ax.plot(f, yu, "--", color="#d62728", lw=2.5,
                         label=None if labelled else "unstable (Hill)")
                 labelled = True
-    ax.set_xlabel("omega [rad/s]")
+    if backbone is not None and np.asarray(backbone["output_amplitude"]).ndim == 2 and \
+            np.asarray(backbone["output_amplitude"]).shape[1] > output:
+        fb = np.asarray(backbone["frequency_hz"], dtype=float)
+        yb = np.asarray(backbone["output_amplitude"], dtype=float)[:, output]
+        # Within the curves' frequency range and up to twice their largest amplitude (the
+        # mode goes on to amplitudes no curve reaches), as the CLI draws it.
+        keep = (fb >= f_lo) & (fb <= f_hi) & (yb > 0) & (yb <= 2.0 * a_hi)
+        if keep.sum() > 1:
+            ax.plot(fb[keep], yb[keep], "--", color="k", label="backbone (nonlinear mode)")
+    ax.set_yscale("log")
+    ax.set_xlabel("excitation frequency [Hz]")
     ax.set_ylabel("amplitude [m]")
     ax.legend()
     return ax
+
+
+def _force_amplitudes(case: Mapping, curves) -> list:
+    """Each curve's forcing amplitude [N]: the norm of its ``[[frequency_response]]``
+    table's harmonic force vector (``force_cos`` and ``force_sin``, every harmonic and
+    DOF) times the curve's force scale; for one forced DOF and one harmonic, the force
+    amplitude itself. NaN when the table gives no force (base excitation)."""
+    tables = case.get("frequency_response", []) if isinstance(case, Mapping) else []
+    out = []
+    for c in curves:
+        t = c.get("table", -1)
+        t = tables[t] if isinstance(t, int) and 0 <= t < len(tables) else {}
+        values = [x for key in ("force_cos", "force_sin") for row in t.get(key, [])
+                  for x in (row if isinstance(row, list) else [row])]
+        try:
+            norm = float(np.sqrt(sum(float(x) ** 2 for x in values))) if values else np.nan
+        except (TypeError, ValueError):
+            norm = np.nan
+        out.append(norm * float(c["force_scale"]) if norm > 0 else np.nan)
+    return out
+
+
+def _with_force_amplitudes(result: Result, text: str) -> Result:
+    import tomllib
+
+    try:
+        case = tomllib.loads(text)
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError):
+        return result
+    for c, amp in zip(result["frequency_response"],
+                      _force_amplitudes(case, result["frequency_response"])):
+        c["force_amplitude"] = amp
+    return result

@@ -340,6 +340,31 @@ std::string read_binary(const std::filesystem::path& path) {
   return bytes.str();
 }
 
+// A title as gnuplot text in lines of at most `width` characters (broken at spaces, a
+// longer word at `width`): a long joint name would run past the canvas, which is 900 px
+// wide, about 90 characters of an 11 pt font, less the key beside the plot.
+std::string wrapped_title(const std::string& title, std::size_t width) {
+  std::vector<std::string> lines{""};
+  std::istringstream words(title);
+  std::string w;
+  while (words >> w) {
+    while (w.size() > width) {
+      if (!lines.back().empty()) lines.emplace_back();
+      lines.back() = w.substr(0, width);
+      w.erase(0, width);
+      lines.emplace_back();
+    }
+    if (w.empty()) continue;
+    if (!lines.back().empty() && lines.back().size() + 1 + w.size() > width) lines.emplace_back();
+    lines.back() += (lines.back().empty() ? "" : " ") + w;
+  }
+  if (lines.back().empty() && lines.size() > 1) lines.pop_back();
+  std::string out;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    out += (i ? ".\"\\n\"." : "") + gnuplot_string(lines[i]);
+  return out;
+}
+
 }  // namespace
 
 void plot_png(const std::string& path, const PlotSpec& spec, core::OutputSet* outputs) {
@@ -354,7 +379,7 @@ void plot_png(const std::string& path, const PlotSpec& spec, core::OutputSet* ou
   std::ostringstream gp;
   gp << "set encoding utf8\nset terminal pngcairo size 900,650 enhanced font 'DejaVu Sans,11'\n";
   gp << "set output " << gnuplot_string(png.string()) << "\n";
-  gp << "set title " << gnuplot_string(spec.title) << " noenhanced\n";
+  gp << "set title " << wrapped_title(spec.title, 80) << " noenhanced\n";
   gp << "set xlabel " << gnuplot_string(spec.xlabel) << " noenhanced\n";
   gp << "set ylabel " << gnuplot_string(spec.ylabel) << " noenhanced\n";
   gp << "set grid\nset key outside right top noenhanced\n";

@@ -54,6 +54,19 @@ struct PlotSeries {
   }
 };
 
+// The y range of the response plot follows the mass: an impulse or a large base motion
+// would otherwise set it and draw the mass as a flat line. When the base reaches more
+// than 5 times the mass's largest |u|, the range is +-1.15 max|u| and the base's title
+// gives its peak (clipped).
+void clip_base_to_mass(PlotSpec& spec, PlotSeries& s) {
+  double u = 0.0, y = 0.0;
+  for (double v : s.mass.y) u = std::max(u, std::abs(v));
+  for (double v : s.base.y) y = std::max(y, std::abs(v));
+  if (!(u > 0.0) || !(y > 5.0 * u)) return;
+  spec.extra += fmt::format("set yrange [{:.6g}:{:.6g}]\n", -1.15 * u, 1.15 * u);
+  s.base.title = fmt::format("base y (clipped, peak {:.3g})", y);
+}
+
 void run_dynamics(const DynamicsOptions& o, std::string& out) {
   const OutKind kind = out_kind(o.out_dir, ".json");
   const bool files = kind == OutKind::directory;
@@ -152,6 +165,7 @@ void run_dynamics(const DynamicsOptions& o, std::string& out) {
           fmt::format("{} friction, {} excitation", tr.friction_model, c.excitation_name);
       PlotSpec resp{
           .title = "Response (Fig. 7.5 style): " + label, .xlabel = "tau", .ylabel = "u = x/A"};
+      if (c.excitation_name != "free") clip_base_to_mass(resp, plot_series);
       resp.series.push_back(std::move(plot_series.mass));
       if (c.excitation_name != "free") resp.series.push_back(std::move(plot_series.base));
       plot_png(dir.file("response.png"), resp);

@@ -68,7 +68,9 @@ std::vector<std::string> write_variant_plots(const std::vector<joint::VariantPoi
       }
     }
     if (ch5) {
-      k.series.push_back(level("measured 10 N/um (section 5.2)", 10.0, 230.0, 725.0, "#777777"));
+      // Down to 5 N/um: the measured 10 N/um inside the frame, not on it.
+      k.extra += "set yrange [5:3000]\n";
+      k.series.push_back(level("measured 10 N/um (section 5.2)", 10.0, 230.0, 725.0, "#c0392b"));
       k.series.push_back(level("measured 300 N/um (section 5.2)", 300.0, 230.0, 725.0, "#777777"));
     } else {
       k.series.push_back(

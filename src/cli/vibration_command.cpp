@@ -39,6 +39,17 @@ std::string num(double x) {
   return fmt::format("{:.12g}", x);
 }
 
+// A forced-response curve's legend: its forcing amplitude F in N, the force scale times
+// the norm of the table's harmonic force vector over DOFs and harmonics (for one forced
+// DOF and one harmonic, that force's amplitude); as vibration.force_label in Python.
+std::string force_label(const VibrationCase& c, std::size_t table, double scale) {
+  if (table >= c.frequency_responses.size()) return fmt::format("force x {:.4g}", scale);
+  const auto& t = c.frequency_responses[table];
+  const double norm = std::sqrt(t.force_cos.squaredNorm() + t.force_sin.squaredNorm());
+  if (!(norm > 0.0)) return fmt::format("force x {:.4g}", scale);
+  return fmt::format("F = {:.4g} N", scale * norm);
+}
+
 // One CSV: a header line and one line per row, every value with 12 significant digits.
 std::string csv(const std::vector<std::string>& header,
                 const std::vector<std::vector<double>>& columns) {
@@ -235,8 +246,7 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
                  .logy = true};
       for (std::size_t k = 0; k < r.frequency_response.size(); ++k) {
         const auto& cv = r.frequency_response[k];
-        Series s{.title = fmt::format("curve {} (table {}, force scale {:.4g})", k + 1,
-                                      r.frequency_response_table[k] + 1, cv.force_scale),
+        Series s{.title = force_label(c, r.frequency_response_table[k], cv.force_scale),
                  .style = "lines"};
         for (Eigen::Index i = 0; i < cv.omega.size(); ++i) {
           const double y = cv.output_amplitude(i, static_cast<Eigen::Index>(o));
@@ -288,6 +298,30 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
       }
       if (!peaks.x.empty()) p.series.push_back(std::move(peaks));
       if (!folds.x.empty()) p.series.push_back(std::move(folds));
+      // The backbone (the nonlinear mode's first-harmonic amplitude of this output against
+      // its frequency) over the curves, within their frequency and amplitude range (up to
+      // twice their largest amplitude: the mode goes on to amplitudes no curve reaches).
+      if (r.nonlinear_mode &&
+          r.nonlinear_mode->output_amplitude.cols() > static_cast<Eigen::Index>(o)) {
+        double f_lo = std::numeric_limits<double>::infinity(), f_hi = 0.0, a_hi = 0.0;
+        for (const auto& cv : r.frequency_response) {
+          for (Eigen::Index i = 0; i < cv.omega.size(); ++i) {
+            f_lo = std::min(f_lo, cv.omega(i) / (2.0 * std::numbers::pi));
+            f_hi = std::max(f_hi, cv.omega(i) / (2.0 * std::numbers::pi));
+            a_hi = std::max(a_hi, cv.output_amplitude(i, static_cast<Eigen::Index>(o)));
+          }
+        }
+        const auto& m = *r.nonlinear_mode;
+        Series bb{.title = "backbone (nonlinear mode)", .style = "lines dt 2 lc rgb '#000000'"};
+        for (Eigen::Index i = 0; i < m.frequency_hz.size(); ++i) {
+          const double y = m.output_amplitude(i, static_cast<Eigen::Index>(o));
+          const double f = m.frequency_hz(i);
+          if (!(y > 0.0) || f < f_lo || f > f_hi || y > 2.0 * a_hi) continue;
+          bb.x.push_back(f);
+          bb.y.push_back(y);
+        }
+        if (bb.x.size() > 1) p.series.push_back(std::move(bb));
+      }
       const std::string name = c.output_dofs.size() == 1
                                    ? std::string("frequency_response.png")
                                    : fmt::format("frequency_response_dof{}.png", c.output_dofs[o]);
@@ -448,10 +482,11 @@ std::string text_summary(const VibrationCase& c, const VibrationResult& r) {
       }
     }
     out += fmt::format(
-        "frequency response {} (force scale {:.4g}): {} points, peak amplitude of DOF {} {:.6g} m "
-        "at {:.6g} Hz, {} fold(s)\n",
-        k + 1, cv.force_scale, cv.omega.size(), c.output_dofs[0], peak,
-        peak_omega / (2.0 * std::numbers::pi), cv.folds.size());
+        "frequency response {} ({}, force scale {:.4g}): {} points, peak amplitude of DOF {} "
+        "{:.6g} m at {:.6g} Hz, {} fold(s)\n",
+        k + 1, force_label(c, r.frequency_response_table[k], cv.force_scale), cv.force_scale,
+        cv.omega.size(), c.output_dofs[0], peak, peak_omega / (2.0 * std::numbers::pi),
+        cv.folds.size());
     if (!cv.stability.empty()) {
       const auto unstable = std::count_if(cv.stability.begin(), cv.stability.end(),
                                           [](const PeriodicStability& p) { return !p.stable; });

@@ -347,6 +347,26 @@ def without_out_prints_the_summary(exe):
     return 0
 
 
+def force_in_newton(exe):
+    # Issue 21, item 6: a forced-response curve is named by its force amplitude in N: the
+    # scale times the norm of the table's force (0.1 N on one DOF and harmonic; scales
+    # 0.5 and 2), as the plots' legends.
+    case = JENKINS + FRF.replace("omega = { from = 0.7", "force_scales = [0.5, 2.0]\n"
+                                 "omega = { from = 0.7")
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "case.toml")
+        with open(path, "w") as f:
+            f.write(case)
+        r = subprocess.run([exe, "vibration", path], capture_output=True, text=True, timeout=300)
+    if r.returncode != 0:
+        return fail(f"exit {r.returncode}: {r.stderr}")
+    for want in ("frequency response 1 (F = 0.05 N, force scale 0.5)",
+                 "frequency response 2 (F = 0.2 N, force scale 2)"):
+        if want not in r.stdout:
+            return fail(f"no {want!r} in: {r.stdout}")
+    return 0
+
+
 TWO_DOF = """[structure]
 mass = [[1.0, 0.0], [0.0, 1.0]]
 stiffness = [[2.0, -1.0], [-1.0, 2.0]]
@@ -938,6 +958,7 @@ def main():
         "odfalk_vingsbo": odfalk_vingsbo,
         "backbone_rom": backbone_rom,
         "plots_of_controlled_analyses": plots_of_controlled_analyses,
+        "force_in_newton": force_in_newton,
     }[case](exe)
 
 

@@ -289,7 +289,7 @@ def test_foreign_output_directory_is_refused(tmp_path):
     out.mkdir()
     (out / "notes.txt").write_text("keep")
     s = spec.build(CASE, VARY, samples=2, seed=1)
-    with pytest.raises(sweep.SweepError, match="did not write"):
+    with pytest.raises(sweep.SweepError, match=r"did not write .*: notes.txt\)"):
         sweep.run(s, str(out), serial=True)
     assert (out / "notes.txt").read_text() == "keep"
 
@@ -322,6 +322,27 @@ def test_vibration_cases_run_and_equal_the_direct_run(tmp_path):
         np.testing.assert_allclose(ds["response_peak_amplitude"].values[i], peaks, rtol=1e-12)
     # A larger slip force slips later: the damping peak moves to larger amplitude.
     assert ds["mode_peak_damping_amplitude"].values[1] > ds["mode_peak_damping_amplitude"].values[0]
+    # Value coordinates: the forcing amplitudes of the case's curves (force_cos 3.3 N; 0.1 N
+    # times the force scales 0.5, 1, 2) and its modal amplitude range (10^-2 .. 10^5).
+    np.testing.assert_allclose(ds["curve"].values, [3.3, 0.05, 0.1, 0.2], rtol=1e-12)
+    assert ds["curve"].attrs["units"] == "N" and ds["mode_frequency_hz"].attrs["units"] == "Hz"
+    np.testing.assert_allclose(ds["modal_amplitude"].values[[0, -1]], [1e-2, 1e5], rtol=1e-12)
+    # Constant outputs are named as such, not described: the stuck linear frequency does
+    # not depend on F_s, nor does the peak damping ratio (the Jenkins element is
+    # positively homogeneous in (x, F_s): amplitudes scale with F_s, ratios do not).
+    import json
+
+    info = json.loads((tmp_path / "v" / "sweep.json").read_text())
+    assert {"linear_frequency_hz", "mode_peak_damping_ratio"} <= set(info["constant_outputs"])
+    assert "mode_peak_damping_amplitude" not in info["constant_outputs"]
+    import csv
+
+    rows = {r["output"]: r for r in csv.DictReader(open(tmp_path / "v" / "summary.csv"))}
+    lin = rows["linear_frequency_hz"]
+    assert lin["varies"] == "no" and lin["sd"] == "" and lin["min"] == lin["max"]
+    assert rows["mode_peak_damping_amplitude"]["varies"] == "yes"
+    # Frequency and damping bands against amplitude.
+    assert (tmp_path / "v" / "bands_vs_modal_amplitude.png").stat().st_size > 0
 
 
 def test_vary_flag_takes_a_grid_array_and_progress_draws_a_bar():
@@ -408,3 +429,173 @@ def test_sweep_sigint_prints_no_traceback(tmp_path):
     assert run.returncode == 130, err
     assert "Traceback" not in err and "interrupted (SIGINT)" in err, err
     assert not (tmp_path / "out").exists() and not list(tmp_path.glob(".out.partial-*"))
+
+
+# Issue 21, item 8: the sweep's output and input rules (as the C++ commands').
+def _one_cheap_sample():
+    """One sample of the case cut to one load case and one amplitude (fast)."""
+    return spec.build(CASE, {"load.bolts.nut_factor": [0.2]},
+                      set_={"load.bolts.total_torques": ["2.7 lbf*in"],
+                            "excitation.amplitudes": ["1 um"]})
+
+
+def _cli_in_process(capsys, *args):
+    from asperity.sweep.__main__ import main
+
+    code = main(list(args))
+    return code, capsys.readouterr().err.strip()
+
+
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="needs /dev/full (Linux)")
+def test_full_disk_names_the_file_in_one_line(tmp_path, capsys, monkeypatch):
+    # A part file that lands on /dev/full: every write to it fails with ENOSPC, as on a
+    # full disk.
+    from asperity.sweep import engine
+
+    prepare = engine.prepare_out_dir
+
+    def onto_full_disk(out):
+        tmp = prepare(out)
+        os.symlink("/dev/full", os.path.join(tmp, "samples", "part-00000.nc"))
+        return tmp
+
+    monkeypatch.setattr(engine, "prepare_out_dir", onto_full_disk)
+    code, err = _cli_in_process(capsys, CASE, "--vary", "load.bolts.nut_factor ~ uniform(0.158, "
+                                "0.267)", "--samples", "2", "--serial", "--no-plots", "--out",
+                                str(tmp_path / "out"))
+    assert code == 1, err
+    assert len(err.splitlines()) == 1, err
+    assert err.startswith("asperity sweep: error: cannot write "), err
+    assert "part-00000.nc" in err and "No space left on device" in err, err
+    assert not (tmp_path / "out").exists() and not list(tmp_path.glob(".out.partial-*"))
+
+
+def test_every_worker_gone_is_named_not_waited_on(tmp_path, dask_cluster):
+    address, workers = dask_cluster
+    from asperity.sweep.engine import ClusterError
+
+    def kill_every_worker(done, total):  # after the first batch: mid-run
+        for w in workers:
+            if w.poll() is None:
+                w.send_signal(signal.SIGKILL)
+                w.wait(timeout=15)
+
+    s = spec.build(CASE, {"load.bolts.nut_factor": "uniform(0.158, 0.267)"}, samples=64)
+    t0 = time.monotonic()
+    with pytest.raises(ClusterError) as e:
+        sweep.run(s, str(tmp_path / "gone"), scheduler=address, batch=2, block=8, plots=False,
+                  worker_timeout=1.0, on_progress=kill_every_worker)
+    # Not forever: the 1 s timeout after the 1 s heartbeat (60 s is a generous bound on
+    # a loaded machine).
+    assert time.monotonic() - t0 < 60
+    msg = str(e.value)
+    assert "no Dask worker connected" in msg and address in msg and "for 1 s" in msg, msg
+    assert not (tmp_path / "gone").exists() and not list(tmp_path.glob(".gone.partial-*"))
+
+
+def test_sigterm_removes_the_partial_output(tmp_path, capsys, monkeypatch):
+    # SIGTERM to this process once the first block is on disk (mid-run), through the
+    # command's handler.
+    from asperity.sweep import engine
+
+    flush = engine.BlockWriter.flush
+
+    def flush_then_sigterm(self):
+        flush(self)
+        if self.parts:
+            os.kill(os.getpid(), signal.SIGTERM)
+
+    monkeypatch.setattr(engine.BlockWriter, "flush", flush_then_sigterm)
+    code, err = _cli_in_process(capsys, CASE, "--vary", "load.bolts.nut_factor ~ uniform(0.158, "
+                                "0.267)", "--samples", "40", "--serial", "--no-plots", "--block",
+                                "4", "--batch", "4", "--out", str(tmp_path / "out"))
+    assert code == 143, err
+    assert "Traceback" not in err and "terminated (SIGTERM)" in err, err
+    assert not (tmp_path / "out").exists() and not list(tmp_path.glob(".out.partial-*"))
+
+
+def test_stale_partial_of_a_dead_run_is_removed(tmp_path):
+    from asperity.sweep.engine import MARKER
+
+    dead = subprocess.Popen(["true"])
+    dead.wait(timeout=30)  # its PID is now free (reuse within this test is unlikely)
+    stale = tmp_path / f".out.partial-{dead.pid}"
+    (stale / "samples").mkdir(parents=True)
+    (stale / MARKER).write_text("written by asperity sweep\n")
+    alive = tmp_path / f".out.partial-{os.getpid()}x"  # not a partial name: kept
+    alive.mkdir()
+    s = _one_cheap_sample()
+    sweep.run(s, str(tmp_path / "out"), serial=True, plots=False)
+    assert not stale.exists() and alive.exists()
+    assert (tmp_path / "out" / "sweep.json").exists()
+
+
+def test_foreign_files_in_out_are_named(tmp_path):
+    s = _one_cheap_sample()
+    out = tmp_path / "out"
+    sweep.run(s, str(out), serial=True, plots=False)
+    sweep.run(s, str(out), serial=True, plots=False)  # its own output: replaced
+    (out / "samples" / "notes.txt").write_text("keep")
+    with pytest.raises(sweep.SweepError, match=r"marker does not list them\): samples/notes.txt"):
+        sweep.run(s, str(out), serial=True, plots=False)
+    assert (out / "samples" / "notes.txt").read_text() == "keep"
+
+
+def test_case_file_over_4_mib_is_refused(tmp_path):
+    # The C++ commands' cap on a case file (core::kMaxCaseFileBytes, 4 MiB).
+    big = tmp_path / "big.toml"
+    big.write_text(pathlib.Path(CASE).read_text() + "#" * (4 << 20) + "\n")
+    p = _sweep_cli(tmp_path, str(big), "--vary", "load.bolts.nut_factor ~ uniform(0.158, 0.267)",
+                   "--out", "out")
+    msg = p.stderr.strip()
+    assert p.returncode == 2 and len(msg.splitlines()) == 1, msg
+    assert str(big) in msg and "limit of 4 MiB" in msg, msg
+
+
+# Issue 21, item 5: results by xarray/CF conventions.
+def test_results_carry_cf_attributes_and_value_coordinates(tmp_path):
+    s = spec.build(CASE, {"load.bolts.nut_factor": [0.25],
+                          "joint.half[*].material.H": ["5.8 GPa"]})
+    sweep.run(s, str(tmp_path / "cf"), serial=True, plots=False)
+    ds = sweep.open_results(str(tmp_path / "cf")).load()
+    for k, v in ds.variables.items():
+        assert v.attrs.get("long_name"), k
+        if k != "error":  # text: no units (CF 3.1)
+            assert v.attrs.get("units"), k
+    assert ds["stiffness"].attrs["units"] == "N m-1" and ds["energy"].attrs["units"] == "J"
+    assert ds["joint.half[*].material.H"].attrs["units"] == "Pa"
+    assert ds["load.bolts.nut_factor"].attrs["units"] == "1"
+    a = ds.attrs
+    assert a["Conventions"].startswith("CF-") and a["asperity_version"] == asperity.__version__
+    assert a["case_file"] == CASE and a["method"] == "random" and a["seed"] == 0
+    import datetime
+
+    datetime.datetime.strptime(a["date_created"], "%Y-%m-%dT%H:%M:%SZ")
+    # Value coordinates: the preloads of Table 5.5 (234/331/526/721 N, printed to 3 digits:
+    # 0.5 N of 234 N is 0.22 %, so 0.3 %), and the case file's joint amplitudes (the
+    # same text in SI: 1e-12).
+    np.testing.assert_allclose(ds["load"].values, [234, 331, 526, 721], rtol=3e-3)
+    assert ds["load"].attrs["units"] == "N"
+    np.testing.assert_allclose(ds["amplitude"].values,
+                               np.array([0.05, 0.1, 0.25, 0.5, 1, 2, 4]) * 1e-6, rtol=1e-12)
+    assert ds["amplitude"].attrs["units"] == "m"
+
+
+def test_output_of_an_earlier_sweep_without_a_file_list_is_replaced(tmp_path):
+    # The marker of sweeps before issue 21 lists no files; their output stays replaceable,
+    # while a hand-made (empty) marker does not make a directory asperity's.
+    from asperity.sweep.engine import MARKER
+
+    old = tmp_path / "old"
+    (old / "samples").mkdir(parents=True)
+    (old / "samples" / "part-00000.nc").write_text("x")
+    (old / MARKER).write_text("written by asperity sweep; replaced as a whole by the next run\n")
+    s = _one_cheap_sample()
+    sweep.run(s, str(old), serial=True, plots=False)
+    assert "files:" in (old / MARKER).read_text()
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / MARKER).write_text("")
+    (mine / "notes.txt").write_text("keep")
+    with pytest.raises(sweep.SweepError, match="notes.txt"):
+        sweep.run(s, str(mine), serial=True, plots=False)

@@ -1026,3 +1026,36 @@ def test_vibration_example_runs_and_its_mode_softens(tmp_path):
     # Printed to 5 digits: rounding 1e-4 of zeta on top.
     assert np.all(np.abs(zq[small] / z[small] - 1) <= 0.1 * z[small] + 4e-4)
     assert png.stat().st_size > 10_000
+
+
+def test_plot_response_follows_the_cli_convention():
+    """Issue 21, item 6: as the CLI's frequency_response.png, frequency in Hz (omega/2 pi),
+    amplitude on a log axis, each curve labelled with its force amplitude in N (scale
+    times the force at scale 1), the backbone of the nonlinear mode over the curves."""
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    s = vib.Structure(M=[[1.0]], K=[[1.0]], C=[[0.05]])
+    hb = vib.HarmonicBalance(s, [vib.PolynomialStiffness(k3=1.0, T=[[1.0]])], max_harmonic=3,
+                             time_points=32)
+    F = hb.force(cos={1: [0.3]})
+    curves = hb.frequency_response(F, (0.5, 2.5), force_scales=[0.5, 1.0], output_dofs=[0])
+    mode = hb.nonlinear_mode(1, (-2.0, 0.5), output_dofs=[0])
+    ax = vib.plot_response(curves, force=F, backbone=mode)
+    lines = {line.get_label(): line for line in ax.get_lines()}
+    assert {"F = 0.15 N", "F = 0.3 N", "backbone (nonlinear mode)"} <= set(lines), lines
+    np.testing.assert_allclose(lines["F = 0.3 N"].get_xdata(), curves[1].omega / (2 * math.pi),
+                               rtol=1e-15)
+    assert ax.get_yscale() == "log" and ax.get_xlabel() == "excitation frequency [Hz]"
+    # Without the force (API curves carry only the scale), the scale is said as such.
+    assert vib.force_label(curves[0]) == "force x 0.5"
+    matplotlib.pyplot.close(ax.figure)
+
+
+def test_case_curves_carry_their_force_amplitude_in_newton():
+    # examples/vibration/jenkins_sdof.toml: force_cos 3.3 N; 0.1 N times scales 0.5, 1, 2.
+    r = vib.run_case(str(Path(__file__).resolve().parents[2] / "examples" / "vibration" /
+                         "jenkins_sdof.toml"))
+    amps = [c.force_amplitude for c in r.frequency_response]
+    np.testing.assert_allclose(amps, [3.3, 0.05, 0.1, 0.2], rtol=1e-12)
+    assert [vib.force_label(c) for c in r.frequency_response] == [
+        "F = 3.3 N", "F = 0.05 N", "F = 0.1 N", "F = 0.2 N"]

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 import re
+import signal
 import sys
 import tomllib
 
@@ -19,7 +20,9 @@ examples:
 Key paths: dotted, [i] 1-based, [*] every element (as the case-file errors name keys).
 Variations: grids 'LOW .. HIGH, N steps[, log]', uniform(LOW, HIGH), normal(MEAN, SD or
 N %), choice(A, B, ...). Exit codes: 0 done (failed samples are in failures.csv),
-2 bad input (refused before any work), 3 every sample failed, 1 anything else."""
+2 bad input (refused before any work), 3 every sample failed, 1 anything else (a file
+that cannot be written, every Dask worker gone for --worker-timeout), 130 SIGINT, 143
+SIGTERM (the partial output removed)."""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -33,15 +36,38 @@ class _Parser(argparse.ArgumentParser):
 _SCHEDULER = re.compile(r"^(tcp|tls|ucx|ws|wss)://[^:/\s]+:\d+/?$|^inproc://\S+$")
 
 
+def _on_sigterm(signum, frame):
+    from . import engine
+
+    engine.request_termination()
+
+
+def _terminated():
+    from .engine import Terminated
+
+    return Terminated
+
+
 def main(argv=None, prog: str = "python -m asperity.sweep") -> int:
     """Runs the command with the arguments `argv` (default: sys.argv[1:]); `prog` names it
     in the usage and help (`asperity sweep` when the C++ command runs it)."""
+    try:
+        previous = signal.signal(signal.SIGTERM, _on_sigterm)
+    except ValueError:  # not the main thread: SIGTERM keeps its handler
+        previous = None
     try:
         return _main(argv, prog)
     except KeyboardInterrupt:
         print("asperity sweep: interrupted (SIGINT); the output directory is left as it was",
               file=sys.stderr)
         return 130
+    except _terminated():
+        print("asperity sweep: terminated (SIGTERM); the output directory is left as it was",
+              file=sys.stderr)
+        return 143
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
 
 
 def _main(argv, prog) -> int:
@@ -64,6 +90,8 @@ def _main(argv, prog) -> int:
                     "(default: DASK_SCHEDULER_ADDRESS, else a LocalCluster)")
     ap.add_argument("--workers", type=int, help="LocalCluster workers (default: one per core)")
     ap.add_argument("--threads-per-worker", type=int, default=1)
+    ap.add_argument("--worker-timeout", type=float, default=60.0, metavar="SECONDS",
+                    help="give up when no Dask worker is connected for this long (default 60)")
     ap.add_argument("--serial", action="store_true", help="no Dask: run in this process")
     ap.add_argument("--batch", type=int, help="samples per task (default: automatic)")
     ap.add_argument("--block", type=int, default=1024, help="samples per file part")
@@ -74,7 +102,7 @@ def _main(argv, prog) -> int:
     a = ap.parse_args(argv)
 
     from . import spec
-    from .engine import run
+    from .engine import ClusterError, OutputError, run
     from .sweepfile import load
 
     try:
@@ -112,10 +140,13 @@ def _main(argv, prog) -> int:
         info = run(s, a.out, scheduler=a.scheduler, workers=a.workers,
                    threads_per_worker=a.threads_per_worker, serial=a.serial, batch=a.batch,
                    block=a.block, formats=formats,
-                   plots=not a.no_plots, progress=a.progress)
+                   plots=not a.no_plots, progress=a.progress, worker_timeout=a.worker_timeout)
     except spec.SweepError as e:
         print(f"asperity sweep: error: {e}", file=sys.stderr)
         return 2
+    except (OutputError, ClusterError) as e:
+        print(f"asperity sweep: error: {e}", file=sys.stderr)
+        return 1
     except Exception as e:  # noqa: BLE001
         from .. import _core
 

@@ -8,10 +8,12 @@ not depend on the number of workers or on which worker ran what.
 """
 from __future__ import annotations
 
+import contextlib
 import csv
 import dataclasses
 import json
 import os
+import re
 import shutil
 import sys
 import time
@@ -25,6 +27,7 @@ from .runners import runner_for
 from .spec import Sweep, SweepError, apply_assignments, to_toml
 
 MARKER = ".asperity-output"  # as the C++ commands' output directories (output_dir.hpp)
+MARKER_LIST_HEADER = "files:"  # kOutputMarkerListHeader: the files listed after it
 
 
 # --------------------------------------------------------------------------- worker side
@@ -70,20 +73,150 @@ def run_batch(kind: str, base_dir: str, case: dict, items: list,
 
 # --------------------------------------------------------------------------- output
 
+class Terminated(BaseException):
+    """SIGTERM (python -m asperity.sweep): the run stops and removes its partial output."""
+
+
+_termination = {"requested": False, "in_loop": False}
+
+
+def request_termination() -> None:
+    """The SIGTERM handler's action. Outside the sample loop it raises at once; inside,
+    the loop raises after the current batch (a signal raised anywhere could land in a
+    finalizer, where Python prints the exception and drops it)."""
+    _termination["requested"] = True
+    if not _termination["in_loop"]:
+        raise Terminated()
+
+
+def _check_termination() -> None:
+    if _termination["requested"]:
+        raise Terminated()
+
+
+# Seconds between checks of the cluster while no batch finishes.
+HEARTBEAT_S = 1.0
+
+
+class ClusterError(Exception):
+    """The Dask cluster cannot go on (every worker gone, the scheduler lost)."""
+
+
+def address_of(client) -> str:
+    try:
+        return str(client.scheduler.address)
+    except Exception:  # noqa: BLE001
+        return "(unknown address)"
+
+
+class OutputError(Exception):
+    """A file of the output could not be written (disk full, permissions): the message
+    names the file and the reason."""
+
+
+@contextlib.contextmanager
+def writing(path: str):
+    """Turns an OSError while writing ``path`` into an :class:`OutputError` naming it
+    (``OSError [Errno 28]`` alone names no file when the disk fills during a write)."""
+    try:
+        yield
+    except OSError as e:
+        name = e.filename or path
+        raise OutputError(f"cannot write {name}: {e.strerror or e}") from None
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True  # another user's process
+    return True
+
+
+def remove_stale_partials(out: str) -> list:
+    """Removes ``.NAME.partial-PID`` (and ``.NAME.partial-PID.old``) siblings of ``out``
+    left by a run that was killed: those whose process is gone and that hold the
+    asperity marker. Returns the removed paths."""
+    parent, base = os.path.split(os.path.abspath(out))
+    pattern = re.compile(r"^\." + re.escape(base) + r"\.partial-(\d+)(\.old)?$")
+    removed = []
+    try:
+        entries = os.listdir(parent)
+    except OSError:
+        return removed
+    for name in entries:
+        m = pattern.match(name)
+        if not m or _pid_alive(int(m.group(1))):
+            continue
+        path = os.path.join(parent, name)
+        if os.path.isdir(path) and not os.path.islink(path) and os.path.exists(
+                os.path.join(path, MARKER)):
+            shutil.rmtree(path, ignore_errors=True)
+            removed.append(path)
+    return removed
+
+
+def _foreign_entries(out: str) -> list:
+    """Entries of ``out`` (relative, directories with a trailing '/') that the marker does
+    not list: the user's files (as src/joint/output_dir.cpp)."""
+    listed = set()
+    try:
+        with open(os.path.join(out, MARKER)) as f:
+            lines = f.read().splitlines()
+        if MARKER_LIST_HEADER not in lines and lines[:1] == [
+                "written by asperity sweep; replaced as a whole by the next run"]:
+            # A marker of a sweep before the list (issue 21): its directory was replaced
+            # as a whole, so everything in it is taken as asperity's.
+            return []
+        if MARKER_LIST_HEADER in lines:
+            listed = {x for x in lines[lines.index(MARKER_LIST_HEADER) + 1:] if x}
+    except (OSError, UnicodeDecodeError):
+        pass
+    other = []
+    for root, dirs, files in os.walk(out):
+        rel_root = os.path.relpath(root, out)
+        for d in list(dirs):
+            rel = os.path.normpath(os.path.join(rel_root, d))
+            if not any(x.startswith(rel + "/") for x in listed):
+                other.append(rel + "/")
+                dirs.remove(d)
+        for f in files:
+            rel = os.path.normpath(os.path.join(rel_root, f))
+            if rel != MARKER and rel not in listed:
+                other.append(rel)
+    return sorted(other)
+
+
 def prepare_out_dir(out: str) -> str:
-    """Refuses an existing non-empty directory that asperity did not write (no marker);
-    returns the temporary sibling to write into (renamed over ``out`` at the end)."""
+    """Refuses an existing directory holding files that asperity did not write (named, as
+    the C++ commands do); removes stale partial directories of killed runs; returns the
+    temporary sibling to write into (renamed over ``out`` at the end)."""
     out = os.path.abspath(out)
+    if os.path.islink(out):
+        raise SweepError(f"--out {out}: a symbolic link; give a directory path (asperity "
+                         "replaces the output directory as a whole)")
     if os.path.exists(out):
         if not os.path.isdir(out):
             raise SweepError(f"--out {out}: exists and is not a directory")
-        if os.listdir(out) and not os.path.exists(os.path.join(out, MARKER)):
-            raise SweepError(f"--out {out}: a non-empty directory that asperity did not write "
-                             f"(no {MARKER} marker); asperity replaces its output directory as "
-                             "a whole, so it refuses to touch it: choose another")
+        other = _foreign_entries(out) if os.listdir(out) else []
+        if other:
+            names = ", ".join(other[:5]) + (f" and {len(other) - 5} more" if len(other) > 5
+                                            else "")
+            if not os.path.exists(os.path.join(out, MARKER)):
+                raise SweepError(f"--out {out}: a directory that asperity did not write (files "
+                                 f"but no {MARKER} marker: {names}); asperity replaces its "
+                                 "output directory as a whole, so it refuses to touch it: "
+                                 "choose another --out or remove the directory yourself")
+            raise SweepError(f"--out {out}: holds files that asperity did not write (its "
+                             f"{MARKER} marker does not list them): {names}; asperity replaces "
+                             "its output directory as a whole, so it refuses: move them out or "
+                             "choose another --out")
     parent = os.path.dirname(out)
     try:
         os.makedirs(parent, exist_ok=True)
+        remove_stale_partials(out)
         tmp = os.path.join(parent, f".{os.path.basename(out)}.partial-{os.getpid()}")
         if os.path.exists(tmp):
             shutil.rmtree(tmp)
@@ -93,6 +226,20 @@ def prepare_out_dir(out: str) -> str:
     except OSError as e:
         raise SweepError(f"--out {out}: cannot be written: {e.strerror}") from None
     return tmp
+
+
+def write_marker(tmp: str) -> None:
+    """The marker with the list of files this run wrote (as the C++ commands')."""
+    files = []
+    for root, _, names in os.walk(tmp):
+        for n in names:
+            rel = os.path.relpath(os.path.join(root, n), tmp)
+            if rel != MARKER:
+                files.append(rel.replace(os.sep, "/"))
+    path = os.path.join(tmp, MARKER)
+    with writing(path), open(path, "w") as f:
+        f.write("written by asperity sweep; replaced as a whole by the next run\n"
+                + MARKER_LIST_HEADER + "\n" + "".join(x + "\n" for x in sorted(files)))
 
 
 def finish_out_dir(tmp: str, out: str) -> None:
@@ -114,9 +261,11 @@ class Schema:
     dims: dict
     shapes: dict
     sizes: dict  # dim name -> size
+    attrs: dict = dataclasses.field(default_factory=dict)  # name -> CF units, long_name
+    coords: dict = dataclasses.field(default_factory=dict)  # dim -> (values, attrs)
 
 
-def schema_from(runner, outputs: dict) -> Schema:
+def schema_from(runner, outputs: dict, text: str = "") -> Schema:
     names = list(outputs)
     dims = {k: runner.dims(k) for k in names}
     shapes = {k: np.shape(outputs[k]) for k in names}
@@ -125,7 +274,64 @@ def schema_from(runner, outputs: dict) -> Schema:
         for d, n in zip(dims[k], shapes[k]):
             if sizes.setdefault(d, n) != n:
                 raise AssertionError(f"dimension {d} of {k}: {n} against {sizes[d]}")
-    return Schema(names, dims, shapes, sizes)
+    attrs = {k: (runner.attrs(k) if hasattr(runner, "attrs") else {"units": "1",
+                                                                    "long_name": k})
+             for k in names}
+    coords = {}
+    for d, (values, a) in (runner.coords(outputs, text) if hasattr(runner, "coords")
+                           else {}).items():
+        if d in sizes and np.shape(values) == (sizes[d],):
+            coords[d] = (np.asarray(values, dtype=float), a)
+    for d, n in sizes.items():  # no value of its own: the 1-based number
+        coords.setdefault(d, (np.arange(1, n + 1), {"units": "1", "long_name":
+                                                    f"{d.replace('_', ' ')} number (1-based)"}))
+    return Schema(names, dims, shapes, sizes, attrs, coords)
+
+
+def varied_attrs(v) -> dict:
+    """CF attributes of a varied input's coordinate (its values are SI)."""
+    units = "1"
+    if v.kind is not None and v.kind.kind == "quantity":
+        units = si_units(v.kind.dimension)
+    return {"units": units, "long_name": f"varied input {v.key} ({v.text})"}
+
+
+_NAMED_UNITS = {(0, 0, 0): "1", (1, 0, 0): "m", (2, 0, 0): "m2", (1, 1, -2): "N",
+                (-1, 1, -2): "Pa", (2, 1, -2): "J", (0, 1, -2): "N m-1", (0, 0, -1): "Hz",
+                (0, 1, 0): "kg", (0, 0, 1): "s", (-2, 0, 0): "m-2", (1, 0, -1): "m s-1",
+                (0, 1, -1): "kg s-1"}
+
+
+def si_units(dim) -> str:
+    """UDUNITS text of an asperity.Dimension in SI (N, Pa, J where they apply)."""
+    key = (dim.m, dim.kg, dim.s)
+    if key in _NAMED_UNITS:
+        return _NAMED_UNITS[key]
+    return " ".join(f"{u}{'' if e == 1 else e}" for u, e in (("kg", dim.kg), ("m", dim.m),
+                                                              ("s", dim.s)) if e)
+
+
+def global_attrs(sweep: Sweep, engine: str = "") -> dict:
+    """The global attributes of every NetCDF part (CF-1.10 and the sweep's provenance)."""
+    import datetime
+
+    from .. import __version__
+
+    return {
+        "Conventions": "CF-1.10",
+        "title": f"asperity sweep of {os.path.basename(sweep.case_path)}",
+        "source": f"asperity {__version__}",
+        "asperity_version": __version__,
+        "case_file": os.path.abspath(sweep.case_path),
+        "case_kind": sweep.kind,
+        "method": sweep.method,
+        "seed": int(sweep.seed),
+        "samples": int(sweep.size),
+        "varied": "; ".join(f"{v.key} = {v.text}" for v in sweep.variations),
+        "date_created": datetime.datetime.now(datetime.timezone.utc).strftime(
+            "%Y-%m-%dT%H:%M:%SZ"),
+        "history": "python -m asperity.sweep" + (f" ({engine})" if engine else ""),
+    }
 
 
 class BlockWriter:
@@ -133,17 +339,21 @@ class BlockWriter:
     ``samples/part-NNNNN.nc`` (NetCDF, scipy engine) and a row group of
     ``samples.parquet``; failures go to ``failures.csv`` as they come."""
 
-    def __init__(self, tmp: str, sweep: Sweep, schema: Schema, block: int, formats):
+    def __init__(self, tmp: str, sweep: Sweep, schema: Schema, block: int, formats,
+                 attrs: dict | None = None):
         self.tmp, self.sweep, self.schema, self.block = tmp, sweep, schema, block
+        self.attrs = attrs or {}
         self.formats = set(formats)
         self.parts: list[str] = []
         self.rows: list = []  # (sample, inputs, outputs, error), in sample order
         self.failed = 0
         self.written = 0
         self._parquet = None
-        self._fail_file = open(os.path.join(tmp, "failures.csv"), "w", newline="")
-        self._fail = csv.writer(self._fail_file)
-        self._fail.writerow(["sample"] + [v.key for v in sweep.variations] + ["error"])
+        self._fail_path = os.path.join(tmp, "failures.csv")
+        with writing(self._fail_path):
+            self._fail_file = open(self._fail_path, "w", newline="")
+            self._fail = csv.writer(self._fail_file)
+            self._fail.writerow(["sample"] + [v.key for v in sweep.variations] + ["error"])
 
     def add(self, sample: int, inputs: list, outputs, error: str):
         if outputs is not None:
@@ -153,7 +363,8 @@ class BlockWriter:
                 outputs, error = None, f"ShapeError: {e}"
         if outputs is None:
             self.failed += 1
-            self._fail.writerow([sample] + [val.toml for _, val in inputs] + [error])
+            with writing(self._fail_path):
+                self._fail.writerow([sample] + [val.toml for _, val in inputs] + [error])
         self.rows.append((sample, inputs, outputs, error))
         if len(self.rows) >= self.block:
             self.flush()
@@ -182,25 +393,31 @@ class BlockWriter:
             for i, r in enumerate(rows):
                 if r[2] is not None:
                     a[i] = r[2][k]
-            data[k] = (("sample",) + self.schema.dims[k], a)
-        data["ok"] = (("sample",), np.array([r[2] is not None for r in rows], dtype=np.int8))
-        data["error"] = (("sample",), np.array([r[3] for r in rows], dtype=object).astype(str))
-        coords = {"sample": samples}
-        for d, size in self.schema.sizes.items():
-            coords[d] = np.arange(1, size + 1)  # 1-based, as the case-file errors count
+            data[k] = (("sample",) + self.schema.dims[k], a, self.schema.attrs.get(k, {}))
+        data["ok"] = (("sample",), np.array([r[2] is not None for r in rows], dtype=np.int8),
+                      {"units": "1", "long_name": "sample succeeded (1) or failed (0)"})
+        data["error"] = (("sample",), np.array([r[3] for r in rows], dtype=object).astype(str),
+                         {"long_name": "error of a failed sample (empty when it succeeded)"})
+        coords = {"sample": (("sample",), samples, {"units": "1", "long_name":
+                                                     "sample number (0-based, in draw order)"})}
+        for d, (values, a) in self.schema.coords.items():
+            coords[d] = ((d,), values, a)
         for j, v in enumerate(self.sweep.variations):
             vals = [r[1][j][1].coord for r in rows]
             coords[v.key] = (("sample",), np.array(vals, dtype=str if isinstance(vals[0], str)
-                                                   else float))
-        ds = xr.Dataset(data, coords=coords)
+                                                   else float), varied_attrs(v))
+        ds = xr.Dataset(data, coords=coords, attrs=self.attrs)
         if "netcdf" in self.formats:
             path = os.path.join(self.tmp, "samples", f"part-{len(self.parts):05d}.nc")
-            ds.to_netcdf(path, engine="scipy")
+            with writing(path):
+                ds.to_netcdf(path, engine="scipy")
             self.parts.append(path)
         if "parquet" in self.formats:
-            self._write_parquet(ds)
+            with writing(os.path.join(self.tmp, "samples.parquet")):
+                self._write_parquet(ds)
         self.written += n
-        self._fail_file.flush()
+        with writing(self._fail_path):
+            self._fail_file.flush()
 
     def _write_parquet(self, ds):
         import pyarrow as pa
@@ -228,8 +445,10 @@ class BlockWriter:
     def close(self):
         self.flush()
         if self._parquet is not None:
-            self._parquet.close()
-        self._fail_file.close()
+            with writing(os.path.join(self.tmp, "samples.parquet")):
+                self._parquet.close()
+        with writing(self._fail_path):
+            self._fail_file.close()
 
 
 # --------------------------------------------------------------------------- progress
@@ -291,11 +510,12 @@ def preflight(sweep: Sweep):
     output schema). Returns (runner, schema)."""
     runner = runner_for(sweep.kind)
     sweep.check(lambda c: runner.check(to_toml(c), sweep.base_dir))
+    text = to_toml(sweep.case)
     try:
-        base = runner.run(to_toml(sweep.case), sweep.base_dir)
+        base = runner.run(text, sweep.base_dir)
     except _core.Error as e:
         raise SweepError(f"{sweep.case_path}: the case itself (no variation) fails: {e}") from None
-    return runner, schema_from(runner, base)
+    return runner, schema_from(runner, base, text)
 
 
 def default_batch(sweep: Sweep, nthreads: int) -> int:
@@ -307,11 +527,14 @@ def default_batch(sweep: Sweep, nthreads: int) -> int:
 def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | None = None,
         threads_per_worker: int = 1, serial: bool = False, batch: int | None = None,
         block: int = 1024, formats=("netcdf", "parquet"), plots: bool = True,
-        progress: bool | None = None, client=None, on_progress=None) -> dict:
+        progress: bool | None = None, client=None, on_progress=None,
+        worker_timeout: float = 60.0) -> dict:
     """Runs the sweep into directory ``out`` (replaced as a whole: written to a temporary
     sibling, renamed at the end, removed on error) and returns a dict (the content of
     ``out/sweep.json``). ``serial`` runs in this process without Dask (the reference).
-    ``on_progress(done, total)`` is called after each batch (tests use it)."""
+    ``on_progress(done, total)`` is called after each batch (tests use it).
+    ``worker_timeout``: seconds without any Dask worker before :class:`ClusterError`.
+    A file that cannot be written (disk full) raises :class:`OutputError` naming it."""
     formats = tuple(formats)
     for f in formats:
         if f not in ("netcdf", "parquet"):
@@ -320,6 +543,8 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
         raise SweepError("--format: at least one of netcdf, parquet")
     if not (isinstance(block, int) and block >= 1):
         raise SweepError(f"block = {block!r}: a positive integer")
+    if not (worker_timeout > 0 and np.isfinite(worker_timeout)):
+        raise SweepError(f"--worker-timeout {worker_timeout!r}: a positive number of seconds")
     runner, schema = preflight(sweep)
     tmp = prepare_out_dir(out)
     own_client = False
@@ -334,7 +559,7 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
             nthreads = max(sum(client.nthreads().values()), 1)
             engine = f"dask ({client.scheduler.address}, {len(client.nthreads())} workers)"
         b = batch or default_batch(sweep, nthreads)
-        writer = BlockWriter(tmp, sweep, schema, block, formats)
+        writer = BlockWriter(tmp, sweep, schema, block, formats, global_attrs(sweep, engine))
         bar = Progress(sweep.size, progress)
         n_batches = -(-sweep.size // b)
         cache: dict = {}
@@ -352,6 +577,7 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
 
         def write_ready():
             nonlocal next_write, count
+            _check_termination()
             while next_write in done:
                 res = done.pop(next_write)
                 inputs = pending.pop(next_write)
@@ -363,6 +589,7 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
             if on_progress:
                 on_progress(count, sweep.size)
 
+        _termination["in_loop"] = True
         if serial:
             for j in range(n_batches):
                 inputs, items = make(j)
@@ -370,14 +597,13 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
                 done[j] = run_batch(sweep.kind, sweep.base_dir, sweep.case, items)
                 write_ready()
         else:
-            from distributed import as_completed
+            from distributed import KilledWorker, wait
 
             # At most `ahead` batches beyond the oldest unwritten one are in flight or
             # waiting: memory stays bounded whatever the number of samples.
             ahead = max(4 * nthreads, 8)
             sent = 0
-            ac = as_completed()
-            futures = {}
+            futures: dict = {}  # key -> (future, batch)
 
             def submit_more():
                 nonlocal sent
@@ -386,25 +612,52 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
                     pending[sent] = inputs
                     f = client.submit(run_batch, sweep.kind, sweep.base_dir, sweep.case, items,
                                       os.getpid(), pure=False)
-                    futures[f.key] = sent
-                    ac.add(f)
+                    futures[f.key] = (f, sent)
                     sent += 1
 
             submit_more()
-            from distributed import KilledWorker
-
-            for f in ac:
-                j = futures.pop(f.key)
+            no_workers_since = None
+            while futures:
                 try:
-                    done[j] = f.result()
-                except KilledWorker as e:
-                    # The batch took down every worker that ran it (Dask's allowed
-                    # failures): its samples are recorded as failed, the rest goes on.
-                    done[j] = [(s, None, f"KilledWorker: {e}")
-                               for s in range(j * b, min((j + 1) * b, sweep.size))]
-                f.release()
+                    finished = wait([f for f, _ in futures.values()], timeout=HEARTBEAT_S,
+                                    return_when="FIRST_COMPLETED").done
+                except TimeoutError:
+                    finished = set()
+                _check_termination()
+                if not finished:
+                    # Heartbeat: tasks wait for a worker silently when every worker is
+                    # gone; say so after worker_timeout seconds instead of waiting forever.
+                    try:
+                        workers_now = len(client.nthreads())
+                    except Exception as e:  # noqa: BLE001  (the scheduler itself is gone)
+                        raise ClusterError(f"lost the Dask scheduler {address_of(client)}: "
+                                           f"{type(e).__name__}: {e}; {count} of "
+                                           f"{sweep.size} samples done") from None
+                    if workers_now:
+                        no_workers_since = None
+                    elif no_workers_since is None:
+                        no_workers_since = time.monotonic()
+                    elif time.monotonic() - no_workers_since >= worker_timeout:
+                        raise ClusterError(
+                            f"no Dask worker connected to the scheduler "
+                            f"{address_of(client)} for {worker_timeout:g} s (every worker "
+                            f"gone); {count} of {sweep.size} samples done: start workers "
+                            "(dask worker ADDRESS) and run again, or raise --worker-timeout")
+                    continue
+                for f in sorted(finished, key=lambda f: futures[f.key][1]):
+                    _, j = futures.pop(f.key)
+                    try:
+                        done[j] = f.result()
+                    except KilledWorker as e:
+                        # The batch took down every worker that ran it (Dask's allowed
+                        # failures): its samples are recorded as failed, the rest goes on.
+                        done[j] = [(s, None, f"KilledWorker: {e}")
+                                   for s in range(j * b, min((j + 1) * b, sweep.size))]
+                    f.release()
                 write_ready()
                 submit_more()
+        _termination["in_loop"] = False
+        _check_termination()
         writer.close()
         bar.close()
         elapsed = time.monotonic() - t0
@@ -430,14 +683,19 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
         }
         summarize(tmp, sweep, schema, writer.parts, plots=plots and "netcdf" in formats,
                   info=info)
-        with open(os.path.join(tmp, "sweep.json"), "w") as f:
+        path = os.path.join(tmp, "sweep.json")
+        with writing(path), open(path, "w") as f:
             json.dump(info, f, indent=2)
-        finish_out_dir(tmp, out)
+        write_marker(tmp)
+        with writing(out):
+            finish_out_dir(tmp, out)
         return info
     except BaseException:
+        _termination["in_loop"] = False
         shutil.rmtree(tmp, ignore_errors=True)
         raise
     finally:
+        _termination.update(in_loop=False, requested=False)
         if own_client:
             cluster = client.cluster
             client.close()

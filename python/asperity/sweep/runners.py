@@ -7,7 +7,11 @@ A runner is an object with
   (raises ``asperity.InvalidInput``); used on every variation's extremes before any work;
 * ``run(text, base_dir) -> {name: numpy array}``: the sample's outputs, each of a fixed
   shape for a given sweep (SI units);
-* ``dims(name) -> tuple``: the dimension names of an output (beyond ``sample``).
+* ``dims(name) -> tuple``: the dimension names of an output (beyond ``sample``);
+* ``attrs(name) -> {"units": ..., "long_name": ...}``: CF attributes of an output
+  (units in UDUNITS form, SI; ``"1"`` for dimensionless);
+* ``coords(outputs, text) -> {dim: (values, attrs)}`` (optional): value coordinates of the
+  dimensions, from the base case's outputs (a dimension without one keeps 1-based numbers).
 
 :func:`register_runner` adds a kind. Vibration cases (``asperity vibration``, a
 ``[structure]`` table) return the nonlinear mode and the quasi-static estimate on a fixed
@@ -83,6 +87,44 @@ class JointRunner:
             return ("load", "amplitude")
         return ()
 
+    ATTRS = {
+        "preload": ("N", "bolt preload of the load case"),
+        "mu": ("1", "friction coefficient mu (Q_max / preload)"),
+        "stiffness": ("N m-1", "tangential joint stiffness (initial slope of the backbone)"),
+        "Q_max": ("N", "tangential force at gross slip Q_max"),
+        "separation": ("m", "mean separation of the rough surfaces"),
+        "mean_pressure": ("Pa", "nominal contact pressure (preload / nominal area)"),
+        "contact_area_ratio": ("1", "real over nominal contact area"),
+        "delta_max": ("m", "joint amplitude delta_max of the loop"),
+        "Q_peak": ("N", "tangential force at the loop tip"),
+        "energy": ("J", "energy dissipated per cycle"),
+        "imposed": ("m", "imposed amplitude (NaN for a joint amplitude)"),
+        "sigma": ("m", "combined RMS roughness sigma (Eq. 5.1)"),
+        "eta": ("m-2", "combined asperity density eta"),
+        "R": ("m", "combined asperity summit radius R"),
+        "beta": ("1", "roughness parameter beta = eta sigma R"),
+        "psi": ("1", "plasticity index psi"),
+    }
+
+    def attrs(self, name: str) -> dict:
+        units, long_name = self.ATTRS.get(name, ("1", name))
+        return {"units": units, "long_name": long_name}
+
+    def coords(self, outputs: dict, text: str) -> dict:
+        """``load``: the unvaried case's preloads [N]; ``amplitude``: its joint
+        amplitudes delta_max, or the imposed amplitude for an imposed one [m]."""
+        imposed = np.asarray(outputs["imposed"], dtype=float)[0]
+        amp = np.where(np.isnan(imposed), np.asarray(outputs["delta_max"], dtype=float)[0],
+                       imposed)
+        return {
+            "load": (np.asarray(outputs["preload"], dtype=float), {
+                "units": "N", "long_name": "preload of the load case in the unvaried case "
+                "(each sample's own: variable preload)"}),
+            "amplitude": (amp, {
+                "units": "m", "long_name": "joint amplitude delta_max (an imposed amplitude: "
+                "the imposed value) in the unvaried case"}),
+        }
+
 
 class DynamicsRunner:
     """``asperity.dynamics.run_case_text`` of a dynamics case: every number of its summary
@@ -118,6 +160,11 @@ class DynamicsRunner:
 
     def dims(self, name: str) -> tuple:
         return ()
+
+    def attrs(self, name: str) -> dict:
+        # Dynamics cases are nondimensional (time tau, the case's scales): units "1".
+        return {"units": "1", "long_name": f"summary.json {name.replace('_', ' ')} "
+                "(nondimensional, time in tau)"}
 
 
 class VibrationRunner:
@@ -191,16 +238,53 @@ class VibrationRunner:
                 at.append(float(np.asarray(c["omega"])[k]) / (2.0 * math.pi))
             out["response_peak_amplitude"] = np.asarray(peak)
             out["response_peak_frequency_hz"] = np.asarray(at)
+            out["response_force_amplitude"] = np.asarray(
+                [c.get("force_amplitude", math.nan) for c in curves], dtype=float)
         return out
 
     def dims(self, name: str) -> tuple:
         if name in self.MODE:
             return ("modal_amplitude",)
-        if name in self.CURVE:
+        if name in self.CURVE + ("response_force_amplitude",):
             return ("curve",)
         if name == "linear_frequency_hz":
             return ("linear_mode",)
         return ()
+
+    ATTRS = {
+        "linear_frequency_hz": ("Hz", "linear natural frequency, elements stuck"),
+        "mode_log10_amplitude": ("1", "log10 of the modal amplitude [sqrt(kg) m] of the grid"),
+        "mode_frequency_hz": ("Hz", "nonlinear mode: frequency"),
+        "mode_damping_ratio": ("1", "nonlinear mode: damping ratio"),
+        "quasi_static_frequency_hz": ("Hz", "quasi-static estimate: frequency"),
+        "quasi_static_damping_ratio": ("1", "quasi-static estimate: damping ratio"),
+        "mode_peak_damping_ratio": ("1", "largest damping ratio of the nonlinear mode"),
+        "mode_peak_damping_amplitude": ("kg0.5 m", "modal amplitude of the largest damping "
+                                        "ratio"),
+        "response_peak_amplitude": ("m", "forced response: largest first-harmonic amplitude "
+                                    "of the first output DOF"),
+        "response_peak_frequency_hz": ("Hz", "forced response: frequency of the peak"),
+        "response_force_amplitude": ("N", "forced response: forcing amplitude (norm of the "
+                                     "harmonic force vector times force_scale)"),
+    }
+
+    def attrs(self, name: str) -> dict:
+        units, long_name = self.ATTRS.get(name, ("1", name))
+        return {"units": units, "long_name": long_name}
+
+    def coords(self, outputs: dict, text: str) -> dict:
+        """``modal_amplitude``: the unvaried case's grid [sqrt(kg) m]; ``curve``: its
+        forcing amplitudes [N]; ``linear_mode``: the mode number (1-based)."""
+        out = {}
+        if "mode_log10_amplitude" in outputs:
+            out["modal_amplitude"] = (10.0 ** np.asarray(outputs["mode_log10_amplitude"]), {
+                "units": "kg0.5 m", "long_name": "modal amplitude of the mass-normalized first "
+                "harmonic (grid of the unvaried case)"})
+        if "response_force_amplitude" in outputs:
+            out["curve"] = (np.asarray(outputs["response_force_amplitude"], dtype=float), {
+                "units": "N", "long_name": "forcing amplitude of the forced-response curve in "
+                "the unvaried case"})
+        return out
 
 
 register_runner("joint", JointRunner())

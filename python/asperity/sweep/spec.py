@@ -27,6 +27,7 @@ import dataclasses
 import math
 import os
 import re
+import stat
 import tomllib
 from typing import Any, Iterator
 
@@ -617,10 +618,25 @@ def apply_assignments(case: dict, assignments: list) -> dict:
     return c
 
 
+# Largest case or sweep file read, as the C++ commands' (core::kMaxCaseFileBytes, 4 MiB):
+# a case is a few KB; more is a wrong file (a mesh, a log, a device).
+MAX_CASE_FILE_BYTES = 4 << 20
+
+
 def read_toml(path: str) -> dict:
     try:
+        st = os.stat(path)
+        if stat.S_ISDIR(st.st_mode) or not stat.S_ISREG(st.st_mode):
+            kind = "a directory" if stat.S_ISDIR(st.st_mode) else "not a regular file"
+            raise SweepError(f"{path}: {kind}; give a case or sweep file (TOML)")
+        if st.st_size > MAX_CASE_FILE_BYTES:
+            raise SweepError(f"{path}: {st.st_size} bytes, more than the limit of 4 MiB for a "
+                             "case or sweep file (a case is a few KB of TOML)")
         with open(path, "rb") as f:
-            return tomllib.load(f)
+            data = f.read(MAX_CASE_FILE_BYTES + 1)
+        if len(data) > MAX_CASE_FILE_BYTES:
+            raise SweepError(f"{path}: more than the limit of 4 MiB for a case or sweep file")
+        return tomllib.loads(data.decode("utf-8"))
     except OSError as e:
         raise SweepError(f"{path}: cannot be read: {e.strerror}") from None
     except tomllib.TOMLDecodeError as e:
