@@ -999,8 +999,8 @@ def _force_amplitudes(case: Mapping, curves) -> list:
     tables = case.get("frequency_response", []) if isinstance(case, Mapping) else []
     out = []
     for c in curves:
-        t = c.get("table", -1)
-        t = tables[t] if isinstance(t, int) and 0 <= t < len(tables) else {}
+        t = c.get("table", 0)  # counted from 1
+        t = tables[t - 1] if isinstance(t, int) and 1 <= t <= len(tables) else {}
         values = [x for key in ("force_cos", "force_sin") for row in t.get(key, [])
                   for x in (row if isinstance(row, list) else [row])]
         try:
