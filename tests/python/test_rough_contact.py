@@ -1,6 +1,7 @@
 """The 3-D rough-contact element from Python (asperity.vibration.RoughContact, issue 20).
 
 References:
+- equilibrium (the bolt load carried by the interface pressures) for fem.rough_prestress;
 - the case-file element (``type = "rough_contact"`` of ``asperity vibration``, parsed by
   src/vibration/case_elements.cpp) and the case form ``T = { interface_element = "all" }`` on
   a reduced model: the same C++ element built on the same numbers, so the forces agree to
@@ -234,3 +235,51 @@ log10_amplitude = {{ from = -9.0, to = -8.0 }}
 def test_a_model_without_rough_record_is_refused():
     with pytest.raises(asperity.InvalidInput, match="no rough record"):
         vib.rough_contact_on_interface({"rough": None, "source": "m.mat"})
+
+
+def bolted_translation_file(path, elements: int, preload: float):
+    """One DOF, the normal translation of one side (the opening of every element, Q's normal
+    rows 1), no elastic stiffness (free under pre-tension), a bolt pulling it closed."""
+    ne = elements
+    Q = np.zeros((3 * ne, 1))
+    Q[2::3, 0] = 1.0
+    scipy.io.savemat(path, {
+        "format": "asperity reduced model 1",
+        "M": np.eye(1), "K": np.zeros((1, 1)), "Q": Q, "T": Q.T.copy(),
+        "element_area": np.full((ne, 1), AREA), "element_centroid": np.zeros((ne, 3)),
+        "element_frame": np.tile(np.eye(3).reshape(1, 9), (ne, 1)),
+        "element_interface": np.zeros((ne, 1)), "interface_names": "joint",
+        "Fv": -np.ones((1, 1)), "bolt_elongation": np.ones((1, 1)),
+        "bolt_axial_stiffness": np.array([[1e8]]), "bolt_preload": np.array([[preload]]),
+        "bolt_names": "m6", "R": np.zeros((3, 1)), "output_points": np.zeros((1, 3)),
+        "output_names": "tip", "fixed_interface_modes": np.array([[0.0]]),
+    })
+
+
+def test_rough_prestress_balances_the_bolt(element, tmp_path):
+    path = tmp_path / "bolted.mat"
+    ne = 4
+    bolted_translation_file(path, ne, PRESSURE * ne * AREA)
+    p = table_7_2()
+    args = (path, p["E_star"], p["G_star"], p["H"], p["sigma"], p["R"], p["eta"])
+    flat = fem.rough_prestress(*args, nu=p["nu"])
+    # Equilibrium of the translating side: every element at the mean pressure, sum p A the
+    # bolt load (Newton's converged residual: 4e-15 measured, 1e-12 asserted).
+    assert np.allclose(flat["pressure"], PRESSURE, rtol=1e-12, atol=0)
+    assert abs(flat["interface_load"] / flat["bolt_load"] - 1) < 1e-12
+    assert flat["in_contact"].all() and flat["contact_area"] == pytest.approx(ne * AREA, rel=1e-15)
+    # The separation is the rough-contact element's at that pressure (Eq. 4.4 inverted on the
+    # same rough flat, by Newton on the prestress and by separation_star's root search, each
+    # to its own tolerance: measured 9e-12 apart, 1e-10 asserted).
+    d0 = element.surface.core.separation_star(PRESSURE)
+    assert np.allclose(flat["separation_star"], d0, rtol=1e-10, atol=0)
+    # An initial gap per element: the side still translates rigidly, so the separations
+    # differ by exactly gap/sigma, and the pressures still carry the bolt load.
+    gap = np.array([0.0, 0.0, 0.2e-6, 0.5e-6])
+    gapped = fem.rough_prestress(*args, nu=p["nu"], gap=gap)
+    d = gapped["separation_star"]
+    assert np.allclose(d - d[0], gap / p["sigma"], rtol=0, atol=1e-12)
+    assert abs(gapped["interface_load"] / gapped["bolt_load"] - 1) < 1e-12
+    assert gapped["pressure"][0] > PRESSURE > gapped["pressure"][3]
+    with pytest.raises(asperity.InvalidInput, match="gap"):
+        fem.rough_prestress(*args, gap=[0.0, 1e-6])
