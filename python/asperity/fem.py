@@ -10,7 +10,9 @@ The Python face of the C++ layer ``fem/`` (docs/structures.md); SI units through
   run): the mesh, the reduced model, the linear modes (open, frictionless, stuck) and the
   prestress, as a dict of numpy arrays.
 * :func:`read_reduced_model` - a reduced model (.mat: asperity's, or the published
-  Brake-Reuss beam layout M, K, Fv, L, Qm, Tm) as a dict; :func:`read_mesh` - a gmsh
+  Brake-Reuss beam layout M, K, Fv, L, Qm, Tm) as a dict (with its rough record);
+  :func:`rough_prestress` - the bolt preloads on the rough flat's normal law;
+  :func:`read_mesh` - a gmsh
   ``.msh`` or Abaqus ``.inp`` mesh of quadratic solids; :func:`reduced_linear_modes` -
   the elastic modes of a reduced model file with a linear stiffness per interface element.
 """
@@ -22,7 +24,7 @@ from . import _core
 
 _f = _core._fem
 
-__all__ = ["assemble", "run_structure", "read_reduced_model", "read_mesh",
+__all__ = ["assemble", "run_structure", "read_reduced_model", "rough_prestress", "read_mesh",
            "reduced_linear_modes"]
 
 
@@ -59,8 +61,30 @@ def read_reduced_model(path: str) -> dict:
     forces [N]), ``element_area``, ``element_centroid``, ``element_frame`` (rows t1, t2, n),
     ``element_interface``, ``Fv`` (unit bolt tensions), ``bolt_elongation``,
     ``bolt_axial_stiffness``, ``bolt_preload``, ``bolt_names``, ``R`` (output-point
-    recovery), ``output_names``, ``output_points``, ``source``."""
+    recovery), ``output_names``, ``output_points``, ``source``, and ``rough``: ``None``, or
+    for a model written with a ``[rough_contact]`` table (docs/rough_contact.md) a dict of the
+    rough surface (``E_star``, ``G_star``, ``H`` [Pa], ``nu``, ``sigma``, ``R`` [m], ``eta``
+    [1/m^2], ``summit_sigma``, ``model``), each element's prestress ``pressure`` [Pa] and
+    ``in_contact`` (bool: at least one asperity expected in contact).
+    :func:`asperity.vibration.rough_contact_on_interface` places rough-contact elements on it."""
     return _core.fem_read_reduced_model(str(path))
+
+
+def rough_prestress(path: str, E_star: float, G_star: float, H: float, sigma: float,
+                    R: float, eta: float, *, nu: float = 0.3, model: str = "bke",
+                    summit_sigma: bool = False, gap=None) -> dict:
+    """The bolt preloads of a reduced model file on an interface whose normal law is the
+    thesis's rough flat (docs/rough_contact.md; ``asperity structure``'s ``[rough_contact]``
+    step): the surfaces as combined values (SI), an optional initial ``gap`` [m] per
+    interface element. Returns ``x`` (reduced displacement), per element ``pressure`` [Pa],
+    ``separation_star``, ``real_area_ratio``, ``normal_stiffness`` and
+    ``tangential_stiffness`` [Pa/m], ``in_contact``; ``interface_load`` and ``bolt_load``
+    [N], ``contact_area`` and ``real_contact_area`` [m^2], ``iterations``, ``residual``.
+    Tangentially frictionless while the bolts are tightened."""
+    g = np.zeros(0) if gap is None else np.ascontiguousarray(gap, dtype=float).reshape(-1)
+    return _core.fem_rough_prestress(str(path), float(E_star), float(G_star), float(H),
+                                     float(nu), float(sigma), float(R), float(eta), str(model),
+                                     bool(summit_sigma), g)
 
 
 def read_mesh(path: str) -> dict:

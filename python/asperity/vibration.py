@@ -10,7 +10,11 @@ from the same C++ code as ``asperity vibration``. SI units throughout.
   :class:`Coulomb`, :class:`ElasticDryFriction2d`, :class:`PolynomialStiffness`,
   :class:`CubicDamping`, :class:`UnilateralSpring`, :class:`ElasticDryFriction3d`,
   :class:`RoughFlat` (any SI backbone under Masing's rules: from
-  :func:`asperity.epb_backbone`, a joint case file or :func:`asperity.predict`).
+  :func:`asperity.epb_backbone`, a joint case file or :func:`asperity.predict`) and
+  :class:`RoughContact` (the rough flat as the 3-D contact law of a zero-thickness element,
+  on a :class:`RoughContactSurface` shared by an interface's elements;
+  :func:`rough_contact_on_interface` places one on every interface element of a reduced
+  model in contact at its rough prestress).
 * :func:`run_case` / :func:`run_case_text` - a case file of ``asperity vibration``
   (the same parser and run function as the command): the summary (summary.json as a
   dict) and each analysis's arrays; :meth:`HarmonicBalance.from_case` - a case file's
@@ -47,7 +51,8 @@ _v = _core._vibration
 __all__ = [
     "Structure", "Element", "Jenkins", "Iwan4", "MasingTable", "Coulomb", "ElasticDryFriction2d",
     "PolynomialStiffness", "CubicDamping", "UnilateralSpring", "ElasticDryFriction3d", "RoughFlat",
-    "OdfalkVingsbo", "UserElement",
+    "OdfalkVingsbo", "UserElement", "RoughContactSurface", "RoughContact",
+    "rough_contact_on_interface",
     "HarmonicBalance", "Result", "nonlinear_mode",
     "frequency_response", "force_response", "amplitude_control", "phase_resonance",
     "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
@@ -501,6 +506,142 @@ class OdfalkVingsbo(Element):
         super().__init__(_v.odfalk_vingsbo(backbone, fretting_yield_point,
                                            hardening_coefficient), T, name)
         self.backbone = backbone
+
+
+class RoughContactSurface:
+    """The two rough surfaces of an interface (combined values, SI: ``E_star``, ``G_star``,
+    ``H`` [Pa], ``nu``, ``sigma`` [m], ``R`` [m], ``eta`` [1/m^2], the asperity ``model``
+    ``"bke"``, ``"ke"``, ``"ceb"`` or ``"cfc"``, ``mu_cfc`` for CFC, ``summit_sigma``: sigma is
+    the summit heights' standard deviation) as the rough flat per unit nominal area, with its
+    tangential tables over the normal pressure from ``p_low`` to ``p_high`` [Pa]
+    (docs/rough_contact.md). Build it once per interface and place elements with
+    :meth:`element`: the tables are shared. Raises :class:`asperity.InvalidInput` naming the
+    field."""
+
+    def __init__(self, E_star: float, G_star: float, H: float, sigma: float, R: float,
+                 eta: float, *, p_low: float, p_high: float, nu: float = 0.3,
+                 model: str = "bke", mu_cfc: float | None = None, summit_sigma: bool = False):
+        self.parameters = {"E_star": float(E_star), "G_star": float(G_star), "H": float(H),
+                           "nu": float(nu), "sigma": float(sigma), "R": float(R),
+                           "eta": float(eta), "model": str(model), "mu_cfc": mu_cfc,
+                           "summit_sigma": bool(summit_sigma)}
+        self.core = _v.rough_contact_surface(**self.parameters, p_low=float(p_low),
+                                             p_high=float(p_high))
+
+    @staticmethod
+    def max_pressure_of(**parameters) -> float:
+        """The largest nominal pressure [Pa] the rough flat of these surfaces represents (its
+        load at ``d = -5 sigma_a``): the highest ``p_high`` allowed."""
+        p = {"nu": 0.3, "model": "bke", "mu_cfc": None, "summit_sigma": False, **parameters}
+        return float(_v.rough_flat_max_pressure(**p))
+
+    @property
+    def p_low(self) -> float:
+        return float(self.core.p_low)
+
+    @property
+    def p_high(self) -> float:
+        return float(self.core.p_high)
+
+    @property
+    def pressure_scale(self) -> float:
+        """``K H`` [Pa]: pressures over it are the rough flat's ``P*``."""
+        return float(self.core.pressure_scale)
+
+    def element(self, pressure: float, area: float, T=None, name: str | None = None
+                ) -> "RoughContact":
+        """A :class:`RoughContact` element of ``area`` [m^2] at the prestress ``pressure``
+        [Pa] (in ``[p_low, p_high]``) placed by ``T`` (rows t1, t2, n: closure; default the
+        first three DOFs)."""
+        return RoughContact(surface=self, pressure=pressure, area=area, T=T, name=name)
+
+    def __repr__(self) -> str:
+        return (f"RoughContactSurface({self.parameters}, p_low={self.p_low}, "
+                f"p_high={self.p_high})")
+
+
+class RoughContact(Element):
+    """The thesis's rough flat as the contact law of a zero-thickness interface element in
+    three directions (rows of ``T``: t1, t2 tangential, n the closure, ``u_n > 0`` presses):
+    the Greenwood-Williamson normal law unloading from the prestress's plastic set, Masing's
+    rules with memory in each tangential direction at the current pressure, the traction
+    limited to the rough flat's static friction (docs/rough_contact.md). ``u = 0`` is the
+    prestressed state. At constant normal load and motion along t1 it is :class:`RoughFlat`
+    at the same load.
+
+    ``RoughContact(E_star=..., G_star=..., H=..., sigma=..., R=..., eta=..., pressure=,
+    area=, T=)`` builds its own surface with tables from ``pressure/8`` to ``8 pressure``
+    (as a case file's ``type = "rough_contact"`` element); ``RoughContact(surface=s,
+    pressure=, area=, T=)`` (or ``s.element(...)``) shares the surface ``s``.
+    """
+
+    def __init__(self, *, pressure: float, area: float, T=None, surface=None,
+                 name: str | None = None, **surface_parameters):
+        if surface is None:
+            # Checked before the surface's tables are built (a few tenths of a second).
+            for field, v, unit in (("pressure", pressure, "Pa"), ("area", area, "m^2")):
+                if not (math.isfinite(float(v)) and float(v) > 0):
+                    raise _core.InvalidInput(f"{field} = {v} {unit}: must be finite and > 0")
+            p = float(pressure)
+            surface = RoughContactSurface(**surface_parameters, p_low=p / 8.0, p_high=8.0 * p)
+        elif surface_parameters:
+            raise _core.InvalidInput(
+                f"give a surface or its parameters, not both (got {sorted(surface_parameters)})")
+        if not isinstance(surface, RoughContactSurface):
+            raise _core.InvalidInput(
+                f"surface is a {type(surface).__name__}, not a RoughContactSurface")
+        label = name or "rough_contact element"
+        core = _v.rough_contact_element(surface.core, float(area), float(pressure), label)
+        super().__init__(core, np.eye(3) if T is None else T, name)
+        self.surface = surface
+        self.pressure = float(pressure)
+        self.area = float(area)
+
+
+def rough_contact_on_interface(model, asperity_model: str | None = None,
+                               mu_cfc: float | None = None,
+                               name: str = "interface element") -> list:
+    """:class:`RoughContact` elements on every interface element of a reduced model in contact
+    at its rough prestress, as a case file's ``T = { interface_element = "all" }``
+    (docs/rough_contact.md): ``model`` is :func:`asperity.fem.read_reduced_model`'s dict (or a
+    path to the file) with its ``rough`` record; one shared surface with tables from
+    ``p_min/8`` to ``8 p_max`` (at most 0.999 of the rough flat's largest load); each element
+    placed by its rows of ``Q`` (t1, t2 and the closure, the negative opening).
+    ``asperity_model`` and ``mu_cfc`` override the file's. Elements out of contact are left
+    out with a :class:`RuntimeWarning`."""
+    if isinstance(model, (str, os.PathLike)):
+        model = _core.fem_read_reduced_model(os.fspath(model))
+    r = model.get("rough")
+    source = model.get("source", "the reduced model")
+    if r is None:
+        raise _core.InvalidInput(
+            f"{source} has no rough record: write it with `asperity structure` and a "
+            "[rough_contact] table (the rough surface and each element's prestress pressure)")
+    pressure = np.asarray(r["pressure"], dtype=float)
+    touching = [e for e in range(pressure.size) if bool(r["in_contact"][e]) and pressure[e] > 0]
+    if not touching:
+        raise _core.InvalidInput(
+            f"no interface element of {source} is in contact at the rough prestress")
+    if len(touching) < pressure.size:
+        warnings.warn(f"{pressure.size - len(touching)} of the {pressure.size} interface "
+                      "elements are out of contact at the rough prestress (less than one "
+                      "asperity expected in contact) and are left out", RuntimeWarning,
+                      stacklevel=2)
+    params = {k: r[k] for k in ("E_star", "G_star", "H", "nu", "sigma", "R", "eta",
+                                "summit_sigma")}
+    params["model"] = asperity_model if asperity_model is not None else r["model"]
+    params["mu_cfc"] = mu_cfc
+    p_t = pressure[touching]
+    p_max_flat = RoughContactSurface.max_pressure_of(**params)
+    surface = RoughContactSurface(**params, p_low=float(p_t.min()) / 8.0,
+                                  p_high=min(8.0 * float(p_t.max()), 0.999 * p_max_flat))
+    Q = np.asarray(model["Q"], dtype=float)
+    area = np.asarray(model["element_area"], dtype=float).reshape(-1)
+    out = []
+    for e in touching:
+        T = np.vstack([Q[3 * e], Q[3 * e + 1], -Q[3 * e + 2]])
+        out.append(surface.element(float(pressure[e]), float(area[e]), T, f"{name} {e}"))
+    return out
 
 
 class HarmonicBalance:

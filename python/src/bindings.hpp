@@ -28,6 +28,8 @@ void bind_dynamics(nb::module_& m);
 void bind_vibration(nb::module_& m);
 /// vibration/: elements whose force law is a Python function (the _vibration submodule).
 void bind_vibration_user(nb::module_& vibration);
+/// vibration/: the 3-D rough-contact element and its shared surface (the _vibration submodule).
+void bind_vibration_rough(nb::module_& vibration);
 /// fem/ structures: asperity structure's steps and reduced-model files (fem_* functions).
 void bind_fem_structure(nb::module_& m);
 /// fem/: stiffness and consistent mass of quadratic solid elements (scipy.sparse).

@@ -7,9 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "asperity/contact/asperity_model.hpp"
+#include "asperity/contact/material.hpp"
 #include "asperity/fem/mesh_io.hpp"
 #include "asperity/fem/reduced_model.hpp"
+#include "asperity/fem/rough_prestress.hpp"
 #include "asperity/fem/structure.hpp"
+#include "asperity/surface/rough_flat.hpp"
 #include "bindings.hpp"
 
 namespace asperity::python {
@@ -78,6 +82,28 @@ nb::dict model_dict(const ReducedModel& m) {
   d["output_names"] = m.output_names;
   d["output_points"] = array(m.output_points);
   d["source"] = m.source;
+  // [rough_contact]: the rough surface (combined values, SI) and each element's prestress.
+  if (m.rough) {
+    const RoughInterfaceRecord& r = *m.rough;
+    nb::dict rd;
+    rd["E_star"] = r.E_star;
+    rd["G_star"] = r.G_star;
+    rd["H"] = r.H;
+    rd["nu"] = r.nu;
+    rd["sigma"] = r.sigma;
+    rd["R"] = r.R;
+    rd["eta"] = r.eta;
+    rd["summit_sigma"] = r.summit_sigma;
+    rd["model"] = r.model;
+    rd["pressure"] = array(r.pressure);
+    Eigen::Matrix<bool, Eigen::Dynamic, 1> touching(static_cast<Eigen::Index>(r.in_contact.size()));
+    for (std::size_t e = 0; e < r.in_contact.size(); ++e)
+      touching[static_cast<Eigen::Index>(e)] = r.in_contact[e] != 0;
+    rd["in_contact"] = nb::cast(touching, nb::rv_policy::move);
+    d["rough"] = rd;
+  } else {
+    d["rough"] = nb::none();
+  }
   return d;
 }
 
@@ -141,6 +167,46 @@ void bind_fem_structure(nb::module_& m) {
       "path"_a, "element_stiffness"_a, "count"_a = 10,
       "Elastic modes of a reduced model file with a linear stiffness per interface element "
       "direction [Pa/m] (3 per element: t1, t2, n).");
+  m.def(
+      "fem_rough_prestress",
+      [](const std::string& path, double E_star, double G_star, double H, double nu, double sigma,
+         double R, double eta, const std::string& model, bool summit_sigma,
+         const Eigen::VectorXd& gap) {
+        const ReducedModel rm = read_reduced_model(path);
+        // The rough flat per unit nominal area (A0 = 1 m^2): its force scale is K H [Pa].
+        const auto flat =
+            surface::RoughFlat::from_combined(E_star, G_star, H, nu, sigma, R, eta,
+                                              contact::parse_model_name(model), {}, summit_sigma);
+        const RoughSurfaceScales scales{
+            .sigma = sigma, .pressure_scale = contact::hardness_factor(nu) * H, .eta = eta};
+        const RoughPrestress r = [&] {
+          nb::gil_scoped_release release;
+          return rough_prestress(rm, flat, scales, gap);
+        }();
+        nb::dict d;
+        d["x"] = array(r.x);
+        d["pressure"] = array(r.pressure);
+        d["separation_star"] = array(r.separation_star);
+        d["real_area_ratio"] = array(r.real_area_ratio);
+        d["normal_stiffness"] = array(r.normal_stiffness);
+        d["tangential_stiffness"] = array(r.tangential_stiffness);
+        Eigen::Matrix<bool, Eigen::Dynamic, 1> touching(
+            static_cast<Eigen::Index>(r.in_contact.size()));
+        for (std::size_t e = 0; e < r.in_contact.size(); ++e)
+          touching[static_cast<Eigen::Index>(e)] = r.in_contact[e] != 0;
+        d["in_contact"] = nb::cast(touching, nb::rv_policy::move);
+        d["interface_load"] = r.interface_load;
+        d["bolt_load"] = r.bolt_load;
+        d["contact_area"] = r.contact_area;
+        d["real_contact_area"] = r.real_contact_area;
+        d["iterations"] = r.iterations;
+        d["residual"] = r.residual;
+        return d;
+      },
+      "path"_a, "E_star"_a, "G_star"_a, "H"_a, "nu"_a, "sigma"_a, "R"_a, "eta"_a, "model"_a,
+      "summit_sigma"_a, "gap"_a,
+      "The bolt preloads of a reduced model file on its interface with the rough flat's normal "
+      "law (fem::rough_prestress): pressures, contact area, linearised stiffnesses.");
 }
 
 }  // namespace asperity::python

@@ -36,6 +36,7 @@ NB_MODULE(_core, m) {
   {
     auto vibration = nanobind::borrow<nanobind::module_>(m.attr("_vibration"));
     asperity::python::bind_vibration_user(vibration);
+    asperity::python::bind_vibration_rough(vibration);
   }
   asperity::python::bind_fem_structure(m);
   asperity::python::bind_fem(m);

@@ -1,0 +1,285 @@
+"""The 3-D rough-contact element from Python (asperity.vibration.RoughContact, issue 20).
+
+References:
+- equilibrium (the bolt load carried by the interface pressures) for fem.rough_prestress;
+- the case-file element (``type = "rough_contact"`` of ``asperity vibration``, parsed by
+  src/vibration/case_elements.cpp) and the case form ``T = { interface_element = "all" }`` on
+  a reduced model: the same C++ element built on the same numbers, so the forces agree to
+  round-off;
+- today's one-directional rough flat (:meth:`asperity.vibration.RoughFlat.from_contact`,
+  thesis Eq. 4.4-4.13 on Table 7.2's surfaces): at constant normal load and motion along t1
+  the 3-D element uses the same table and the same Masing memory (rough_contact.hpp), so the
+  forces agree to 1e-10 of the slip force, as the C++ test
+  RoughContactElement.OneDirectionAtConstantLoadIsTodaysRoughFlat asserts.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.io
+
+import asperity
+import asperity.fem as fem
+import asperity.vibration as vib
+
+PRESSURE = 20e6  # [Pa], a bolted joint's mean pressure
+AREA = 4e-6      # [m^2], a 2 x 2 mm interface patch
+
+
+def table_7_2() -> dict:
+    c = asperity.table_7_2_rough()
+    return {"E_star": c.E_star, "G_star": c.G_star, "H": c.H, "nu": c.nu, "sigma": c.sigma,
+            "R": c.R, "eta": c.eta, "model": "bke"}
+
+
+def period(N: int, amplitudes, seed: int) -> np.ndarray:
+    """N samples of a period, one column per direction: harmonics 1..3, random phases."""
+    rng = np.random.default_rng(seed)
+    t = 2 * np.pi * np.arange(N) / N
+    cols = []
+    for a in amplitudes:
+        p = rng.uniform(0, 2 * np.pi, 3)
+        cols.append(a * (np.cos(t + p[0]) + 0.5 * np.cos(2 * t + p[1]) + 0.3 * np.sin(3 * t + p[2])))
+    return np.column_stack(cols)
+
+
+def case_text(p: dict, pressure: float, area: float) -> str:
+    # repr(): the case reads the same doubles as the Python element gets.
+    return f"""[structure]
+mass = [[1.0, 0, 0], [0, 1.0, 0], [0, 0, 1.0]]
+stiffness = [[1e8, 0, 0], [0, 2e8, 0], [0, 0, 0]]
+damping = [[20.0, 0, 0], [0, 20.0, 0], [0, 0, 20.0]]
+[[element]]
+type = "rough_contact"
+E_star = {p['E_star']!r}
+G_star = {p['G_star']!r}
+H = {p['H']!r}
+nu = {p['nu']!r}
+sigma = {p['sigma']!r}
+R = {p['R']!r}
+eta = {p['eta']!r}
+asperity_model = "{p['model']}"
+pressure = {pressure!r}
+area = {area!r}
+T = [[1.0, 0, 0], [0, 1.0, 0], [0, 0, 1.0]]
+[harmonic_balance]
+max = 3
+time_points = 64
+[nonlinear_mode]
+mode = 1
+log10_amplitude = {{ from = -9.0, to = -8.0 }}
+"""
+
+
+@pytest.fixture(scope="module")
+def element() -> vib.RoughContact:
+    return vib.RoughContact(**table_7_2(), pressure=PRESSURE, area=AREA, T=np.eye(3))
+
+
+def test_equals_the_case_file_element_in_three_directions(element, tmp_path):
+    path = tmp_path / "rough.toml"
+    path.write_text(case_text(table_7_2(), PRESSURE, AREA))
+    hb_case = vib.HarmonicBalance.from_case(path)
+    (case_element,) = hb_case.elements
+    assert case_element.type == element.type == "rough_contact"
+    s = table_7_2()["sigma"]
+    # Tangential motion in two directions and a normal closure varying by +-0.1 sigma: the
+    # pressure moves along the tables, slip and stick alternate.
+    u = period(64, [0.3 * s, 0.2 * s, 0.1 * s], seed=1)
+    mine = element.core.periodic_response(u, tangent=True)
+    ref = case_element.core.periodic_response(u, tangent=True)
+    scale = np.abs(ref["f"]).max()
+    assert scale > 0
+    # The same C++ element built from the same doubles: identical results are expected;
+    # 1e-13 of the largest value admits only last-bit differences.
+    assert np.abs(mine["f"] - ref["f"]).max() <= 1e-13 * scale
+    assert np.abs(mine["du"] - ref["du"]).max() <= 1e-13 * np.abs(ref["du"]).max()
+    # In a harmonic balance: the residual of the case's system with the Python element.
+    hb = vib.HarmonicBalance(vib.Structure(hb_case.structure.M, hb_case.structure.K,
+                                           hb_case.structure.C),
+                             [element], max_harmonic=3, time_points=64)
+    U = np.zeros(hb.unknowns)
+    for dof, a in ((0, 0.5 * s), (1, 0.2 * s), (2, 0.05 * s)):
+        U[hb.index(dof, 1, 0)] = a
+    r_mine, J_mine, _ = hb.residual(U, 2 * np.pi * 1.5e3)
+    r_ref, J_ref, _ = hb_case.residual(U, 2 * np.pi * 1.5e3)
+    assert np.abs(r_mine - r_ref).max() <= 1e-13 * np.abs(r_ref).max()
+    assert np.abs(J_mine - J_ref).max() <= 1e-13 * np.abs(J_ref).max()
+
+
+def test_constant_load_along_t1_is_todays_rough_flat(element):
+    c = asperity.table_7_2_rough()
+    c.A0 = AREA
+    c.P = PRESSURE * AREA
+    today = vib.RoughFlat.from_contact(c)
+    # The slip force: Q_max of the same table (Eq. 4.7).
+    assert abs(element.core.slip_force / today.core.slip_force - 1) < 1e-10
+    delta_slip = today.core.slip_force / today.core.initial_stiffness[0, 0]
+    for k, amplitude in enumerate((0.02, 0.3, 1.0, 4.0)):
+        x = period(128, [amplitude * delta_slip], seed=10 + k)
+        u = np.column_stack([x[:, 0], np.zeros(128), np.zeros(128)])
+        f3 = element.core.periodic_response(u, tangent=False)["f"]
+        f1 = today.core.periodic_response(x, tangent=False)["f"]
+        assert np.abs(f3[:, 0] - f1[:, 0]).max() < 1e-10 * today.core.slip_force, amplitude
+        assert np.abs(f3[:, 1:]).max() == 0.0  # no t2 motion; the prestress is the reference
+
+
+def test_a_shared_surface_gives_the_same_element(element):
+    # The element's own surface (tables from pressure/8 to 8 pressure) shared with others.
+    surface = element.surface
+    assert (surface.p_low, surface.p_high) == (PRESSURE / 8, 8 * PRESSURE)
+    shared = surface.element(PRESSURE, AREA, np.eye(3))
+    other = surface.element(2 * PRESSURE, 2 * AREA, np.eye(3))
+    s = table_7_2()["sigma"]
+    u = period(32, [0.2 * s, 0.1 * s, 0.05 * s], seed=3)
+    f_own = element.core.periodic_response(u, tangent=False)["f"]
+    f_shared = shared.core.periodic_response(u, tangent=False)["f"]
+    # The same tables and prestress: the same numbers.
+    assert np.array_equal(f_own, f_shared)
+    assert other.surface is shared.surface is surface
+    # Twice the area at twice the pressure: four times the nominal load, and Q_max grows
+    # with the load (Eq. 4.7).
+    assert other.core.slip_force > 2 * shared.core.slip_force
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    ({"area": 0.0}, "area"),
+    ({"E_star": -1.0}, "rough_contact.E_star"),
+    ({"G_star": 2e11}, "rough_contact.G_star"),
+    ({"nu": 0.5}, "rough_contact.nu"),
+    ({"sigma": float("nan")}, "rough_contact.sigma"),
+    ({"model": "hertz"}, "model \"hertz\""),
+    ({"mu_cfc": 0.0, "model": "cfc"}, "rough_contact.mu_cfc"),
+    ({"pressure": -1.0}, "pressure"),
+    ({"area": float("inf")}, "area"),
+])
+def test_bad_input_names_the_field(kwargs, field):
+    args = {**table_7_2(), "pressure": PRESSURE, "area": AREA, **kwargs}
+    with pytest.raises(asperity.InvalidInput, match=field.replace(".", r"\.")):
+        vib.RoughContact(**args)
+
+
+def test_pressure_outside_the_shared_tables_is_refused(element):
+    surface = element.surface
+    with pytest.raises(asperity.InvalidInput, match="prestress pressure"):
+        surface.element(10 * PRESSURE, AREA)
+    with pytest.raises(asperity.InvalidInput, match="pressure range"):
+        vib.RoughContactSurface(**table_7_2(), p_low=PRESSURE, p_high=PRESSURE / 2)
+
+
+def reduced_model_file(path, pressures, in_contact):
+    """A reduced model in asperity's .mat layout (src/fem/reduced_model.cpp): three DOFs,
+    one interface element per pressure whose rows of Q mix the DOFs, a rough record."""
+    n, ne = 3, len(pressures)
+    rng = np.random.default_rng(5)
+    Q = rng.uniform(-1, 1, (3 * ne, n))
+    p = table_7_2()
+    scipy.io.savemat(path, {
+        "format": "asperity reduced model 1",
+        "M": np.eye(n), "K": np.diag([1e8, 2e8, 3e8]), "Q": Q, "T": Q.T.copy(),
+        "element_area": np.full((ne, 1), AREA),
+        "element_centroid": np.zeros((ne, 3)),
+        "element_frame": np.tile(np.eye(3).reshape(1, 9), (ne, 1)),
+        "element_interface": np.zeros((ne, 1)), "interface_names": "joint",
+        "Fv": np.ones((n, 1)), "bolt_elongation": np.ones((1, n)),
+        "bolt_axial_stiffness": np.array([[1e8]]), "bolt_preload": np.array([[1e3]]),
+        "bolt_names": "m6", "R": np.zeros((3, n)), "output_points": np.zeros((1, 3)),
+        "output_names": "tip", "fixed_interface_modes": np.array([[0.0]]),
+        "rough_surface": np.array([[p["E_star"], p["G_star"], p["H"], p["nu"], p["sigma"],
+                                    p["R"], p["eta"], 0.0]]),
+        "rough_model": "bke",
+        "rough_pressure": np.array(pressures, dtype=float).reshape(-1, 1),
+        "rough_in_contact": np.array(in_contact, dtype=float).reshape(-1, 1),
+    })
+    return Q
+
+
+def test_every_interface_element_as_the_case_places_them(tmp_path):
+    path = tmp_path / "model.mat"
+    pressures = [18e6, 22e6, 0.0, 20e6]
+    Q = reduced_model_file(path, pressures, [1, 1, 0, 1])
+    model = fem.read_reduced_model(path)
+    r = model["rough"]
+    assert r["model"] == "bke" and r["E_star"] == table_7_2()["E_star"]
+    assert r["in_contact"].tolist() == [True, True, False, True]
+    assert r["pressure"].tolist() == pressures
+    with pytest.warns(RuntimeWarning, match="1 of the 4 interface elements"):
+        mine = vib.rough_contact_on_interface(model)
+    case = tmp_path / "all.toml"
+    case.write_text(f"""[structure]
+model = "{path}"
+[[element]]
+type = "rough_contact"
+T = {{ interface_element = "all" }}
+[harmonic_balance]
+max = 1
+time_points = 32
+[nonlinear_mode]
+mode = 1
+log10_amplitude = {{ from = -9.0, to = -8.0 }}
+""")
+    ref = vib.HarmonicBalance.from_case(case)
+    ref_elements = ref.elements
+    assert len(mine) == len(ref_elements) == 3
+    s = table_7_2()["sigma"]
+    u = period(32, [0.2 * s, 0.1 * s, 0.05 * s], seed=7)
+    for e, a, b in zip((0, 1, 3), mine, ref_elements):
+        assert np.array_equal(a.T, b.T)
+        assert np.array_equal(a.T[2], -Q[3 * e + 2])  # the closure: the negative opening
+        fa = a.core.periodic_response(u, tangent=False)["f"]
+        fb = b.core.periodic_response(u, tangent=False)["f"]
+        # Same surface tables (same pressure range), same element: round-off only.
+        assert np.abs(fa - fb).max() <= 1e-13 * np.abs(fb).max()
+
+
+def test_a_model_without_rough_record_is_refused():
+    with pytest.raises(asperity.InvalidInput, match="no rough record"):
+        vib.rough_contact_on_interface({"rough": None, "source": "m.mat"})
+
+
+def bolted_translation_file(path, elements: int, preload: float):
+    """One DOF, the normal translation of one side (the opening of every element, Q's normal
+    rows 1), no elastic stiffness (free under pre-tension), a bolt pulling it closed."""
+    ne = elements
+    Q = np.zeros((3 * ne, 1))
+    Q[2::3, 0] = 1.0
+    scipy.io.savemat(path, {
+        "format": "asperity reduced model 1",
+        "M": np.eye(1), "K": np.zeros((1, 1)), "Q": Q, "T": Q.T.copy(),
+        "element_area": np.full((ne, 1), AREA), "element_centroid": np.zeros((ne, 3)),
+        "element_frame": np.tile(np.eye(3).reshape(1, 9), (ne, 1)),
+        "element_interface": np.zeros((ne, 1)), "interface_names": "joint",
+        "Fv": -np.ones((1, 1)), "bolt_elongation": np.ones((1, 1)),
+        "bolt_axial_stiffness": np.array([[1e8]]), "bolt_preload": np.array([[preload]]),
+        "bolt_names": "m6", "R": np.zeros((3, 1)), "output_points": np.zeros((1, 3)),
+        "output_names": "tip", "fixed_interface_modes": np.array([[0.0]]),
+    })
+
+
+def test_rough_prestress_balances_the_bolt(element, tmp_path):
+    path = tmp_path / "bolted.mat"
+    ne = 4
+    bolted_translation_file(path, ne, PRESSURE * ne * AREA)
+    p = table_7_2()
+    args = (path, p["E_star"], p["G_star"], p["H"], p["sigma"], p["R"], p["eta"])
+    flat = fem.rough_prestress(*args, nu=p["nu"])
+    # Equilibrium of the translating side: every element at the mean pressure, sum p A the
+    # bolt load (Newton's converged residual: 4e-15 measured, 1e-12 asserted).
+    assert np.allclose(flat["pressure"], PRESSURE, rtol=1e-12, atol=0)
+    assert abs(flat["interface_load"] / flat["bolt_load"] - 1) < 1e-12
+    assert flat["in_contact"].all() and flat["contact_area"] == pytest.approx(ne * AREA, rel=1e-15)
+    # The separation is the rough-contact element's at that pressure (Eq. 4.4 inverted on the
+    # same rough flat, by Newton on the prestress and by separation_star's root search, each
+    # to its own tolerance: measured 9e-12 apart, 1e-10 asserted).
+    d0 = element.surface.core.separation_star(PRESSURE)
+    assert np.allclose(flat["separation_star"], d0, rtol=1e-10, atol=0)
+    # An initial gap per element: the side still translates rigidly, so the separations
+    # differ by exactly gap/sigma, and the pressures still carry the bolt load.
+    gap = np.array([0.0, 0.0, 0.2e-6, 0.5e-6])
+    gapped = fem.rough_prestress(*args, nu=p["nu"], gap=gap)
+    d = gapped["separation_star"]
+    assert np.allclose(d - d[0], gap / p["sigma"], rtol=0, atol=1e-12)
+    assert abs(gapped["interface_load"] / gapped["bolt_load"] - 1) < 1e-12
+    assert gapped["pressure"][0] > PRESSURE > gapped["pressure"][3]
+    with pytest.raises(asperity.InvalidInput, match="gap"):
+        fem.rough_prestress(*args, gap=[0.0, 1e-6])
