@@ -10,6 +10,7 @@
 #include "asperity/core/validate.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 #include "asperity/hysteresis/table_backbone.hpp"
+#include "masing_memory.hpp"
 
 namespace asperity::vibration {
 
@@ -120,20 +121,7 @@ void MasingElement::periodic_response(const Eigen::MatrixXd& u, const Eigen::Mat
         stack.push_back(std::move(r));
       }
       dir_prev = d;
-      // Active branch (Hysteresis::active_branch, Masing memory).
-      std::size_t k = stack.size();
-      while (k >= 1) {
-        const Reversal& r = stack[k - 1];
-        if ((x - r.x) * r.direction < 0.0) {
-          --k;
-          continue;
-        }
-        if ((x - r.closes_at) * r.direction >= 0.0) {
-          k = k >= 2 ? k - 2 : 0;
-          continue;
-        }
-        break;
-      }
+      const std::size_t k = detail::masing_active_depth(stack, x);
       stack.resize(k);
       if (k == 0) {
         const double ax = std::abs(x);

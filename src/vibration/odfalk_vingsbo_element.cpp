@@ -42,6 +42,7 @@
 #include "asperity/core/validate.hpp"
 #include "asperity/hysteresis/odfalk_vingsbo.hpp"
 #include "asperity/vibration/elements.hpp"
+#include "masing_memory.hpp"
 
 namespace asperity::vibration {
 
@@ -99,7 +100,7 @@ Flow plastic_flow(const hysteresis::OdfalkVingsboParameters& p, double Q_old, do
 }
 
 struct Reversal {
-  double xe = 0.0;
+  double x = 0.0;  // elastic displacement x_e at the reversal
   double Q = 0.0;
   double direction = 0.0;
   double closes_at = 0.0;
@@ -197,7 +198,7 @@ class Path {
   void push_reversal(int d) {
     dir_prev_ = d;
     Reversal r;
-    r.xe = xe_;
+    r.x = xe_;
     r.Q = Q_;
     r.direction = d;
     if (stack_.empty()) {
@@ -209,7 +210,7 @@ class Path {
     } else if (stack_.size() == 1 && stack_.front().permanent) {
       r.closes_at = d * inf;  // the top is the period's largest x_e: never reached again
     } else {
-      r.closes_at = stack_.back().xe;
+      r.closes_at = stack_.back().x;
     }
     r.g_xe = g_xe_;
     r.g_Q = g_Q_;
@@ -218,20 +219,8 @@ class Path {
 
   // The active Masing branch at xe (Hysteresis::active_branch), without changing the stack.
   [[nodiscard]] Branch branch(double xe) const {
-    std::size_t k = stack_.size();
-    while (k >= 1) {
-      const Reversal& r = stack_[k - 1];
-      if (r.permanent) break;
-      if ((xe - r.xe) * r.direction < 0.0) {
-        --k;
-        continue;
-      }
-      if ((xe - r.closes_at) * r.direction >= 0.0) {
-        k = k >= 2 ? k - 2 : 0;
-        continue;
-      }
-      break;
-    }
+    const std::size_t k =
+        detail::masing_active_depth(stack_, xe, [](const Reversal& r) { return r.permanent; });
     Branch br;
     br.k = k;
     if (k == 0) {
@@ -240,7 +229,7 @@ class Path {
       br.kt = b_.stiffness(ax);
     } else {
       const Reversal& r = stack_[k - 1];
-      const double half = r.direction * (xe - r.xe) * 0.5;  // < 0 only past a permanent top
+      const double half = r.direction * (xe - r.x) * 0.5;  // < 0 only past a permanent top
       br.Q = r.Q + r.direction * 2.0 * std::copysign(b_.force(std::abs(half)), half);
       br.kt = b_.stiffness(std::abs(half));
     }

@@ -11,6 +11,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/parallel.hpp"
 #include "asperity/core/validate.hpp"
+#include "masing_memory.hpp"
 
 namespace asperity::vibration {
 
@@ -384,21 +385,7 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
           s.stack.push_back(std::move(r));
         }
         s.dir_prev = d;
-        // Masing's loop memory (as MasingElement).
-        std::size_t k = s.stack.size();
-        while (k >= 1) {
-          const Reversal& r = s.stack[k - 1];
-          if ((x - r.x) * r.direction < 0.0) {
-            --k;
-            continue;
-          }
-          if ((x - r.closes_at) * r.direction >= 0.0) {
-            k = k >= 2 ? k - 2 : 0;
-            continue;
-          }
-          break;
-        }
-        s.stack.resize(k);
+        s.stack.resize(detail::masing_active_depth(s.stack, x));
       }
       if (s.stack.empty()) {
         const double rel = x - s.origin;
