@@ -32,7 +32,8 @@ using namespace asperity::hysteresis;
 
 namespace {
 
-// numpy's C API, imported on first use (this file is its only user).
+// numpy's C API, imported on first use (this file is its only user); nb::ndarray costs
+// 5-6x this path's time on small arrays (docs/performance.md, bench/nb_ndarray).
 void import_numpy() {
   static const bool imported = [] {
     if (_import_array() < 0) throw nb::python_error();

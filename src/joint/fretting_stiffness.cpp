@@ -6,40 +6,47 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/LU>
+#include <Eigen/QR>
 
 namespace asperity::joint::detail {
 
 namespace {
 
-// Solves the n x n system A z = b (row-major, small n) by LU with partial pivoting
-// (Eigen); NaN when singular (an exactly zero pivot).
-std::vector<double> solve_small(const std::vector<double>& A, const std::vector<double>& b) {
-  const auto n = static_cast<Eigen::Index>(b.size());
-  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Eigen::Map<const RowMajor>(A.data(), n, n));
-  std::vector<double> z(b.size(), std::numeric_limits<double>::quiet_NaN());
-  if (n == 0 || !(lu.matrixLU().diagonal().cwiseAbs().minCoeff() > 0.0)) return z;
-  Eigen::Map<Eigen::VectorXd>(z.data(), n) =
-      lu.solve(Eigen::Map<const Eigen::VectorXd>(b.data(), n));
-  return z;
-}
-
-// Inverse of a small symmetric positive matrix (column by column).
-std::vector<double> inverse_small(const std::vector<double>& A, std::size_t n) {
-  std::vector<double> inv(n * n);
-  for (std::size_t j = 0; j < n; ++j) {
-    std::vector<double> e(n, 0.0);
-    e[j] = 1.0;
-    const auto z = solve_small(A, e);
-    for (std::size_t i = 0; i < n; ++i) inv[i * n + j] = z[i];
-  }
-  return inv;
-}
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+using QR = Eigen::ColPivHouseholderQR<MatrixXd>;
 
 // The fit window of a reversal: samples r.. while |Qs - Qs[r]| <= span (not past end).
 struct Window {
   std::vector<double> u, v;  // u = s (x - x0[r]) scaled, v = s y
+};
+
+bool full_rank(const QR& qr) {
+  return qr.rank() == qr.cols();
+}
+
+// (A'A)^-1 = P R^-1 R^-T P' from A P = Q R (full column rank).
+MatrixXd inverse_gram(const QR& qr) {
+  const Index n = qr.cols();
+  const MatrixXd Rinv = qr.matrixR().topLeftCorner(n, n).triangularView<Eigen::Upper>().solve(
+      MatrixXd::Identity(n, n));
+  const MatrixXd PRinv = qr.colsPermutation() * Rinv;
+  return PRinv * PRinv.transpose();
+}
+
+// Shape columns u^2 .. u^(q+1) of the pooled fit.
+MatrixXd shape_design(const VectorXd& u, std::size_t q) {
+  MatrixXd S(u.size(), static_cast<Index>(q));
+  for (std::size_t j = 0; j < q; ++j) S.col(static_cast<Index>(j)) = u.array().pow(double(j + 2));
+  return S;
+}
+
+// A cycle's samples and its local design: one indicator per reversal and u.
+struct Cycle {
+  VectorXd u, v;
+  MatrixXd L, S;
+  QR qr;
 };
 
 }  // namespace
@@ -74,142 +81,89 @@ StiffnessFit fit_reversals(const std::vector<double>& x, const std::vector<doubl
   for (std::size_t k = 0; k < revs.size(); ++k) {
     if (win[k].u.size() >= min_samples) of_cycle[revs[k].cycle].push_back(k);
   }
-  const auto pw = [](double u, std::size_t k) { return std::pow(u, static_cast<double>(k)); };
-  // Local design of a cycle: one indicator per reversal and u (m = nrev + 1 columns).
-  struct Local {
-    std::vector<double> LL, LS, Lv;  // L'L (m x m), L'S (m x q), L'v (m)
-    std::vector<double> SS, Sv;      // S'S (q x q), S'v (q)
-    std::size_t m = 0;
+  const auto as_vector = [](const std::vector<double>& a) {
+    return Eigen::Map<const VectorXd>(a.data(), static_cast<Index>(a.size()));
   };
-  std::vector<Local> loc(ncycles);
-  std::vector<double> M(q * q, 0.0), mv(q, 0.0);
+  // Per cycle: the shape columns and v with the local parameters projected out
+  // (Frisch-Waugh: residuals of the least squares on L), stacked over the cycles.
+  std::vector<Cycle> cyc(ncycles);
+  std::vector<std::size_t> fitted;
+  Index nrows = 0;
   for (std::size_t c = 0; c < ncycles; ++c) {
     const auto& ks = of_cycle[c];
     if (ks.size() != 2) continue;
-    auto& L = loc[c];
-    L.m = ks.size() + 1;
-    const std::size_t m = L.m;
-    L.LL.assign(m * m, 0.0);
-    L.LS.assign(m * q, 0.0);
-    L.Lv.assign(m, 0.0);
-    L.SS.assign(q * q, 0.0);
-    L.Sv.assign(q, 0.0);
-    for (std::size_t r = 0; r < ks.size(); ++r) {
-      const auto& w = win[ks[r]];
-      for (std::size_t i = 0; i < w.u.size(); ++i) {
-        std::vector<double> l(m, 0.0), sh(q);
-        l[r] = 1.0;
-        l[m - 1] = w.u[i];
-        for (std::size_t j = 0; j < q; ++j) sh[j] = pw(w.u[i], j + 2);
-        for (std::size_t a = 0; a < m; ++a) {
-          for (std::size_t b = 0; b < m; ++b) L.LL[a * m + b] += l[a] * l[b];
-          for (std::size_t j = 0; j < q; ++j) L.LS[a * q + j] += l[a] * sh[j];
-          L.Lv[a] += l[a] * w.v[i];
-        }
-        for (std::size_t j = 0; j < q; ++j) {
-          for (std::size_t jj = 0; jj < q; ++jj) L.SS[j * q + jj] += sh[j] * sh[jj];
-          L.Sv[j] += sh[j] * w.v[i];
-        }
-      }
-    }
-    // Residual cross products S~'S~ = S'S - S'L (L'L)^-1 L'S, S~'v~ likewise.
-    const auto inv = inverse_small(L.LL, m);
-    for (std::size_t j = 0; j < q; ++j) {
-      for (std::size_t jj = 0; jj < q; ++jj) {
-        double corr = 0.0;
-        for (std::size_t a = 0; a < m; ++a) {
-          for (std::size_t b = 0; b < m; ++b)
-            corr += L.LS[a * q + j] * inv[a * m + b] * L.LS[b * q + jj];
-        }
-        M[j * q + jj] += L.SS[j * q + jj] - corr;
-      }
-      double corr = 0.0;
-      for (std::size_t a = 0; a < m; ++a) {
-        for (std::size_t b = 0; b < m; ++b) corr += L.LS[a * q + j] * inv[a * m + b] * L.Lv[b];
-      }
-      mv[j] += L.Sv[j] - corr;
-    }
+    auto& C = cyc[c];
+    const Index n0 = static_cast<Index>(win[ks[0]].u.size());
+    const Index n = n0 + static_cast<Index>(win[ks[1]].u.size());
+    C.u.resize(n);
+    C.v.resize(n);
+    C.u << as_vector(win[ks[0]].u), as_vector(win[ks[1]].u);
+    C.v << as_vector(win[ks[0]].v), as_vector(win[ks[1]].v);
+    C.L = MatrixXd::Zero(n, 3);
+    C.L.col(0).head(n0).setOnes();
+    C.L.col(1).tail(n - n0).setOnes();
+    C.L.col(2) = C.u;
+    C.S = shape_design(C.u, q);
+    C.qr.compute(C.L);
+    if (!full_rank(C.qr)) continue;
+    fitted.push_back(c);
+    nrows += n;
   }
-  const std::vector<double> shape = q > 0 ? solve_small(M, mv) : std::vector<double>{};
-  for (double cv : shape) {
-    if (!std::isfinite(cv)) return out;
+  const Index qi = static_cast<Index>(q);
+  VectorXd shape = VectorXd::Zero(qi);
+  QR shape_qr;
+  if (q > 0) {
+    MatrixXd St(nrows, qi);
+    VectorXd vt(nrows);
+    Index row = 0;
+    for (std::size_t c : fitted) {
+      const auto& C = cyc[c];
+      const Index n = C.u.size();
+      St.middleRows(row, n) = C.S - C.L * C.qr.solve(C.S);
+      vt.segment(row, n) = C.v - C.L * C.qr.solve(C.v);
+      row += n;
+    }
+    shape_qr.compute(St);
+    if (nrows < qi || !full_rank(shape_qr)) return out;
+    shape = shape_qr.solve(vt);
+    if (!shape.allFinite()) return out;
   }
-  const auto shape_at = [&](double u) {
-    double v = 0.0;
-    for (std::size_t j = 0; j < q; ++j) v += shape[j] * pw(u, j + 2);
-    return v;
-  };
   // Per cycle: (intercepts, slope) from v - shape; the residual variance for the
   // covariance of the slope.
   double rss = 0.0;
   std::size_t nobs = 0, npar = q;
-  for (std::size_t c = 0; c < ncycles; ++c) {
-    const auto& L = loc[c];
-    if (L.m == 0) continue;
-    const std::size_t m = L.m;
-    std::vector<double> rhs(m);
-    for (std::size_t a = 0; a < m; ++a) {
-      double v = L.Lv[a];
-      for (std::size_t j = 0; j < q; ++j) v -= L.LS[a * q + j] * shape[j];
-      rhs[a] = v;
-    }
-    const auto theta = solve_small(L.LL, rhs);
-    out.cycle_slope[c] = theta[m - 1] / U;
-    out.cycle_slope_var[c] = inverse_small(L.LL, m)[(m - 1) * m + (m - 1)] / (U * U);
-    npar += m;
-    const auto& ks = of_cycle[c];
-    for (std::size_t r = 0; r < ks.size(); ++r) {
-      const auto& w = win[ks[r]];
-      for (std::size_t i = 0; i < w.u.size(); ++i) {
-        const double e = w.v[i] - theta[r] - theta[m - 1] * w.u[i] - shape_at(w.u[i]);
-        rss += e * e;
-        ++nobs;
-      }
-    }
+  for (std::size_t c : fitted) {
+    const auto& C = cyc[c];
+    const VectorXd v_less_shape = C.v - C.S * shape;
+    const VectorXd theta = C.qr.solve(v_less_shape);
+    out.cycle_slope[c] = theta(2) / U;
+    out.cycle_slope_var[c] = inverse_gram(C.qr)(2, 2) / (U * U);
+    npar += 3;
+    rss += (v_less_shape - C.L * theta).squaredNorm();
+    nobs += static_cast<std::size_t>(C.u.size());
   }
   const double s2 = nobs > npar ? rss / static_cast<double>(nobs - npar) : nan;
   for (double& v : out.cycle_slope_var) v *= s2;
-  // b_i = theta_i(v) - g_i' c with g_i = [(L'L)^-1 L'S]_slope; Cov(c) = s2 M^-1.
-  if (q > 0) {
-    std::vector<double> g(q, 0.0);
-    std::size_t nfit = 0;
-    for (std::size_t c = 0; c < ncycles; ++c) {
-      const auto& L = loc[c];
-      if (L.m == 0) continue;
-      const std::size_t m = L.m;
-      const auto inv = inverse_small(L.LL, m);
-      for (std::size_t j = 0; j < q; ++j) {
-        double v = 0.0;
-        for (std::size_t a = 0; a < m; ++a) v += inv[(m - 1) * m + a] * L.LS[a * q + j];
-        g[j] += v;
-      }
-      ++nfit;
-    }
-    if (nfit > 0) {
-      for (double& v : g) v /= static_cast<double>(nfit);
-      const auto Minv = inverse_small(M, q);
-      double var = 0.0;
-      for (std::size_t j = 0; j < q; ++j) {
-        for (std::size_t jj = 0; jj < q; ++jj) var += g[j] * Minv[j * q + jj] * g[jj];
-      }
-      out.shape_variance_of_mean = s2 * var / (U * U);
-    }
+  // b_i = theta_i(v) - g_i' c with g_i = [(L'L)^-1 L'S]_slope; Cov(c) = s2 M^-1,
+  // M = S~'S~ the pooled residual cross products.
+  if (q > 0 && !fitted.empty()) {
+    VectorXd g = VectorXd::Zero(qi);
+    for (std::size_t c : fitted) g += cyc[c].qr.solve(cyc[c].S).row(2).transpose();
+    g /= static_cast<double>(fitted.size());
+    out.shape_variance_of_mean = s2 * g.dot(inverse_gram(shape_qr) * g) / (U * U);
   }
   // Per reversal: intercept and slope of v - shape on its own samples.
   for (std::size_t k = 0; k < revs.size(); ++k) {
     const auto& w = win[k];
     if (w.u.size() < min_samples) continue;
-    double S0 = 0, S1 = 0, S2 = 0, T0 = 0, T1 = 0;
-    for (std::size_t i = 0; i < w.u.size(); ++i) {
-      const double u = w.u[i], v = w.v[i] - shape_at(w.u[i]);
-      S0 += 1;
-      S1 += u;
-      S2 += u * u;
-      T0 += v;
-      T1 += u * v;
-    }
-    const double det = S0 * S2 - S1 * S1;
-    if (std::abs(det) > 0.0) out.reversal_slope[k] = (S0 * T1 - S1 * T0) / det / U;
+    const VectorXd u = as_vector(w.u);
+    MatrixXd A(u.size(), 2);
+    A.col(0).setOnes();
+    A.col(1) = u;
+    const QR qr(A);
+    if (!full_rank(qr)) continue;
+    const VectorXd v_less_shape = as_vector(w.v) - shape_design(u, q) * shape;
+    out.reversal_slope[k] = qr.solve(v_less_shape)(1) / U;
   }
   return out;
 }

@@ -1,6 +1,8 @@
 #pragma once
 // MD5 message digest (RFC 1321), for the checksums of ISO 5436-2 X3P files. Not a
 // security primitive: X3P uses it only to detect corrupted files.
+// Own code: no library linked directly has a public MD5 (Boost's is an undocumented
+// uuid/detail header; libzip's libcrypto is its private backend, not ours to link).
 #include <array>
 #include <cstdint>
 #include <string>
