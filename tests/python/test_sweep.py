@@ -599,3 +599,17 @@ def test_output_of_an_earlier_sweep_without_a_file_list_is_replaced(tmp_path):
     (mine / "notes.txt").write_text("keep")
     with pytest.raises(sweep.SweepError, match="notes.txt"):
         sweep.run(s, str(mine), serial=True, plots=False)
+
+
+def test_case_writer_round_trips_every_string():
+    # The sweep writes each sample's case as TOML (spec.to_toml): strings and keys with
+    # quotes, backslashes, newlines and other control characters must read back as they were
+    # (tomllib, TOML v1.0.0); before, a newline or a backslash in a key gave invalid TOML.
+    import tomllib
+
+    from asperity.sweep import spec
+
+    odd = 'a"b\\c\nd\te\x01f\x7fg\rh\x08i\x0cj é'
+    case = {"joint": {"name": odd, odd: 1.5, "list": [odd, "x"]},
+            "element": [{"name": odd, "k": 2}], "key\\with": {"v": odd}}
+    assert tomllib.loads(spec.to_toml(case)) == case

@@ -434,8 +434,24 @@ def _kind_at(case: dict, key: str) -> KeyKind:
 
 # --------------------------------------------------------------------------- TOML out
 
+def _toml_string(v: str) -> str:
+    """A TOML basic string (toml.io v1.0.0, "String"): backslash, quote and every control
+    character escaped (\\b \\t \\n \\f \\r by name, the others as \\uXXXX)."""
+    named = {"\\": "\\\\", '"': '\\"', "\b": "\\b", "\t": "\\t", "\n": "\\n",
+             "\f": "\\f", "\r": "\\r"}
+    out = []
+    for ch in v:
+        if ch in named:
+            out.append(named[ch])
+        elif ord(ch) < 0x20 or ord(ch) == 0x7F:
+            out.append(f"\\u{ord(ch):04X}")
+        else:
+            out.append(ch)
+    return '"' + "".join(out) + '"'
+
+
 def _toml_key(k: str) -> str:
-    return k if re.match(r"^[A-Za-z0-9_-]+$", k) else '"' + k.replace('"', '\\"') + '"'
+    return k if re.match(r"^[A-Za-z0-9_-]+$", k) else _toml_string(k)
 
 
 def _toml_value(v) -> str:
@@ -448,7 +464,7 @@ def _toml_value(v) -> str:
             raise SweepError(f"value {v!r}: not finite")
         return repr(v)
     if isinstance(v, str):
-        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+        return _toml_string(v)
     if isinstance(v, list):
         return "[" + ", ".join(_toml_value(x) for x in v) + "]"
     if isinstance(v, dict):
