@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "asperity/contact/material.hpp"
 #include "asperity/core/error.hpp"
@@ -77,7 +78,9 @@ struct Reversal {
   double direction;  // of the branch that starts here
   double closes_at;  // where the branch meets the one it left (Masing's loop memory)
   std::uint32_t sample;
-  Deriv D;  // d f / d(samples)
+  Deriv D;    // d f / d(samples)
+  double p;   // pressure* at the reversal
+  double dp;  // its dp*/du_n*
 };
 
 // Lagrange basis on nodes 0..3 at tau, and its derivative.
@@ -322,10 +325,41 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
     bool origin_has_sample = false;
     std::uint32_t s_prev = 0;
     bool prev_has_sample = false;
+    double p_at_prev = 0.0, dp_at_prev = 0.0;  // pressure* at sample s_prev
     Deriv D_prev;
   };
   Direction dirs[2];
   Deriv g_D[2];
+  // Masing's value at the top reversal of a stack built from the virgin curve centred at
+  // `origin`, on the backbone at pressure* q: M_0 = sign Q_l(|x_0 - origin|), then
+  // M_j = M_{j-1} + 2 d_{j-1} Q_l(|x_j - x_{j-1}|/2) (Eq. 4.11-4.13). dq: dM/dq; into D
+  // (when given) its x-derivatives times `weight`.
+  const auto memory_value = [&](const std::vector<Reversal>& stack, double origin, double q,
+                                double& dq, Deriv* D, double weight, int c,
+                                std::optional<std::uint32_t> origin_sample) {
+    const auto cc = static_cast<std::uint16_t>(c);
+    const double rel0 = stack.front().x - origin;
+    const double sgn0 = rel0 < 0.0 ? -1.0 : 1.0;
+    const Tangential t0 = tangential_star(std::abs(rel0), q);
+    double M = rel0 == 0.0 ? 0.0 : sgn0 * t0.Q;
+    dq = rel0 == 0.0 ? 0.0 : sgn0 * t0.Qp;
+    if (D) {
+      D->push_back({stack.front().sample, cc, weight * t0.Qx});
+      if (origin_sample) D->push_back({*origin_sample, cc, -weight * t0.Qx});
+    }
+    for (std::size_t j = 1; j < stack.size(); ++j) {
+      const Reversal& a = stack[j - 1];
+      const Reversal& b = stack[j];
+      const Tangential t = tangential_star(0.5 * std::abs(b.x - a.x), q);
+      M += a.direction * 2.0 * t.Q;
+      dq += a.direction * 2.0 * t.Qp;
+      if (D) {
+        D->push_back({b.sample, cc, weight * t.Qx});
+        D->push_back({a.sample, cc, -weight * t.Qx});
+      }
+    }
+    return M;
+  };
   // Periods are repeated until one repeats the previous (the steady response): one repeat
   // under Masing's rules in one direction at constant load, a few more where the traction
   // limit returns a 2-D trial force or the load varies (shakedown of the reversal forces).
@@ -377,7 +411,9 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
                      static_cast<double>(d),
                      s.stack.empty() ? 2.0 * s.origin - s.x_prev : s.stack.back().x,
                      s.s_prev,
-                     {}};
+                     {},
+                     s.p_at_prev,
+                     s.dp_at_prev};
           if (tangent && s.prev_has_sample) {
             r.D = s.D_prev;
             compress(r.D);
@@ -407,6 +443,20 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
           D.push_back({i, static_cast<std::uint16_t>(c), t.Qx});
           D.push_back({r.sample, static_cast<std::uint16_t>(c), -t.Qx});
           D.push_back({i, 2, r.direction * 2.0 * t.Qp * pr.dp});
+        }
+        // The reversal force follows the pressure: the memory's Masing value at the reversal
+        // at p(t) minus the one at p_r (zero at constant load). Every branch is then Masing's
+        // construction on the backbone at p(t), and a branch meets the one it left at the
+        // latter's reversal with the same force (docs/rough_contact.md, "Normal-load
+        // variation").
+        double dM_now = 0.0, dM_rev = 0.0;
+        g[c] += memory_value(s.stack, s.origin, p, dM_now, tangent ? &D : nullptr, 1.0, c,
+                             s.origin_has_sample ? std::optional(s.origin_sample) : std::nullopt) -
+                memory_value(s.stack, s.origin, r.p, dM_rev, tangent ? &D : nullptr, -1.0, c,
+                             s.origin_has_sample ? std::optional(s.origin_sample) : std::nullopt);
+        if (tangent) {
+          D.push_back({i, 2, dM_now * pr.dp});
+          D.push_back({r.sample, 2, -dM_rev * r.dp});
         }
       }
     }
@@ -443,6 +493,8 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
       if (p > 0.0 && x != s.x_prev) {
         s.s_prev = i;
         s.prev_has_sample = true;
+        s.p_at_prev = p;
+        s.dp_at_prev = pr.dp;
       }
       if (p > 0.0 && tangent) s.D_prev = D_f[c];
       s.f_prev = f[c];

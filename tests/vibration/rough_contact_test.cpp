@@ -307,6 +307,48 @@ TEST(RoughContactElement, TangentDissipationAndPeriodicity) {
   }
 }
 
+// Masing's loop memory under a varying normal load: a harmonic tangential cycle with the
+// pressure varying in phase (by ~4 %), the peak of the motion half-way between two samples,
+// so that moving one of them by +-h moves the reversal and where the loop closes. The force
+// must stay a continuous function of the samples: piecewise smooth, with a kink where the
+// reversal changes sample, so the central difference is bounded by the largest one-sided
+// slope, |f(u + h) - f(u - h)| <= 2 h max|D|, with D the tangent (bound taken twice). Closing
+// a loop with the reversal force kept at its own pressure jumped the force there by
+// 2 [Q_l(.; p(t)) - Q_l(.; p_r)] (6 % of it on the two_blocks EPMC, docs/vibration.md):
+// ~1e5 times the bound here.
+TEST(RoughContactElement, LoopMemoryIsContinuousUnderVaryingLoad) {
+  const RoughContactElement& e = shared_element();
+  const double sig = table_7_2().sigma;
+  const double delta_slip = e.slip_force() / e.initial_stiffness()(0, 0);
+  const std::size_t N = 32;
+  for (double amplitude : {1e-3, 0.1, 0.5}) {
+    Eigen::MatrixXd u = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(N), 3);
+    for (std::size_t i = 0; i < N; ++i) {
+      const double t = 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(N);
+      // The peak half-way between samples 0 and 1 (and the trough between N/2 and N/2 + 1),
+      // the pressure highest at the peak and lowest at the trough.
+      const double phase = std::numbers::pi / static_cast<double>(N);
+      u(static_cast<Eigen::Index>(i), 0) = amplitude * delta_slip * std::cos(t - phase);
+      u(static_cast<Eigen::Index>(i), 2) = 0.02 * sig * std::cos(t - phase);
+    }
+    PeriodicResponse r;
+    e.periodic_response(u, Eigen::MatrixXd(), true, r);
+    const Eigen::MatrixXd D = dense_tangent(r, static_cast<Eigen::Index>(N), 3);
+    const double h = 1e-7 * amplitude * delta_slip;
+    const double scale = D.cwiseAbs().maxCoeff();
+    for (const Eigen::Index i : {Eigen::Index{0}, static_cast<Eigen::Index>(N / 2)}) {
+      Eigen::MatrixXd up = u, um = u;
+      up(i, 0) += h;
+      um(i, 0) -= h;
+      PeriodicResponse rp, rm;
+      e.periodic_response(up, Eigen::MatrixXd(), false, rp);
+      e.periodic_response(um, Eigen::MatrixXd(), false, rm);
+      EXPECT_LT((rp.f - rm.f).cwiseAbs().maxCoeff(), 4.0 * h * scale)
+          << "amplitude " << amplitude << " sample " << i;
+    }
+  }
+}
+
 // Bad input names the item.
 TEST(RoughContactElement, RefusesBadInput) {
   EXPECT_NE(testing::invalid_input_message([] {
