@@ -338,23 +338,33 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
   if (!r.backbone_rom.empty()) {
     for (std::size_t o = 0; o < c.output_dofs.size(); ++o) {
       const auto oi = static_cast<Eigen::Index>(o);
-      PlotSpec p{.title = fmt::format("Backbone ROM (dashed) and harmonic balance of DOF {}",
+      PlotSpec p{.title = fmt::format("Backbone ROM (circles) and harmonic balance of DOF {}",
                                       c.output_dofs[o]),
                  .xlabel = "excitation frequency [Hz]",
                  .ylabel = "first-harmonic amplitude [m]",
                  .logy = true};
       for (std::size_t k = 0; k < r.frequency_response.size(); ++k) {
         const auto& cv = r.frequency_response[k];
-        p.series.push_back(positive_series(
-            fmt::format("HB {}, x{:.4g}", r.frequency_response_table[k] + 1, cv.force_scale),
-            cv.omega / two_pi, cv.output_amplitude.col(oi), true, "lines"));
+        p.series.push_back(
+            positive_series("HB, " + force_label(c, r.frequency_response_table[k], cv.force_scale),
+                            cv.omega / two_pi, cv.output_amplitude.col(oi), true, "lines"));
       }
       for (std::size_t k = 0; k < r.backbone_rom.size(); ++k) {
         const auto& m = r.backbone_rom[k];
-        p.series.push_back(
-            positive_series(fmt::format("ROM {}, x{:.4g}", r.backbone_rom_table[k] + 1,
-                                        r.backbone_rom_force_scale[k]),
-                            m.omega / two_pi, m.output_amplitude.col(oi), true, "lines dt 2"));
+        // The legend's force in N, as force_label: the scale times the table's force norm.
+        const auto& t = c.backbone_roms[r.backbone_rom_table[k]];
+        const double norm = std::sqrt(t.force_cos.squaredNorm() + t.force_sin.squaredNorm());
+        Series rom = positive_series(
+            fmt::format("ROM, F = {:.4g} N", r.backbone_rom_force_scale[k] * norm),
+            m.omega / two_pi, m.output_amplitude.col(oi), true, "points pt 6 ps 0.8");
+        // About 60 open circles per curve, so the harmonic-balance line shows through them.
+        const std::size_t stride = std::max<std::size_t>(1, rom.x.size() / 60);
+        Series thin{.title = rom.title, .style = rom.style};
+        for (std::size_t i = 0; i < rom.x.size(); i += stride) {
+          thin.x.push_back(rom.x[i]);
+          thin.y.push_back(rom.y[i]);
+        }
+        p.series.push_back(std::move(thin));
       }
       if (r.nonlinear_mode) {
         const auto& m = *r.nonlinear_mode;
@@ -363,7 +373,7 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
         for (const auto& cv : r.backbone_rom)
           if (cv.output_amplitude.rows() > 0)
             top = std::max(top, cv.output_amplitude.col(oi).maxCoeff());
-        Series b{.title = "backbone", .style = "lines lc rgb 'gray'"};
+        Series b{.title = "backbone (nonlinear mode)", .style = "lines dt 2 lc rgb 'black'"};
         for (Eigen::Index i = 0; i < m.omega.size(); ++i) {
           const double y = m.output_amplitude(i, oi);
           if (y > 0.0 && y <= 1.5 * top) {
