@@ -1,14 +1,15 @@
-"""Parameter sweeps and uncertainty of joint (and dynamics) cases on Dask (issue 12).
+"""Parameter sweeps and uncertainty of joint, dynamics and vibration cases on Dask (issue 12).
 
 A sweep is a case file plus what varies (:mod:`asperity.sweep.spec`): grids and
 distributions of any case key addressed by its path, Monte Carlo (random, Sobol or Latin
 hypercube) with a seed. Every sample runs the case (``asperity.predict`` for a joint,
-``asperity.dynamics`` for a dynamics case; vibration cases are not wired yet, see
+``asperity.dynamics`` for a dynamics case, ``asperity.vibration`` for a vibration case;
 :mod:`asperity.sweep.runners`) on a ``dask.distributed`` cluster (a LocalCluster with one
 worker per core by default), and the results stream to disk as an xarray Dataset in
 NetCDF parts (dimension ``sample``, the varied keys as coordinates) and a Parquet file,
 with ``summary.csv``, ``sensitivity.csv``, ``failures.csv`` and plots
-(:mod:`asperity.sweep.stats`). Command: ``python -m asperity.sweep --help``.
+(:mod:`asperity.sweep.stats`). Command: ``asperity sweep --help`` (or
+``python -m asperity.sweep --help``).
 
 >>> from asperity import sweep
 >>> s = sweep.load("examples/sweeps/steel420_bolt_load.toml")        # doctest: +SKIP
