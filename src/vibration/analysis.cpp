@@ -393,6 +393,15 @@ void QuasiStaticModeOptions::validate() const {
 QuasiStaticModeResult quasi_static_mode(const HarmonicBalance& hb,
                                         const QuasiStaticModeOptions& opt) {
   opt.validate();
+  for (const PlacedElement& pe : hb.elements()) {
+    if (!pe.element->masing_from_virgin_curve()) {
+      throw InvalidInput(fmt::format(
+          "quasi_static_mode: element \"{}\" ({}) does not follow Masing's rules on its virgin "
+          "curve, which the quasi-static estimate assumes (its energy per cycle comes from the "
+          "static push): use [nonlinear_mode] (EPMC), which takes the element's own loops",
+          pe.name, pe.element->type()));
+    }
+  }
   const Eigen::Index n = hb.dofs();
   const Eigen::MatrixXd& M = hb.structure().M;
   const Eigen::MatrixXd& K = hb.structure().K;

@@ -706,6 +706,16 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     o.amplitude_to = to;
     o.points = static_cast<std::size_t>(integer(*t, "points", w, 60, 2, 100000));
     o.validate();
+    // Refused before any work (quasi_static_mode() checks the same).
+    for (const PlacedElement& pe : c.elements) {
+      if (!pe.element->masing_from_virgin_curve()) {
+        throw InvalidInput(fmt::format(
+            "quasi_static_mode: element \"{}\" ({}) has a law that does not follow Masing's "
+            "rules on its virgin curve (e.g. tangential = \"odfalk_vingsbo\"), which the "
+            "quasi-static estimate assumes: use [nonlinear_mode] (EPMC){}",
+            pe.name, pe.element->type(), at_line(*t)));
+      }
+    }
     c.quasi_static_mode = o;
   }
   if (!c.nonlinear_mode && c.frequency_responses.empty() && c.force_responses.empty() &&

@@ -275,6 +275,8 @@ class OdfalkVingsboElement final : public Element {
     return Eigen::MatrixXd::Constant(1, 1, elastic_->initial_stiffness());
   }
   [[nodiscard]] double slip_force() const override { return elastic_->limit(); }
+  /// Eq. 3.10's parallelogram is not Masing's loop on the virgin curve x_l(Q) + plastic/2.
+  [[nodiscard]] bool masing_from_virgin_curve() const override { return false; }
   [[nodiscard]] dynamics::SummaryObject describe() const override { return parameters_; }
 
  private:

@@ -832,6 +832,16 @@ continuation = { max_iterations = 2, target_iterations = 1 }
             'P_star = 1e-3\nsigma = 1e-6\nforce_scale = 1e4\ntangential = "odfalk_vingsbo"\n'
             'fretting_yield_point = "2 N"\n') + EPMC,
         ["element[1]", "hardening_coefficient", "measured"]),
+    # The quasi-static estimate builds loops by Masing's rules from the static push: not the
+    # Odfalk-Vingsbo law's (refused before any work, pointing to [nonlinear_mode]).
+    "odfalk_vingsbo_quasi_static": (
+        JENKINS.replace('"jenkins"', '"rough_flat"').replace(
+            "k_t = 0.25\nF_s = 0.2\n",
+            'backbone = "normalized"\nbeta = 0.04\npsi = 0.5\nnu = 0.3\nG_over_E = 0.2\n'
+            'P_star = 1e-3\nsigma = 1e-6\nforce_scale = 1e4\ntangential = "odfalk_vingsbo"\n'
+            'fretting_yield_point = "2 N"\nhardening_coefficient = "1 N/um"\n')
+        + "[quasi_static_mode]\namplitude = { from = 1e-9, to = 1e-7 }\n",
+        ["quasi_static_mode", "Masing", "[nonlinear_mode]"]),
     "odfalk_vingsbo_unknown_law": (
         JENKINS.replace('"jenkins"', '"rough_flat"').replace(
             "k_t = 0.25\nF_s = 0.2\n",

@@ -76,6 +76,10 @@ class Element {
   /// Largest force the element can carry along direction 0 (its slip limit; +inf when
   /// unbounded): for messages and scales.
   [[nodiscard]] virtual double slip_force() const = 0;
+  /// False for a hysteretic law whose loops are not Masing's construction on its virgin
+  /// curve (the Odfalk-Vingsbo law): the quasi-static modal estimate, which builds the energy
+  /// per cycle from the static push by Masing's rules, refuses it.
+  [[nodiscard]] virtual bool masing_from_virgin_curve() const { return true; }
   /// The parameters in SI, for summaries.
   [[nodiscard]] virtual dynamics::SummaryObject describe() const = 0;
 };
