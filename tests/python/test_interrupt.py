@@ -48,7 +48,11 @@ def interrupted(body: str):
     after 'ready', and returns (exit code, stderr)."""
     script = "import sys, numpy as np, asperity\n" + textwrap.dedent(body)
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    # SIGINT at its default disposition in the child, as in a terminal: a runner that starts
+    # the tests in the background (`cmd &` in a non-interactive shell) leaves it ignored, and
+    # Python then keeps it ignored (measured: these tests then time out).
     p = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
                          stderr=subprocess.PIPE, text=True, env=env)
     try:
         assert p.stdout.readline().strip() == "ready", p.stderr.read()

@@ -421,8 +421,12 @@ def test_sweep_sigint_prints_no_traceback(tmp_path):
     cmd = [sys.executable, "-m", "asperity.sweep", CASE, "--vary",
            "load.bolts.nut_factor ~ uniform(0.158, 0.267)", "--samples", "5000", "--serial",
            "--no-plots", "--out", "out"]
+    # SIGINT at its default disposition in the child, as in a terminal: a runner that starts
+    # the tests in the background (`cmd &` in a non-interactive shell) leaves it ignored, and
+    # Python then keeps it ignored.
     run = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                           env=ENV, cwd=tmp_path)
+                           env=ENV, cwd=tmp_path,
+                           preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     time.sleep(4.0)  # past the imports, into the samples
     run.send_signal(signal.SIGINT)
     _, err = run.communicate(timeout=60)
