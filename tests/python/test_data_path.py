@@ -12,8 +12,10 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
 def _files(root: pathlib.Path) -> dict:
+    # pip byte-compiles the examples' .py files when it installs the wheel (__pycache__):
+    # an artifact of the installation, not shipped content.
     return {p.relative_to(root).as_posix(): p.read_bytes() for p in root.rglob("*")
-            if p.is_file() and p.name != "CMakeLists.txt"}
+            if p.is_file() and p.name != "CMakeLists.txt" and "__pycache__" not in p.parts}
 
 
 def test_examples_are_the_sources():
