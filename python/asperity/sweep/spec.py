@@ -436,7 +436,7 @@ def _kind_at(case: dict, key: str) -> KeyKind:
 
 def _toml_string(v: str) -> str:
     """A TOML basic string (toml.io v1.0.0, "String"): backslash, quote and every control
-    character escaped (\\b \\t \\n \\f \\r by name, the others as \\uXXXX)."""
+    character escaped (\\b \\t \\n \\f \\r by name, the others as \\u and four hex digits)."""
     named = {"\\": "\\\\", '"': '\\"', "\b": "\\b", "\t": "\\t", "\n": "\\n",
              "\f": "\\f", "\r": "\\r"}
     out = []
