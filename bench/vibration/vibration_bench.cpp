@@ -9,7 +9,10 @@
 //    non-dimensional base-excited system, eps = 0.032, the rough contact with A0 = 1 cm^2,
 //    A = 18 um, P = 5 k A as in bench/dynamics_bench.cpp) against reaching the same steady
 //    states by time integration (200 periods per frequency: the transient decays as
-//    exp(-eps/2 * 2 pi * 200) < 1e-8 of its start), target >= 100 times faster.
+//    exp(-eps/2 * 2 pi * 200) < 1e-8 of its start), target >= 100 times faster;
+//  - one 3-D rough-contact element's AFT residual + Jacobian (issue 20: < 50 us at H = 3,
+//    N_t = 128) against a Jenkins element on the same basis;
+//  - chord against full Newton on the EPMC of a 200-DOF chain (1403 unknowns).
 // g++ 12 reports writes into Eigen's dynamic matrices as potential null dereferences
 // (a known false positive of -Wnull-dereference at -O3).
 #pragma GCC diagnostic ignored "-Wnull-dereference"
@@ -25,6 +28,7 @@
 #include "asperity/dynamics/system.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 #include "asperity/vibration/analysis.hpp"
+#include "asperity/vibration/rough_contact.hpp"
 
 namespace {
 
@@ -149,6 +153,112 @@ void BM_TimeIntegrationRoughFlatSdof200Periods(benchmark::State& state) {
 }
 BENCHMARK(BM_TimeIntegrationRoughFlatSdof200Periods)->Unit(benchmark::kMillisecond);
 
+// One 3-D rough-contact element (Table 7.2's surfaces, BKE, 20 MPa on 4 mm^2: an interface
+// patch of a bolted joint) in microslip with the normal load varying: AFT residual +
+// Jacobian with H = 3, N_t = 128 (issue 20's target < 50 us), against a Jenkins element on
+// the same basis (the cheapest hysteretic element: what harmonic balance alone costs).
+HarmonicBalance rough_contact_block() {
+  const dynamics::EpbContact c = dynamics::table_7_2_rough();
+  const RoughInterfaceParameters p{.E_star = c.E_star,
+                                   .G_star = c.G_star,
+                                   .H = c.H,
+                                   .nu = c.nu,
+                                   .sigma = c.sigma,
+                                   .R = c.R,
+                                   .eta = c.eta,
+                                   .model = contact::ModelName::bke,
+                                   .friction = {}};
+  constexpr double kPressure = 20e6, kArea = 4e-6;
+  const auto surface = std::make_shared<const RoughContactSurface>(p, kPressure / 8, kPressure * 8);
+  Structure s{Eigen::Matrix3d::Identity(), Eigen::Vector3d(1e8, 2e8, 0.0).asDiagonal(),
+              Eigen::Matrix3d::Zero()};
+  return HarmonicBalance(
+      s,
+      {{std::make_shared<RoughContactElement>(surface, kArea, kPressure, "patch"),
+        Eigen::MatrixXd(Eigen::Matrix3d::Identity()), "patch"}},
+      HarmonicBalanceOptions{{0, 1, 2, 3}, 128});
+}
+
+void BM_AftRoughContactResidualJacobian(benchmark::State& state) {
+  const auto hb = rough_contact_block();
+  const double slip = hb.elements()[0].element->slip_force() / 1e8;  // x where Q ~ Q_max
+  Eigen::VectorXd U = Eigen::VectorXd::Zero(hb.unknowns());
+  U(hb.index(0, 1)) = 0.3 * slip;   // t1: microslip
+  U(hb.index(1, 2)) = 0.1 * slip;   // t2: a 2-D path
+  U(hb.index(2, 1)) = 0.05 * slip;  // the normal closure oscillates
+  U(hb.index(0, 3)) = 0.02 * slip;
+  const Eigen::VectorXd F = Eigen::VectorXd::Zero(hb.unknowns());
+  Eigen::VectorXd R, dRw;
+  Eigen::MatrixXd J;
+  for (auto _ : state) {
+    hb.residual(U, 2000.0, F, R, &J, &dRw);
+    benchmark::DoNotOptimize(J.data());
+  }
+}
+BENCHMARK(BM_AftRoughContactResidualJacobian)->Unit(benchmark::kMicrosecond);
+
+void BM_AftJenkinsResidualJacobianNt128(benchmark::State& state) {
+  const auto hb = jenkins_sdof({0, 1, 2, 3}, 128);
+  const Eigen::VectorXd U = jenkins_state(hb);
+  const Eigen::VectorXd F = Eigen::VectorXd::Zero(hb.unknowns());
+  Eigen::VectorXd R, dRw;
+  Eigen::MatrixXd J;
+  for (auto _ : state) {
+    hb.residual(U, 1.1, F, R, &J, &dRw);
+    benchmark::DoNotOptimize(J.data());
+  }
+}
+BENCHMARK(BM_AftJenkinsResidualJacobianNt128)->Unit(benchmark::kMicrosecond);
+
+// Chord Newton against full Newton (ContinuationOptions::chord_unknowns) on the EPMC of a
+// chain of 200 unit masses and springs with a Jenkins joint between every tenth mass and
+// ground, H = 3, N_t = 64 (1400 unknowns: the size where one dense LU costs as much as many
+// residual evaluations; a reduced finite-element model has 3-10 times more).
+HarmonicBalance jenkins_chain() {
+  constexpr Eigen::Index n = 200;
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    K(i, i) += 1.0;
+    if (i + 1 < n) {
+      K(i, i) += 1.0;
+      K(i + 1, i + 1) += 1.0;
+      K(i, i + 1) -= 1.0;
+      K(i + 1, i) -= 1.0;
+    }
+  }
+  std::vector<PlacedElement> elements;
+  for (Eigen::Index i = 5; i < n; i += 10) {
+    Eigen::MatrixXd T = Eigen::MatrixXd::Zero(1, n);
+    T(0, i) = 1.0;
+    elements.push_back({make_jenkins_element(0.5, 0.01), T, ""});
+  }
+  return HarmonicBalance(Structure{Eigen::MatrixXd::Identity(n, n), K, Eigen::MatrixXd::Zero(n, n)},
+                         std::move(elements), HarmonicBalanceOptions{{0, 1, 2, 3}, 64});
+}
+
+std::size_t g_chain_points[2] = {0, 0};
+void epmc_chain(benchmark::State& state, std::size_t chord_unknowns, std::size_t& points) {
+  const auto hb = jenkins_chain();
+  NonlinearModeOptions opt;
+  opt.log10_amplitude_from = -3.0;
+  opt.log10_amplitude_to = -0.5;
+  opt.continuation.chord_unknowns = chord_unknowns;
+  for (auto _ : state) {
+    const auto r = nonlinear_mode(hb, opt, {0});
+    points = r.amplitude.size();
+    benchmark::DoNotOptimize(r.omega.data());
+  }
+  state.counters["points"] = static_cast<double>(points);
+}
+void BM_EpmcJenkinsChainFullNewton(benchmark::State& state) {
+  epmc_chain(state, 1000000000, g_chain_points[0]);
+}
+void BM_EpmcJenkinsChainChordNewton(benchmark::State& state) {
+  epmc_chain(state, 1, g_chain_points[1]);
+}
+BENCHMARK(BM_EpmcJenkinsChainFullNewton)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_EpmcJenkinsChainChordNewton)->Unit(benchmark::kSecond)->Iterations(1);
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -162,7 +272,26 @@ int main(int argc, char** argv) {
   const double epmc = get("BM_EpmcJenkinsSdof");
   const double frf = get("BM_FrfRoughFlatSdof");
   const double integ = get("BM_TimeIntegrationRoughFlatSdof200Periods");
+  const double rough = get("BM_AftRoughContactResidualJacobian");
+  const double jenkins128 = get("BM_AftJenkinsResidualJacobianNt128");
+  const double chain_full = get("BM_EpmcJenkinsChainFullNewton");
+  const double chain_chord = get("BM_EpmcJenkinsChainChordNewton");
   std::printf("\nRatios (same run):\n");
+  if (rough > 0) {
+    std::printf(
+        "  AFT residual + Jacobian, 3-D rough contact, H = 3, N_t = 128 = %7.2f us "
+        "(target < 50)\n",
+        rough * 1e6);
+  }
+  if (rough > 0 && jenkins128 > 0) {
+    std::printf("  3-D rough contact / Jenkins on the same basis = %7.2f\n", rough / jenkins128);
+  }
+  if (chain_full > 0 && chain_chord > 0) {
+    std::printf(
+        "  EPMC, 200-DOF chain with 20 Jenkins joints (1403 unknowns): full Newton %.2f s "
+        "(%zu points) / chord Newton %.2f s (%zu points) = %7.2f\n",
+        chain_full, g_chain_points[0], chain_chord, g_chain_points[1], chain_full / chain_chord);
+  }
   if (aft > 0) {
     std::printf("  AFT residual + Jacobian, Jenkins, H = 3, N_t = 1024 = %7.2f us (target < 20)\n",
                 aft * 1e6);

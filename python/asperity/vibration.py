@@ -835,7 +835,8 @@ class HarmonicBalance:
         Keyword options of the continuation (each optional; the analysis's own defaults
         otherwise, as in a case file's ``continuation`` table): step, min_step, max_step
         (arclength in scaled unknowns), max_points, target_iterations, max_angle [rad],
-        max_iterations, step_tolerance, residual_tolerance (Newton)."""
+        max_iterations, step_tolerance, residual_tolerance (Newton), chord_unknowns (systems
+        of at least this many unknowns use chord Newton; docs/vibration.md, "Solvers")."""
         w0, w1 = omega
 
         def vec(x):

@@ -117,11 +117,11 @@ ContinuationOptions continuation_options(ContinuationOptions c, const nb::dict& 
       }
       return x;
     };
-    auto integer = [&] {
+    auto integer = [&](double largest = 1e6) {
       const double x = number();
-      if (!(x >= 1.0 && x <= 1e6) || x != std::floor(x)) {
-        throw InvalidInput(
-            fmt::format("continuation.{} = {}: must be a whole number in [1, 1e6]", key, x));
+      if (!(x >= 1.0 && x <= largest) || x != std::floor(x)) {
+        throw InvalidInput(fmt::format("continuation.{} = {}: must be a whole number in [1, {}]",
+                                       key, x, largest));
       }
       return x;
     };
@@ -143,11 +143,13 @@ ContinuationOptions continuation_options(ContinuationOptions c, const nb::dict& 
       c.newton.step_tolerance = number();
     } else if (key == "residual_tolerance") {
       c.newton.residual_tolerance = number();
+    } else if (key == "chord_unknowns") {
+      c.chord_unknowns = static_cast<std::size_t>(integer(1e9));
     } else {
       throw InvalidInput(fmt::format(
           "continuation option \"{}\" is unknown: allowed are step, min_step, max_step, "
           "max_points, target_iterations, max_angle, max_iterations, step_tolerance, "
-          "residual_tolerance",
+          "residual_tolerance, chord_unknowns",
           key));
     }
   }

@@ -87,6 +87,18 @@ Series positive_series(const std::string& title, const Eigen::VectorXd& x, const
   return s;
 }
 
+// An output point's name as part of a file or column name: letters, digits, '-' and '_'
+// kept, anything else '_'.
+std::string file_stem(const std::string& name) {
+  std::string out;
+  for (const char ch : name) {
+    const bool keep = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') ||
+                      (ch >= '0' && ch <= '9') || ch == '-' || ch == '_';
+    out += keep ? ch : '_';
+  }
+  return out.empty() ? "output" : out;
+}
+
 std::vector<std::string> write_files(const VibrationCase& c, const VibrationResult& r,
                                      joint::StagedDirectory& dir, bool plots) {
   std::vector<std::string> written;
@@ -105,6 +117,14 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
     for (std::size_t o = 0; o < c.output_dofs.size(); ++o) {
       h.push_back(fmt::format("amplitude_dof{}_m", c.output_dofs[o]));
       cols.push_back(vec(m.output_amplitude.col(static_cast<Eigen::Index>(o))));
+    }
+    for (const auto& op : r.nonlinear_mode_output_points) {
+      for (Eigen::Index d = 0; d < 3; ++d) {
+        h.push_back(fmt::format("{}_{}_amplitude_m", file_stem(op.name), "xyz"[d]));
+        cols.push_back(vec(op.displacement.col(d)));
+        h.push_back(fmt::format("{}_{}_acceleration_m_s2", file_stem(op.name), "xyz"[d]));
+        cols.push_back(vec(op.acceleration.col(d)));
+      }
     }
     write("nonlinear_mode.csv", csv(h, cols));
   }
@@ -236,6 +256,39 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
     written.push_back("modal_frequency.png");
     plot_png(dir.file("modal_damping.png"), z);
     written.push_back("modal_damping.png");
+  }
+  // The backbone against each output point's acceleration (its direction of largest
+  // response at the largest amplitude), as a measured backbone is plotted.
+  if (r.nonlinear_mode) {
+    const auto& m = *r.nonlinear_mode;
+    for (const auto& op : r.nonlinear_mode_output_points) {
+      if (op.acceleration.rows() == 0) continue;
+      Eigen::Index d = 0;
+      op.acceleration.row(op.acceleration.rows() - 1).maxCoeff(&d);
+      const std::string axis =
+          fmt::format("first-harmonic acceleration of {} ({}) [m/s^2]", op.name, "xyz"[d]);
+      const bool zpos = (m.damping_ratio.array() > 0.0).all();
+      PlotSpec f{
+          .title = fmt::format("Nonlinear mode: frequency against the response at {}", op.name),
+          .xlabel = axis,
+          .ylabel = "frequency [Hz]",
+          .logx = true};
+      PlotSpec z{
+          .title = fmt::format("Nonlinear mode: damping ratio against the response at {}", op.name),
+          .xlabel = axis,
+          .ylabel = "damping ratio zeta",
+          .logx = true,
+          .logy = zpos};
+      f.series.push_back(positive_series("EPMC (harmonic balance)", op.acceleration.col(d),
+                                         m.frequency_hz, false, "lines"));
+      z.series.push_back(positive_series("EPMC (harmonic balance)", op.acceleration.col(d),
+                                         m.damping_ratio, zpos, "lines"));
+      const std::string stem = file_stem(op.name);
+      plot_png(dir.file("modal_frequency_" + stem + ".png"), f);
+      written.push_back("modal_frequency_" + stem + ".png");
+      plot_png(dir.file("modal_damping_" + stem + ".png"), z);
+      written.push_back("modal_damping_" + stem + ".png");
+    }
   }
   if (!r.frequency_response.empty()) {
     for (std::size_t o = 0; o < c.output_dofs.size(); ++o) {

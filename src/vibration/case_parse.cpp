@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <iterator>
+#include <limits>
 #include <numbers>
 
 #include "../core/toml_case.hpp"
@@ -212,7 +213,7 @@ void parse_continuation(const toml::table& t, const std::string& where, Continua
   const std::string w = where + ".continuation";
   check_keys(*ct, w,
              {"step", "min_step", "max_step", "max_points", "target_iterations", "max_angle",
-              "max_iterations", "step_tolerance", "residual_tolerance"});
+              "max_iterations", "step_tolerance", "residual_tolerance", "chord_unknowns"});
   c.step = number(*ct, "step", w, c.step);
   c.min_step = number(*ct, "min_step", w, c.min_step);
   c.max_step = number(*ct, "max_step", w, std::max(c.max_step, c.step));
@@ -221,6 +222,8 @@ void parse_continuation(const toml::table& t, const std::string& where, Continua
   c.target_iterations =
       static_cast<int>(integer(*ct, "target_iterations", w, c.target_iterations, 1, 1000));
   c.max_angle = number(*ct, "max_angle", w, c.max_angle);
+  c.chord_unknowns = static_cast<std::size_t>(
+      integer(*ct, "chord_unknowns", w, static_cast<long long>(c.chord_unknowns), 1, 1000000000));
   c.newton.max_iterations =
       static_cast<int>(integer(*ct, "max_iterations", w, c.newton.max_iterations, 1, 1000));
   c.newton.step_tolerance = number(*ct, "step_tolerance", w, c.newton.step_tolerance);
@@ -380,6 +383,18 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     c.output_dofs.push_back(0);  // a reduced model has hundreds of DOFs: name the ones wanted
   } else {
     for (Eigen::Index d = 0; d < n; ++d) c.output_dofs.push_back(d);
+  }
+  if (model) {
+    for (std::size_t k = 0; k < model->output_names.size(); ++k) {
+      const auto i = static_cast<Eigen::Index>(k);
+      OutputPoint op;
+      op.name = model->output_names[k];
+      op.point = model->output_points.rows() > i
+                     ? Eigen::Vector3d(model->output_points.row(i).transpose())
+                     : Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+      op.rows = model->recovery.middleRows(3 * i, 3);
+      c.output_points.push_back(std::move(op));
+    }
   }
 
   // [joint] (for rough_flat elements)

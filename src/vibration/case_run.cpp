@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <complex>
 #include <numbers>
 
@@ -48,6 +49,50 @@ SummaryObject stability_summary(const std::vector<PeriodicStability>& st) {
           {"max_multiplier_modulus", std::move(max_mu)},
           {"instability", std::move(kind)},
           {"floquet_exponents_per_s", std::move(exponents)}};
+}
+
+// First-harmonic displacement and acceleration amplitudes of each output point along a
+// curve of points U (coefficients in HarmonicBalance's layout) at frequencies omega.
+std::vector<OutputPointResponse> output_point_responses(const HarmonicBalance& hb,
+                                                        const std::vector<OutputPoint>& points,
+                                                        const std::vector<Eigen::VectorXd>& U,
+                                                        const Eigen::VectorXd& omega) {
+  std::vector<OutputPointResponse> out;
+  const long ic = hb.basis().index_of(1, 0), is = hb.basis().index_of(1, 1);
+  const auto nc = static_cast<Eigen::Index>(hb.basis().coefficients());
+  const auto np = static_cast<Eigen::Index>(U.size());
+  for (const OutputPoint& op : points) {
+    OutputPointResponse r{.name = op.name,
+                          .displacement = Eigen::MatrixXd(np, 3),
+                          .acceleration = Eigen::MatrixXd(np, 3)};
+    for (Eigen::Index k = 0; k < np; ++k) {
+      const Eigen::Map<const Eigen::MatrixXd> X(U[static_cast<std::size_t>(k)].data(), nc,
+                                                hb.dofs());
+      const Eigen::MatrixXd x = X * op.rows.transpose();  // nc x 3
+      for (Eigen::Index d = 0; d < 3; ++d) {
+        const double a = std::hypot(x(ic, d), x(is, d));
+        r.displacement(k, d) = a;
+        r.acceleration(k, d) = omega(k) * omega(k) * a;
+      }
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+SummaryArray output_points_summary(const std::vector<OutputPoint>& points,
+                                   const std::vector<OutputPointResponse>& responses) {
+  SummaryArray a;
+  for (std::size_t k = 0; k < responses.size(); ++k) {
+    const Eigen::Vector3d& x = points[k].point;
+    SummaryValue where =
+        x.allFinite() ? SummaryValue(SummaryArray{x(0), x(1), x(2)}) : SummaryValue(nullptr);
+    a.emplace_back(SummaryObject{{"name", responses[k].name},
+                                 {"point_m", std::move(where)},
+                                 {"displacement_amplitude_m", rows(responses[k].displacement)},
+                                 {"acceleration_amplitude_m_s2", rows(responses[k].acceleration)}});
+  }
+  return a;
 }
 
 SummaryArray matrix_summary(const Eigen::MatrixXd& m) {
@@ -217,17 +262,23 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     add_continuation(w, m.continuation, c.nonlinear_mode->continuation.max_points);
     account(w, before, t0);
     r.warnings.insert(r.warnings.end(), m.warnings.begin(), m.warnings.end());
-    j.emplace_back("nonlinear_mode", SummaryObject{{"mode", c.nonlinear_mode->mode},
-                                                   {"linear_omega_rad_s", m.linear_omega},
-                                                   {"linear_damping_ratio", m.linear_damping_ratio},
-                                                   {"log10_amplitude", array(m.log10_amplitude)},
-                                                   {"amplitude", array(m.amplitude)},
-                                                   {"omega_rad_s", array(m.omega)},
-                                                   {"frequency_hz", array(m.frequency_hz)},
-                                                   {"damping_ratio", array(m.damping_ratio)},
-                                                   {"xi_per_s", array(m.xi)},
-                                                   {"output_amplitude", rows(m.output_amplitude)},
-                                                   {"solver", solver_summary(w)}});
+    r.nonlinear_mode_output_points =
+        output_point_responses(hb, c.output_points, m.harmonics, m.omega);
+    j.emplace_back(
+        "nonlinear_mode",
+        SummaryObject{{"mode", c.nonlinear_mode->mode},
+                      {"linear_omega_rad_s", m.linear_omega},
+                      {"linear_damping_ratio", m.linear_damping_ratio},
+                      {"log10_amplitude", array(m.log10_amplitude)},
+                      {"amplitude", array(m.amplitude)},
+                      {"omega_rad_s", array(m.omega)},
+                      {"frequency_hz", array(m.frequency_hz)},
+                      {"damping_ratio", array(m.damping_ratio)},
+                      {"xi_per_s", array(m.xi)},
+                      {"output_amplitude", rows(m.output_amplitude)},
+                      {"output_points",
+                       output_points_summary(c.output_points, r.nonlinear_mode_output_points)},
+                      {"solver", solver_summary(w)}});
     add_analysis(total, w, "nonlinear_mode");
   }
   // [[backbone_rom]]: forced responses from the backbone just computed (mode_rom.hpp).

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
+#include <memory>
+#include <string>
 
 #include <fmt/format.h>
 #include <Eigen/LU>
@@ -36,6 +39,11 @@ void ContinuationOptions::validate() const {
     throw InvalidInput(
         fmt::format("continuation.max_points = {}: must be in [2, 1e6]", max_points));
   }
+  if (chord_unknowns < 1) {
+    throw InvalidInput(
+        "continuation.chord_unknowns = 0: must be >= 1 (a large number for "
+        "full Newton always)");
+  }
   if (target_iterations < 1 || target_iterations > newton.max_iterations) {
     throw InvalidInput(fmt::format(
         "continuation.target_iterations = {}: must be in [1, newton.max_iterations = {}]",
@@ -64,13 +72,28 @@ double scaled_max(const Eigen::VectorXd& dy, const Eigen::VectorXd& scale) {
   return (dy.array() / scale.array()).abs().maxCoeff();
 }
 
+// g(y) where a NumericalError (an element pushed outside what it represents, at a trial
+// point of Newton's) is a failed evaluation: R is set non-finite and the message kept, so
+// that the step is shortened rather than the analysis ended.
+void evaluate(const SystemFunction& g, const Eigen::VectorXd& y, Eigen::VectorXd& R,
+              Eigen::MatrixXd* J, std::string& failure) {
+  try {
+    g(y, R, J);
+  } catch (const NumericalError& e) {
+    failure = e.what();
+    R = Eigen::VectorXd::Constant(std::max<Eigen::Index>(1, y.size()),
+                                  std::numeric_limits<double>::quiet_NaN());
+    if (J) J->resize(0, 0);
+  }
+}
+
 // Newton with backtracking on |R|^2 for a square system g(y) = 0.
 NewtonResult newton_square(const SystemFunction& g, Eigen::VectorXd y, const Eigen::VectorXd& scale,
                            double residual_scale, const NewtonOptions& opt) {
   NewtonResult res;
   Eigen::VectorXd R;
   Eigen::MatrixXd J;
-  g(y, R, &J);
+  evaluate(g, y, R, &J, res.failure);
   if (!R.allFinite()) {
     res.y = y;
     res.residual_norm = std::numeric_limits<double>::infinity();
@@ -80,6 +103,7 @@ NewtonResult newton_square(const SystemFunction& g, Eigen::VectorXd y, const Eig
   for (int it = 1; it <= opt.max_iterations; ++it) {
     res.iterations = it;
     Eigen::PartialPivLU<Eigen::MatrixXd> lu(J);
+    ++res.factorizations;
     Eigen::VectorXd dy = lu.solve(-R);
     if (!dy.allFinite()) break;
     // Line search: halve the step while |R|^2 does not decrease (Armijo, c = 1e-4).
@@ -94,17 +118,18 @@ NewtonResult newton_square(const SystemFunction& g, Eigen::VectorXd y, const Eig
     for (int ls = 0; ls < 7; ++ls) {
       y_new = y + t * dy;
       if (ls == 0) {
-        g(y_new, R_full, &J_full);
+        evaluate(g, y_new, R_full, &J_full, res.failure);
         R_new = R_full;
       } else {
-        g(y_new, R_new, nullptr);
+        evaluate(g, y_new, R_new, nullptr, res.failure);
       }
       if (R_new.allFinite() && R_new.squaredNorm() <= (1.0 - 2e-4 * t) * r0) {
         accepted = true;
         if (ls == 0) {
           J_new = std::move(J_full);
         } else {
-          g(y_new, R_new, &J_new);
+          evaluate(g, y_new, R_new, &J_new, res.failure);
+          if (!R_new.allFinite()) accepted = false;
         }
         break;
       }
@@ -140,6 +165,126 @@ NewtonResult newton_square(const SystemFunction& g, Eigen::VectorXd y, const Eig
   return res;
 }
 
+// Reduction of |R| a chord step must achieve for the factorisation to be kept.
+constexpr double kChordContraction = 0.5;
+// Chord iterations stop when the estimated error is below this fraction of the step
+// tolerance: full Newton's last step leaves an error quadratically smaller than the
+// tolerance, and the curves should not depend on which corrector ran (a few more chord
+// steps, each a residual evaluation, cost little where chord Newton is used).
+constexpr double kChordStepTolerance = 1e-2;
+// A scaled step this small is rounding (unknowns of the order of their scale).
+constexpr double kRoundoffStep = 1e-13;
+
+// Solves J dy = rhs with a factorisation made earlier (chord iterations).
+using ChordSolve = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
+
+// Chord Newton (Newton's method with the Jacobian kept while it contracts; Kelley, "Solving
+// Nonlinear Equations with Newton's Method", SIAM 2003, sec. 1.10 and 2.3): steps with the
+// factorisation `solve` (given, or made at the start) while each reduces |R| by
+// kChordContraction or reaches the residual tolerance; otherwise the Jacobian is evaluated
+// and factorised at the current iterate and the step retried, with a backtracking line
+// search as in newton_square when even that step does not contract. At most
+// opt.max_iterations factorisations and 4 opt.max_iterations steps.
+NewtonResult newton_chord(const SystemFunction& g, Eigen::VectorXd y, const Eigen::VectorXd& scale,
+                          double residual_scale, const NewtonOptions& opt, ChordSolve solve) {
+  NewtonResult res;
+  Eigen::VectorXd R;
+  Eigen::MatrixXd J;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  auto failed = [&]() {
+    res.y = y;
+    res.residual_norm =
+        R.allFinite() ? R.cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
+    return res;
+  };
+  // J (and R) at y, factorised.
+  auto refactor = [&]() {
+    evaluate(g, y, R, &J, res.failure);
+    if (!R.allFinite() || J.size() == 0 || !J.allFinite()) return false;
+    lu.compute(J);
+    ++res.factorizations;
+    solve = [&lu](const Eigen::VectorXd& b) { return Eigen::VectorXd(lu.solve(b)); };
+    return true;
+  };
+  bool fresh = false;  // the factorisation is of J at the current iterate
+  if (solve) {
+    evaluate(g, y, R, nullptr, res.failure);
+    if (!R.allFinite()) return failed();
+  } else {
+    if (!refactor()) return failed();
+    fresh = true;
+  }
+  const double tol = opt.residual_tolerance * residual_scale;
+  double previous_step = 0.0;  // of the last chord step (0: none since the last Newton step)
+  for (int it = 1; it <= 4 * opt.max_iterations; ++it) {
+    res.iterations = it;
+    const bool newton_step = fresh;
+    const Eigen::VectorXd dy = solve(-R);
+    Eigen::VectorXd y_new = y + dy, R_new;
+    if (dy.allFinite()) evaluate(g, y_new, R_new, nullptr, res.failure);
+    const bool contracts =
+        dy.allFinite() && R_new.allFinite() &&
+        (R_new.norm() <= kChordContraction * R.norm() || R_new.cwiseAbs().maxCoeff() <= tol);
+    double t = 1.0;
+    if (!contracts) {
+      if (!fresh) {
+        if (res.factorizations >= opt.max_iterations || !refactor()) break;
+        fresh = true;
+        continue;
+      }
+      if (!dy.allFinite()) break;
+      // A fresh Jacobian's step that does not contract: line search on |R|^2 (Armijo),
+      // else the full step if it stays finite (stick-slip kinks can need a step that first
+      // increases |R|), as newton_square.
+      const double r0 = R.squaredNorm();
+      if (!(R_new.allFinite() && R_new.squaredNorm() <= (1.0 - 2e-4) * r0)) {
+        const Eigen::VectorXd y_full = y_new, R_full = R_new;
+        bool accepted = false;
+        for (int ls = 1; ls < 7 && !accepted; ++ls) {
+          t *= 0.5;
+          y_new = y + t * dy;
+          evaluate(g, y_new, R_new, nullptr, res.failure);
+          accepted = R_new.allFinite() && R_new.squaredNorm() <= (1.0 - 2e-4 * t) * r0;
+        }
+        if (!accepted) {
+          if (!R_full.allFinite()) break;
+          y_new = y_full;
+          R_new = R_full;
+          t = 1.0;
+        }
+      }
+    }
+    const double step = t * scaled_max(dy, scale);
+    y = y_new;
+    R = R_new;
+    fresh = false;
+    // The error left after a step: a Newton step's next is quadratically smaller (the step
+    // itself bounds it, as in newton_square); chord steps converge linearly at the ratio
+    // rho of successive steps, leaving about rho / (1 - rho) of the last step (Kelley 2003,
+    // sec. 1.10), unknown after the first one.
+    double error = step;
+    if (!newton_step) {
+      const double rho = previous_step > 0.0 ? step / previous_step : 1.0;
+      // Steps below kRoundoffStep (scaled) are rounding noise, which does not contract.
+      error = rho < 1.0              ? step * std::max(1.0, rho / (1.0 - rho))
+              : step < kRoundoffStep ? step
+                                     : std::numeric_limits<double>::infinity();
+      previous_step = step;
+    } else {
+      previous_step = 0.0;
+    }
+    const double rn = R.cwiseAbs().maxCoeff();
+    if ((error < kChordStepTolerance * opt.step_tolerance && rn <= tol) || rn == 0.0) {
+      res.converged = true;
+      break;
+    }
+  }
+  res.y = y;
+  res.residual_norm =
+      R.allFinite() ? R.cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
+  return res;
+}
+
 }  // namespace
 
 NewtonResult solve_newton(const SystemFunction& f, Eigen::VectorXd y0, const Eigen::VectorXd& scale,
@@ -158,15 +303,21 @@ namespace {
 // the orientation of the curve, which a continuation keeps across turning points
 // (Allgower & Georg 2003, sec. 2.1). det [J S; v^T] is linear in v and vanishes on the
 // rows of J S, so it is det [J S; t_ref^T] times t.v / t.t_ref, and t.t_ref > 0.
-Eigen::VectorXd tangent_of(const Eigen::MatrixXd& J, const Eigen::VectorXd& scale,
-                           const Eigen::VectorXd& t_ref, double* orientation = nullptr) {
+// With `factorisation`, the LU of [J S; t_ref^T] is kept there (chord Newton's next
+// corrector).
+Eigen::VectorXd tangent_of(
+    const Eigen::MatrixXd& J, const Eigen::VectorXd& scale, const Eigen::VectorXd& t_ref,
+    double* orientation = nullptr,
+    std::shared_ptr<const Eigen::PartialPivLU<Eigen::MatrixXd>>* factorisation = nullptr) {
   const Eigen::Index m = J.rows(), n = J.cols();
   Eigen::MatrixXd A(n, n);
   A.topRows(m) = J * scale.asDiagonal();
   A.row(m) = t_ref.transpose();
   Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
   b(m) = 1.0;
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
+  const auto lu_ptr = std::make_shared<const Eigen::PartialPivLU<Eigen::MatrixXd>>(A);
+  const Eigen::PartialPivLU<Eigen::MatrixXd>& lu = *lu_ptr;
+  if (factorisation) *factorisation = lu_ptr;
   Eigen::VectorXd t = lu.solve(b);
   if (!t.allFinite() || t.norm() == 0.0) return {};
   if (orientation) {
@@ -199,6 +350,7 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
   }
   const double sense = range > 0.0 ? 1.0 : -1.0;
   ContinuationResult out;
+  std::string last_failure;  // the last element error at a trial point
 
   // Correct the start at fixed parameter.
   auto fixed_parameter = [&](double lambda) {
@@ -226,10 +378,24 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
     y << x.head(p), lambda, x.tail(n - p - 1);
     return y;
   };
+  const bool chord = static_cast<std::size_t>(n) >= opt.chord_unknowns;
   auto correct = [&](const SystemFunction& g, const Eigen::VectorXd& guess,
-                     const Eigen::VectorXd& scale) {
-    NewtonResult r = newton_square(g, guess, scale, pb.residual_scale, opt.newton);
+                     const Eigen::VectorXd& scale, const ChordSolve& initial = {}) {
+    NewtonResult r = chord ? newton_chord(g, guess, scale, pb.residual_scale, opt.newton, initial)
+                           : newton_square(g, guess, scale, pb.residual_scale, opt.newton);
+    if (chord && !r.converged) {
+      // Where chord iterations fail (a kink between the last point and the predictor, a
+      // strongly curved branch), full Newton from the same guess before the step is halved:
+      // chord Newton never does worse than full Newton would.
+      out.newton_iterations += static_cast<std::size_t>(r.iterations);
+      const int chord_factorizations = r.factorizations;
+      std::string failure = r.failure;
+      r = newton_square(g, guess, scale, pb.residual_scale, opt.newton);
+      r.factorizations += chord_factorizations;
+      if (r.failure.empty()) r.failure = failure;
+    }
     out.newton_iterations += static_cast<std::size_t>(r.iterations);
+    if (!r.failure.empty()) last_failure = r.failure;
     return r;
   };
   {
@@ -238,8 +404,9 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
       throw NumericalError(fmt::format(
           "the continuation cannot start: Newton did not converge at the start (parameter {}, "
           "residual {} after {} iterations); start from a smaller amplitude or force, or nearer "
-          "a solution",
-          core::format_value(lambda0), core::format_value(start.residual_norm), start.iterations));
+          "a solution{}",
+          core::format_value(lambda0), core::format_value(start.residual_norm), start.iterations,
+          start.failure.empty() ? "" : fmt::format(" (at a trial point: {})", start.failure)));
     }
     out.points.push_back(with(start.y, lambda0));
   }
@@ -250,7 +417,10 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
   Eigen::VectorXd e_p = Eigen::VectorXd::Zero(n);
   e_p(p) = 1.0;
   double sigma = 1.0;  // orientation of the tangent t
-  Eigen::VectorXd t = tangent_of(J, pb.scale, e_p, &sigma);
+  // Chord Newton: the factorisation of [J S; base_ref^T] at the last point.
+  std::shared_ptr<const Eigen::PartialPivLU<Eigen::MatrixXd>> base_lu;
+  Eigen::VectorXd base_ref = e_p;
+  Eigen::VectorXd t = tangent_of(J, pb.scale, e_p, &sigma, chord ? &base_lu : nullptr);
   if (t.size() == 0) {
     throw NumericalError(
         "the continuation cannot start: the tangent at the start is undefined (a "
@@ -280,8 +450,11 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
       out.cause = StopCause::stalled;
       out.stop_reason = fmt::format(
           "stalled at parameter {}: the step size fell below min_step = {} (Newton did not "
-          "converge on smaller steps)",
-          core::format_value(y(p)), core::format_value(opt.min_step));
+          "converge on smaller steps){}",
+          core::format_value(y(p)), core::format_value(opt.min_step),
+          last_failure.empty()
+              ? ""
+              : fmt::format("; the last element error at a trial point: {}", last_failure));
       break;
     }
     const Eigen::VectorXd z = (y.array() / pb.scale.array()).matrix();
@@ -308,6 +481,27 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
     auto corrector = [&](const Eigen::VectorXd& d, Eigen::VectorXd& zp) {
       zp = z + h * d;
       const Eigen::VectorXd zp_fixed = zp;
+      // The bordered Jacobian D [J S; d^T] S^-1 (D = diag(1, .., 1, residual_scale)) with
+      // J at the last point: its factorisation there has the border row base_ref, so
+      // B = A + e_n (d - base_ref)^T is solved by Sherman-Morrison.
+      ChordSolve initial;
+      if (chord && base_lu) {
+        Eigen::VectorXd e_n = Eigen::VectorXd::Zero(n);
+        e_n(n - 1) = 1.0;
+        const Eigen::VectorXd Au = base_lu->solve(e_n);
+        const Eigen::VectorXd v = d - base_ref;
+        const double denom = 1.0 + v.dot(Au);
+        if (Au.allFinite() && std::abs(denom) > 1e-8) {
+          initial = [lu = base_lu, Au, v, denom, rs = pb.residual_scale, sc = pb.scale,
+                     n](const Eigen::VectorXd& b) {
+            Eigen::VectorXd c = b;
+            c(n - 1) /= rs;
+            Eigen::VectorXd w = lu->solve(c);
+            w -= Au * (v.dot(w) / denom);
+            return Eigen::VectorXd(w.cwiseProduct(sc));
+          };
+        }
+      }
       auto bordered = [&, d, zp_fixed](const Eigen::VectorXd& yy, Eigen::VectorXd& Rb,
                                        Eigen::MatrixXd* Jb) {
         Eigen::VectorXd r;
@@ -324,7 +518,7 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
           Jb->row(n - 1) = pb.residual_scale * (d.array() / pb.scale.array()).matrix().transpose();
         }
       };
-      return correct(bordered, zp.cwiseProduct(pb.scale), pb.scale);
+      return correct(bordered, zp.cwiseProduct(pb.scale), pb.scale, initial);
     };
     // True when a point y moving along `dir` goes back along the curve already traced:
     // it lies on the polyline of the last points (within a tenth of the step plus the
@@ -361,10 +555,10 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
       // so that det [J S; t^T] keeps its sign (Allgower & Georg 2003, sec. 2.1 and 12.1).
       Eigen::VectorXd Rk;
       Eigen::MatrixXd Jk;
-      pb.f((z + h * t).cwiseProduct(pb.scale), Rk, &Jk);
+      evaluate(pb.f, (z + h * t).cwiseProduct(pb.scale), Rk, &Jk, last_failure);
       double sigma_k = 1.0;
-      Eigen::VectorXd d =
-          Jk.allFinite() ? tangent_of(Jk, pb.scale, t, &sigma_k) : Eigen::VectorXd{};
+      Eigen::VectorXd d = Jk.size() != 0 && Jk.allFinite() ? tangent_of(Jk, pb.scale, t, &sigma_k)
+                                                           : Eigen::VectorXd{};
       if (d.size() != 0 && std::abs(d.dot(t)) < std::cos(kKinkAngle)) {
         if (sigma_k != sigma) d = -d;
         // The orientation's sign is that of the piece across the boundary; should the
@@ -407,7 +601,8 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
     }
     pb.f(corr.y, R, &J);
     double sigma_new = 1.0;
-    Eigen::VectorXd t_new = tangent_of(J, pb.scale, d_used, &sigma_new);
+    std::shared_ptr<const Eigen::PartialPivLU<Eigen::MatrixXd>> new_lu;
+    Eigen::VectorXd t_new = tangent_of(J, pb.scale, d_used, &sigma_new, chord ? &new_lu : nullptr);
     if (t_new.size() == 0) {
       ++out.rejected_steps;
       smooth_step = false;
@@ -424,6 +619,11 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
       continue;
     }
     out.points.push_back(corr.y);
+    last_failure.clear();
+    if (chord) {
+      base_lu = std::move(new_lu);
+      base_ref = d_used;
+    }
     const double dir = t_new(p) > 0.0 ? 1.0 : -1.0;
     if (dir != last_dir) ++out.turning_points;
     last_dir = dir;
@@ -432,8 +632,9 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
     scaled.emplace_back((corr.y.array() / pb.scale.array()).matrix());
     sigma = sigma_new;
     // Step control: aim at target_iterations per point and a bounded turn.
-    const double ratio = static_cast<double>(opt.target_iterations) /
-                         static_cast<double>(std::max(1, corr.iterations));
+    const int effort = chord ? corr.factorizations + (corr.iterations + 3) / 4 : corr.iterations;
+    const double ratio =
+        static_cast<double>(opt.target_iterations) / static_cast<double>(std::max(1, effort));
     double factor = std::clamp(ratio, 0.5, 2.0);
     if (angle > 0.5 * opt.max_angle) factor = std::min(factor, 1.0);
     // Past a kink the next piece is smooth again: back to the step of the last regular

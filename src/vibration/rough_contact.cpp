@@ -133,22 +133,19 @@ RoughContactSurface::RoughContactSurface(const RoughInterfaceParameters& params,
         core::format_value(p_low), core::format_value(p_high), core::format_value(p_max)));
   }
   h_ = kLnPressureStep;
-  ln_p_first_ = std::log(p_low / pressure_scale_);
   const double span = std::log(p_high / p_low);
   const auto count = std::max<std::size_t>(4, static_cast<std::size_t>(std::ceil(span / h_)) + 1);
+  // Nodes from p_low up; the last may lie above p_high (count >= 4, or the ceiling). When
+  // that would pass the flat's largest load, the nodes end at p_high instead and the first
+  // lies below p_low (the range is covered either way).
+  ln_p_first_ = std::log(p_low / pressure_scale_);
+  const double ln_p_top = std::log(p_high / pressure_scale_);
+  if (ln_p_first_ + static_cast<double>(count - 1) * h_ > std::log(flat_.max_load_star()))
+    ln_p_first_ = ln_p_top - static_cast<double>(count - 1) * h_;
   p_star_.resize(count);
   tables_.resize(count);
   for (std::size_t k = 0; k < count; ++k) {
     p_star_[k] = std::exp(ln_p_first_ + static_cast<double>(k) * h_);
-  }
-  // The last node may lie above p_high (count >= 4, or the ceiling): never above the flat's
-  // largest load.
-  if (p_star_.back() > flat_.max_load_star()) {
-    throw InvalidInput(fmt::format(
-        "rough_contact pressure range [{}, {}] Pa: the tables would reach {} Pa, above the "
-        "{} Pa this rough flat represents; narrow the range",
-        core::format_value(p_low), core::format_value(p_high),
-        core::format_value(p_star_.back() * pressure_scale_), core::format_value(p_max)));
   }
   core::parallel_for(count, [&](std::size_t k) {
     tables_[k] = flat_.backbone(flat_.separation_star(p_star_[k]));

@@ -171,6 +171,41 @@ log10_amplitude = {{ from = -10.0, to = -8.0 }}
     f0 = v["nonlinear_mode"]["frequency_hz"][0]
     if abs(f0 - want[0]) > 8.4e-6 * want[0]:
         return fail(f"nonlinear mode starts at {f0} Hz, linear {want[0]} Hz")
+    # The model's named output point ("corner") is reported along the backbone: its
+    # first-harmonic acceleration is omega^2 times its displacement amplitude.
+    ops = v["nonlinear_mode"]["output_points"]
+    if [o["name"] for o in ops] != ["corner"] or ops[0]["point_m"] != [0.06, 0.02, 0.02]:
+        return fail(f"output points {[(o['name'], o['point_m']) for o in ops]}")
+    w = np.array(v["nonlinear_mode"]["omega_rad_s"])
+    d = np.array(ops[0]["displacement_amplitude_m"])
+    a = np.array(ops[0]["acceleration_amplitude_m_s2"])
+    if d.shape != (len(w), 3) or np.abs(a - d * w[:, None] ** 2).max() > 1e-12 * np.abs(a).max():
+        return fail("output point acceleration is not omega^2 x displacement")
+    # Recovery rows that pick DOFs 0, 1, 2 (the model rewritten with R = [I 0]): the point's
+    # displacement is the first-harmonic amplitude of those DOFs, computed by the output_dofs
+    # path (HarmonicBalance::harmonic_amplitude), exactly.
+    m = {k: x for k, x in scipy.io.loadmat(os.path.join(out, "reduced_model.mat")).items()
+         if not k.startswith("__")}
+    m["R"] = np.eye(3, m["M"].shape[0])
+    m["output_names"] = "probe"
+    m["output_points"] = np.zeros((1, 3))
+    scipy.io.savemat(os.path.join(tmp, "probe.mat"), m)
+    case = write(tmp, "probe.toml", open(case).read().replace(
+        os.path.join(out, "reduced_model.mat"), os.path.join(tmp, "probe.mat")).replace(
+        "output_dofs = [0]", "output_dofs = [0, 1, 2]"))
+    p = run(exe, ["vibration", case, "--json", "--out", os.path.join(tmp, "probe_out")])
+    if p.returncode != 0:
+        return fail(f"probe model: exit {p.returncode}: {p.stderr}")
+    v = json.loads(p.stdout)["nonlinear_mode"]
+    got = np.array(v["output_points"][0]["displacement_amplitude_m"])
+    if not np.array_equal(got, np.array(v["output_amplitude"])):
+        return fail("output point rows [I 0] do not give the DOFs' amplitudes")
+    for name in ["modal_frequency_probe.png", "modal_damping_probe.png"]:
+        if not os.path.getsize(os.path.join(tmp, "probe_out", name)) > 0:
+            return fail(f"{name} missing")
+    header = open(os.path.join(tmp, "probe_out", "nonlinear_mode.csv")).readline()
+    if "probe_z_acceleration_m_s2" not in header:
+        return fail(f"nonlinear_mode.csv header {header}")
     return 0
 
 

@@ -12,7 +12,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
+#include "asperity/core/error.hpp"
 #include "asperity/vibration/continuation.hpp"
 
 namespace asperity::vibration {
@@ -35,7 +37,14 @@ void duffing(const Eigen::VectorXd& y, Eigen::VectorXd& R, Eigen::MatrixXd* J) {
   (*J)(1, 2) = -2.0 * w * b - kC * a;
 }
 
-TEST(VibrationContinuation, FollowsBothTurningPointsOfTheDuffingResponse) {
+// Each continuation test runs with full Newton and with chord Newton (chord_unknowns = 1:
+// the factorisation at the last point reused by the next corrector), which must trace the
+// same curve to the same tolerances.
+class VibrationContinuationCorrector : public ::testing::TestWithParam<std::size_t> {};
+INSTANTIATE_TEST_SUITE_P(FullAndChordNewton, VibrationContinuationCorrector,
+                         ::testing::Values(std::size_t{1500}, std::size_t{1}));
+
+TEST_P(VibrationContinuationCorrector, FollowsBothTurningPointsOfTheDuffingResponse) {
   ContinuationProblem pb;
   pb.f = duffing;
   pb.parameter = 2;
@@ -45,6 +54,7 @@ TEST(VibrationContinuation, FollowsBothTurningPointsOfTheDuffingResponse) {
   ContinuationOptions opt;
   opt.step = 0.01;
   opt.max_step = 0.05;
+  opt.chord_unknowns = GetParam();
   const Eigen::Vector3d y0(kF / (1.0 - 0.25), 0.0, 0.5);  // the linear response as a guess
   const ContinuationResult r = continue_curve(pb, y0, opt);
   ASSERT_TRUE(r.complete) << r.stop_reason;
@@ -76,7 +86,7 @@ void zigzag(const Eigen::VectorXd& y, Eigen::VectorXd& R, Eigen::MatrixXd* J) {
   if (J) *J = Eigen::RowVector2d(slope, -1.0);
 }
 
-TEST(VibrationContinuation, FollowsFoldsAtKinksOfAPiecewiseLinearCurve) {
+TEST_P(VibrationContinuationCorrector, FollowsFoldsAtKinksOfAPiecewiseLinearCurve) {
   ContinuationProblem pb;
   pb.f = zigzag;
   pb.parameter = 1;
@@ -86,6 +96,7 @@ TEST(VibrationContinuation, FollowsFoldsAtKinksOfAPiecewiseLinearCurve) {
   ContinuationOptions opt;
   opt.step = 0.01;
   opt.max_step = 0.05;
+  opt.chord_unknowns = GetParam();
   const ContinuationResult r = continue_curve(pb, Eigen::Vector2d(0.0, 0.0), opt);
   ASSERT_TRUE(r.complete) << r.stop_reason;
   EXPECT_EQ(r.turning_points, 2u);  // down at x = 1, up again at x = 1.2
@@ -116,6 +127,53 @@ TEST(VibrationContinuation, NewtonConvergesQuadraticallyOnASmoothSystem) {
   ASSERT_TRUE(r.converged);
   EXPECT_LE(r.iterations, 6);
   EXPECT_NEAR(r.y(0), std::sqrt(2.0), 1e-14);
+}
+
+TEST(VibrationContinuation, NewtonShortensAStepThatTakesAnElementOutOfItsRange) {
+  // exp(x) - 1 = 0 from x = -3: the full Newton step lands at x = 16.1 and the first halving
+  // at 6.55, both past x = 5 where the "element" throws (as a rough contact pressed past
+  // its tables does); the line search goes on halving (x = -0.61 at 1/8) and Newton
+  // converges to 0, the message kept.
+  const SystemFunction f = [](const Eigen::VectorXd& y, Eigen::VectorXd& R, Eigen::MatrixXd* J) {
+    if (y(0) > 5.0) throw NumericalError("element 1: outside its tables");
+    R = Eigen::VectorXd::Constant(1, std::exp(y(0)) - 1.0);
+    if (J) *J = Eigen::MatrixXd::Constant(1, 1, std::exp(y(0)));
+  };
+  const NewtonResult r =
+      solve_newton(f, Eigen::VectorXd::Constant(1, -3.0), Eigen::VectorXd::Ones(1), 1.0, {});
+  ASSERT_TRUE(r.converged);
+  EXPECT_NEAR(r.y(0), 0.0, 1e-12);
+  EXPECT_NE(r.failure.find("outside its tables"), std::string::npos) << r.failure;
+}
+
+TEST_P(VibrationContinuationCorrector, AnElementErrorAtTrialPointsStopsTheCurveWithItsMessage) {
+  // x = lambda^2 continued in lambda from 0 towards 3; the system refuses lambda > 1.5.
+  // The curve up to 1.5 is kept and the stop names the stall and the element's message
+  // (before, the error ended the analysis and the points were lost).
+  ContinuationProblem pb;
+  pb.f = [](const Eigen::VectorXd& y, Eigen::VectorXd& R, Eigen::MatrixXd* J) {
+    if (y(1) > 1.5) throw NumericalError("element 1: outside its tables");
+    R = Eigen::VectorXd::Constant(1, y(0) - y(1) * y(1));
+    if (J) {
+      J->resize(1, 2);
+      *J << 1.0, -2.0 * y(1);
+    }
+  };
+  pb.parameter = 1;
+  pb.scale = Eigen::VectorXd::Ones(2);
+  pb.parameter_end = 3.0;
+  ContinuationOptions opt;
+  opt.step = 0.1;
+  opt.min_step = 1e-4;
+  opt.chord_unknowns = GetParam();
+  const ContinuationResult r = continue_curve(pb, Eigen::Vector2d(0.0, 0.0), opt);
+  EXPECT_FALSE(r.complete);
+  EXPECT_EQ(r.cause, StopCause::stalled);
+  EXPECT_NE(r.stop_reason.find("outside its tables"), std::string::npos) << r.stop_reason;
+  ASSERT_GE(r.points.size(), 2U);
+  EXPECT_GT(r.points.back()(1), 1.49);
+  EXPECT_LE(r.points.back()(1), 1.5);
+  for (const auto& y : r.points) EXPECT_NEAR(y(0), y(1) * y(1), 1e-8);
 }
 
 }  // namespace

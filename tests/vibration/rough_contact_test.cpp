@@ -367,6 +367,26 @@ TEST(RoughContactElement, RefusesBadInput) {
             std::string::npos);
 }
 
+TEST(RoughContactSurface, TablesReachTheLargestLoadTheFlatRepresents) {
+  // A range ending just under the flat's largest load (an interface whose most pressed
+  // element is near it; the BRB's p_max / 8 .. 0.999 p_flat): the nodes, 2^(1/8) apart from
+  // p_low up, would pass p_flat; they end at p_high instead and still cover [p_low, p_high]
+  // (the first node below p_low). An element at p_high is accepted and evaluates.
+  const RoughInterfaceParameters p = table_7_2();
+  const auto probe = std::make_shared<const RoughContactSurface>(p, 1e6, 2e6);
+  const double p_flat = probe->flat().max_load_star() * probe->pressure_scale();
+  const double p_high = 0.999 * p_flat, p_low = p_high / 64.0 * 1.05;
+  const auto s = std::make_shared<const RoughContactSurface>(p, p_low, p_high);
+  const double scale = s->pressure_scale();
+  EXPECT_LE(s->table_pressure_star(0) * scale, p_low);
+  EXPECT_LE(rel(s->table_pressure_star(s->tables() - 1) * scale, p_high), 1e-12);
+  EXPECT_LE(s->table_pressure_star(s->tables() - 1), s->flat().max_load_star());
+  const RoughContactElement e(s, kArea, p_high, "element at the top");
+  EXPECT_LE(rel(e.pressure(0.0).p, p_high / scale), 1e-12);
+  EXPECT_GT(e.limit_star(p_high / scale).Q, 0.0);
+  EXPECT_THROW((void)e.limit_star(1.01 * p_high / scale), NumericalError);
+}
+
 }  // namespace
 }  // namespace asperity::vibration
 

@@ -166,12 +166,31 @@ struct BackboneRomCase {
   int subdivisions = 16;
 };
 
+/// A named output point of a reduced model (an accelerometer position): its recovery rows
+/// give the point's displacement (x, y, z) from the structure's DOFs.
+struct OutputPoint {
+  std::string name;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< [m] (NaN when the file has none)
+  Eigen::MatrixXd rows;                             ///< 3 x n
+};
+
+/// First-harmonic response of an output point at each point of a curve: displacement
+/// amplitude sqrt(a_1^2 + b_1^2) of x, y, z [m] and acceleration amplitude omega^2 times it
+/// [m/s^2] (what an accelerometer's fundamental reads).
+struct OutputPointResponse {
+  std::string name;
+  Eigen::MatrixXd displacement;  ///< points x 3
+  Eigen::MatrixXd acceleration;  ///< points x 3
+};
+
 struct VibrationCase {
   std::string source;  ///< the case file (or "<string>")
   Structure structure;
   std::string damping = "none";  ///< "matrix", "rayleigh" or "none"
   RayleighDamping rayleigh;      ///< when damping == "rayleigh"
   std::vector<Eigen::Index> output_dofs;
+  /// The model's named output points (every one of a `model` with recovery rows).
+  std::vector<OutputPoint> output_points;
   std::vector<PlacedElement> elements;
   HarmonicBalanceOptions harmonic_balance;
   std::optional<NonlinearModeOptions> nonlinear_mode;
@@ -202,6 +221,8 @@ using CaseProgress = std::function<void(const std::string& analysis, double frac
 
 struct VibrationResult {
   std::optional<NonlinearModeResult> nonlinear_mode;
+  /// The output points' response along the nonlinear mode (one per case output point).
+  std::vector<OutputPointResponse> nonlinear_mode_output_points;
   /// Every curve of every [[frequency_response]] table, in order (tables, then scales).
   std::vector<FrequencyResponseCurve> frequency_response;
   std::vector<std::size_t> frequency_response_table;  ///< the table (0-based) of each curve

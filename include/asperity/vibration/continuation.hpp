@@ -32,6 +32,12 @@ struct NewtonResult {
   bool converged = false;
   int iterations = 0;
   double residual_norm = 0.0;
+  /// Jacobians factorised (chord Newton, ContinuationOptions::chord_unknowns; in full
+  /// Newton one per iteration).
+  int factorizations = 0;
+  /// The last NumericalError met at a trial point (an element outside what it represents):
+  /// such a point counts as a failed evaluation, the step is shortened. Empty if none.
+  std::string failure;
 };
 
 /// Square system (m = unknowns): Newton with a backtracking line search on |R|^2
@@ -47,6 +53,15 @@ struct ContinuationOptions {
   std::size_t max_points = 2000;
   int target_iterations = 4;  ///< Newton iterations per point the step size aims at
   double max_angle = 0.35;    ///< [rad] largest turn of the tangent between points
+  /// Systems with at least this many unknowns are corrected by chord Newton: the
+  /// factorisation made for the tangent at the last point (its border row updated by
+  /// Sherman-Morrison) serves the next corrector's iterations while each reduces |R| by
+  /// half; a fresh Jacobian is factorised at the iterate only when one does not. Where one
+  /// dense LU costs hundreds of residual evaluations (a reduced finite-element model:
+  /// 649 DOFs x 7 coefficients), this takes one factorisation per point instead of one
+  /// per iteration. Step control then counts factorisations plus a quarter of the chord
+  /// iterations against target_iterations. >= 1.
+  std::size_t chord_unknowns = 1500;
   NewtonOptions newton;
   void validate() const;
 };

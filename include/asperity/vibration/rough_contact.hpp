@@ -53,8 +53,10 @@ struct RoughInterfaceParameters {
 class RoughContactSurface {
  public:
   /// Tables from p_low to p_high [Pa] (0 < p_low < p_high, p_high at most the flat's largest
-  /// load), log-spaced 2^(1/8) apart. Below p_low the tangential curve's shape is the one at
-  /// p_low, scaled with p (to zero at separation); above p_high an element throws.
+  /// load), log-spaced 2^(1/8) apart from p_low up (at least 4), or ending at p_high when
+  /// the last would pass the flat's largest load (the first then lies below p_low). Below p_low the
+  /// tangential curve's shape is the one at p_low, scaled with p (to zero at separation); above
+  /// p_high an element throws.
   RoughContactSurface(const RoughInterfaceParameters& params, double p_low, double p_high);
 
   [[nodiscard]] const RoughInterfaceParameters& parameters() const { return params_; }
@@ -101,7 +103,8 @@ class RoughContactElement final : public Element {
   [[nodiscard]] double slip_force() const override;
   [[nodiscard]] dynamics::SummaryObject describe() const override;
 
-  /// Normal pressure p [Pa] at closure u_n [m] from the prestress and dp/du_n [Pa/m].
+  /// Normal pressure over K H (p*) at closure u_n [m] from the prestress, and dp*/dy* with
+  /// y* = u_n / sigma (both dimensionless; p* K H is the pressure in Pa).
   struct Pressure {
     double p = 0.0;
     double dp = 0.0;
