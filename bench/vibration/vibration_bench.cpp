@@ -52,8 +52,8 @@ Eigen::VectorXd jenkins_state(const HarmonicBalance& hb) {
   return U;
 }
 
-void BM_AftJenkinsResidualJacobian(benchmark::State& state) {
-  const auto hb = jenkins_sdof({0, 1, 2, 3}, 1024);
+void aft_jenkins(benchmark::State& state, std::size_t time_points) {
+  const auto hb = jenkins_sdof({0, 1, 2, 3}, time_points);
   const Eigen::VectorXd U = jenkins_state(hb);
   const Eigen::VectorXd F = Eigen::VectorXd::Zero(hb.unknowns());
   Eigen::VectorXd R, dRw;
@@ -62,6 +62,9 @@ void BM_AftJenkinsResidualJacobian(benchmark::State& state) {
     hb.residual(U, 1.1, F, R, &J, &dRw);
     benchmark::DoNotOptimize(J.data());
   }
+}
+void BM_AftJenkinsResidualJacobian(benchmark::State& state) {
+  aft_jenkins(state, 1024);
 }
 BENCHMARK(BM_AftJenkinsResidualJacobian)->Unit(benchmark::kMicrosecond);
 
@@ -198,15 +201,7 @@ void BM_AftRoughContactResidualJacobian(benchmark::State& state) {
 BENCHMARK(BM_AftRoughContactResidualJacobian)->Unit(benchmark::kMicrosecond);
 
 void BM_AftJenkinsResidualJacobianNt128(benchmark::State& state) {
-  const auto hb = jenkins_sdof({0, 1, 2, 3}, 128);
-  const Eigen::VectorXd U = jenkins_state(hb);
-  const Eigen::VectorXd F = Eigen::VectorXd::Zero(hb.unknowns());
-  Eigen::VectorXd R, dRw;
-  Eigen::MatrixXd J;
-  for (auto _ : state) {
-    hb.residual(U, 1.1, F, R, &J, &dRw);
-    benchmark::DoNotOptimize(J.data());
-  }
+  aft_jenkins(state, 128);
 }
 BENCHMARK(BM_AftJenkinsResidualJacobianNt128)->Unit(benchmark::kMicrosecond);
 

@@ -128,6 +128,27 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
     }
     write("nonlinear_mode.csv", csv(h, cols));
   }
+  if (r.nonlinear_mode && r.nonlinear_mode_interface) {
+    // One row per point and interface element (issue 20's interface maps).
+    const auto& m = *r.nonlinear_mode_interface;
+    std::vector<std::vector<double>> cols(8);
+    for (Eigen::Index k = 0; k < m.dissipation.rows(); ++k) {
+      for (std::size_t j = 0; j < m.elements.size(); ++j) {
+        const auto& site = c.element_sites[m.elements[j]];
+        const auto jj = static_cast<Eigen::Index>(j);
+        cols[0].push_back(static_cast<double>(k));
+        cols[1].push_back(r.nonlinear_mode->log10_amplitude(k));
+        cols[2].push_back(static_cast<double>(site.interface_element));
+        for (int d = 0; d < 3; ++d)
+          cols[3 + static_cast<std::size_t>(d)].push_back(site.centroid(d));
+        cols[6].push_back(m.dissipation(k, jj));
+        cols[7].push_back(m.mean_pressure(k, jj));
+      }
+    }
+    write("interface_map.csv", csv({"point", "log10_amplitude", "interface_element", "x_m", "y_m",
+                                    "z_m", "dissipation_J_per_m2", "mean_pressure_Pa"},
+                                   cols));
+  }
   const auto& harmonics = c.harmonic_balance.harmonics;
   for (std::size_t k = 0; k < r.frequency_response.size(); ++k) {
     const auto& cv = r.frequency_response[k];
@@ -256,6 +277,51 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
     written.push_back("modal_frequency.png");
     plot_png(dir.file("modal_damping.png"), z);
     written.push_back("modal_damping.png");
+  }
+  // The interface at the largest amplitude: dissipation per cycle and area by element,
+  // eight classes a factor 10^(1/2) apart down from the largest, seen along the normal.
+  if (r.nonlinear_mode && r.nonlinear_mode_interface &&
+      r.nonlinear_mode_interface->dissipation.rows() > 0) {
+    const auto& m = *r.nonlinear_mode_interface;
+    const Eigen::Index last = m.dissipation.rows() - 1;
+    const double wmax = m.dissipation.row(last).maxCoeff();
+    constexpr int kClasses = 8;
+    static const char* colours[kClasses] = {"#440154", "#46327e", "#365c8d", "#277f8e",
+                                            "#1fa187", "#4ac16d", "#a0da39", "#fde725"};
+    PlotSpec pm{.title = fmt::format("Interface dissipation per cycle at modal amplitude {:.3g} "
+                                     "({:.2f} Hz)",
+                                     r.nonlinear_mode->amplitude(last),
+                                     r.nonlinear_mode->frequency_hz(last)),
+                .xlabel = "x [mm]",
+                .ylabel = "y [mm]",
+                .extra = "set size ratio -1\nset key outside right"};
+    Series low{.title = "below 1e-4 of the largest",
+               .style = "points pt 5 ps 1.2 lc rgb '#d0d0d0'"};
+    std::vector<Series> cls(kClasses);
+    for (int k = 0; k < kClasses; ++k) {
+      cls[static_cast<std::size_t>(k)].title =
+          fmt::format("{:.2g}-{:.2g} J/m^2", wmax * std::pow(10.0, -0.5 * (kClasses - k)),
+                      wmax * std::pow(10.0, -0.5 * (kClasses - 1 - k)));
+      cls[static_cast<std::size_t>(k)].style =
+          fmt::format("points pt 5 ps 1.2 lc rgb '{}'", colours[k]);
+    }
+    for (std::size_t j = 0; j < m.elements.size(); ++j) {
+      const Eigen::Vector3d x = c.element_sites[m.elements[j]].centroid * 1e3;
+      const double w = m.dissipation(last, static_cast<Eigen::Index>(j));
+      const double classes_down = wmax > 0.0 && w > 0.0 ? std::log10(wmax / w) / 0.5 : 1e9;
+      Series& target =
+          classes_down >= kClasses
+              ? low
+              : cls[static_cast<std::size_t>(
+                    kClasses - 1 - std::min(kClasses - 1, static_cast<int>(classes_down)))];
+      target.x.push_back(x.x());
+      target.y.push_back(x.y());
+    }
+    if (!low.x.empty()) pm.series.push_back(low);
+    for (auto it = cls.rbegin(); it != cls.rend(); ++it)
+      if (!it->x.empty()) pm.series.push_back(*it);
+    plot_png(dir.file("interface_dissipation.png"), pm);
+    written.push_back("interface_dissipation.png");
   }
   // The backbone against each output point's acceleration (its direction of largest
   // response at the largest amplitude), as a measured backbone is plotted.

@@ -548,7 +548,8 @@ bool places_every_interface_element(const toml::table& t) {
 std::vector<PlacedElement> parse_interface_rough_contact(const toml::table& t, std::size_t index,
                                                          Eigen::Index dofs,
                                                          const fem::ReducedModel* model,
-                                                         std::vector<std::string>& warnings) {
+                                                         std::vector<std::string>& warnings,
+                                                         std::vector<ElementSite>& sites) {
   const std::string w = fmt::format("element[{}]", index + 1);
   if (text(t, "type", w, "") != "rough_contact") {
     throw InvalidInput(
@@ -633,6 +634,8 @@ std::vector<PlacedElement> parse_interface_rough_contact(const toml::table& t, s
     pe.T.row(1) = model->Q.row(3 * e + 1);
     pe.T.row(2) = -model->Q.row(3 * e + 2);
     out.push_back(std::move(pe));
+    const fem::InterfaceElement& ie = model->elements[static_cast<std::size_t>(e)];
+    sites.push_back({.interface_element = e, .centroid = ie.centroid, .area = ie.area});
   }
   return out;
 }

@@ -414,12 +414,13 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     for (std::size_t k = 0; k < arr->size(); ++k) {
       const toml::table& t = *arr->get(k)->as_table();
       if (detail::places_every_interface_element(t)) {
-        auto placed =
-            detail::parse_interface_rough_contact(t, k, n, model ? &*model : nullptr, c.warnings);
+        auto placed = detail::parse_interface_rough_contact(t, k, n, model ? &*model : nullptr,
+                                                            c.warnings, c.element_sites);
         std::move(placed.begin(), placed.end(), std::back_inserter(c.elements));
         continue;
       }
       c.elements.push_back(parse_element(t, k, n, joint, base_dir, model ? &*model : nullptr));
+      c.element_sites.emplace_back();
     }
   }
   if (joint) {

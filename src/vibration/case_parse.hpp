@@ -66,10 +66,12 @@ bool places_every_interface_element(const toml::table& t);
 /// prestress that `asperity structure` stored with it (its surface and each element's
 /// pressure; elements without pressure are left out, with a warning); T rows t1, t2 and the
 /// closure. One tangential-table surface serves them all.
+/// `sites` receives where each placed element sits.
 std::vector<PlacedElement> parse_interface_rough_contact(const toml::table& t, std::size_t index,
                                                          Eigen::Index dofs,
                                                          const fem::ReducedModel* model,
-                                                         std::vector<std::string>& warnings);
+                                                         std::vector<std::string>& warnings,
+                                                         std::vector<ElementSite>& sites);
 
 PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Index dofs,
                             const std::optional<JointBackbone>& joint, const std::string& base_dir,

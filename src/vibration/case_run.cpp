@@ -5,10 +5,13 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <numbers>
+#include <optional>
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
+#include "asperity/vibration/rough_contact.hpp"
 
 namespace asperity::vibration {
 
@@ -78,6 +81,78 @@ std::vector<OutputPointResponse> output_point_responses(const HarmonicBalance& h
     out.push_back(std::move(r));
   }
   return out;
+}
+
+// The interface along a curve of points U at frequencies omega: each sited element's work
+// per cycle, 2 pi mean_i f(t_i) . du/dtheta(t_i) (exact for the projected force: du/dtheta is
+// a trigonometric polynomial of the kept harmonics, so the mean of the samples' product is
+// the integral of its product with the force's harmonic-balance projection), over its area;
+// and a rough_contact element's cycle-mean normal pressure.
+std::optional<InterfaceMap> interface_map(const HarmonicBalance& hb,
+                                          const std::vector<ElementSite>& sites,
+                                          const std::vector<Eigen::VectorXd>& U,
+                                          const Eigen::VectorXd& omega) {
+  InterfaceMap m;
+  for (std::size_t e = 0; e < hb.elements().size() && e < sites.size(); ++e) {
+    if (sites[e].interface_element >= 0 && sites[e].area > 0.0) m.elements.push_back(e);
+  }
+  if (m.elements.empty()) return std::nullopt;
+  const auto np = static_cast<Eigen::Index>(U.size());
+  const auto ne = static_cast<Eigen::Index>(m.elements.size());
+  const auto nc = static_cast<Eigen::Index>(hb.basis().coefficients());
+  const auto N = static_cast<double>(hb.basis().time_points());
+  m.dissipation.resize(np, ne);
+  m.mean_pressure.setConstant(np, ne, std::numeric_limits<double>::quiet_NaN());
+  const Eigen::MatrixXd& E = hb.basis().synthesis();
+  const Eigen::MatrixXd& D = hb.basis().derivative();
+  PeriodicResponse resp;
+  for (Eigen::Index k = 0; k < np; ++k) {
+    const Eigen::Map<const Eigen::MatrixXd> X(U[static_cast<std::size_t>(k)].data(), nc, hb.dofs());
+    for (Eigen::Index j = 0; j < ne; ++j) {
+      const std::size_t e = m.elements[static_cast<std::size_t>(j)];
+      const PlacedElement& pe = hb.elements()[e];
+      const Eigen::MatrixXd Xe = X * pe.T.transpose();
+      const Eigen::MatrixXd u = E * Xe;
+      const Eigen::MatrixXd du = E * (D * Xe);  // du/dtheta
+      Eigen::MatrixXd v;
+      if (pe.element->velocity_dependent()) v = omega(k) * du;
+      pe.element->periodic_response(u, v, false, resp);
+      m.dissipation(k, j) =
+          2.0 * std::numbers::pi * resp.f.cwiseProduct(du).sum() / N / sites[e].area;
+      // The element's normal force is the change from its prestress p0 A.
+      if (const auto* rc = dynamic_cast<const RoughContactElement*>(pe.element.get()))
+        m.mean_pressure(k, j) = rc->prestress_pressure() + resp.f.col(2).mean() / rc->area();
+    }
+  }
+  return m;
+}
+
+SummaryObject interface_map_summary(const InterfaceMap& m, const std::vector<ElementSite>& sites) {
+  SummaryArray elements, centroids, areas;
+  for (const std::size_t e : m.elements) {
+    elements.emplace_back(static_cast<std::size_t>(sites[e].interface_element));
+    const Eigen::Vector3d& x = sites[e].centroid;
+    centroids.emplace_back(SummaryArray{x(0), x(1), x(2)});
+    areas.emplace_back(sites[e].area);
+  }
+  SummaryArray pressure;
+  for (Eigen::Index k = 0; k < m.mean_pressure.rows(); ++k) {
+    SummaryArray row;
+    for (Eigen::Index j = 0; j < m.mean_pressure.cols(); ++j) {
+      const double p = m.mean_pressure(k, j);
+      if (std::isfinite(p)) {
+        row.emplace_back(p);
+      } else {
+        row.emplace_back(nullptr);
+      }
+    }
+    pressure.emplace_back(std::move(row));
+  }
+  return {{"interface_elements", std::move(elements)},
+          {"centroid_m", std::move(centroids)},
+          {"area_m2", std::move(areas)},
+          {"dissipation_J_per_m2", rows(m.dissipation)},
+          {"mean_pressure_Pa", std::move(pressure)}};
 }
 
 SummaryArray output_points_summary(const std::vector<OutputPoint>& points,
@@ -264,6 +339,10 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     r.warnings.insert(r.warnings.end(), m.warnings.begin(), m.warnings.end());
     r.nonlinear_mode_output_points =
         output_point_responses(hb, c.output_points, m.harmonics, m.omega);
+    r.nonlinear_mode_interface = interface_map(hb, c.element_sites, m.harmonics, m.omega);
+    SummaryValue interface;  // null without elements on interface elements
+    if (r.nonlinear_mode_interface)
+      interface = interface_map_summary(*r.nonlinear_mode_interface, c.element_sites);
     j.emplace_back(
         "nonlinear_mode",
         SummaryObject{{"mode", c.nonlinear_mode->mode},
@@ -278,6 +357,7 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                       {"output_amplitude", rows(m.output_amplitude)},
                       {"output_points",
                        output_points_summary(c.output_points, r.nonlinear_mode_output_points)},
+                      {"interface", interface},
                       {"solver", solver_summary(w)}});
     add_analysis(total, w, "nonlinear_mode");
   }

@@ -87,6 +87,14 @@ void evaluate(const SystemFunction& g, const Eigen::VectorXd& y, Eigen::VectorXd
   }
 }
 
+// The result at the last iterate: y and max |R| (infinite when R is not finite).
+NewtonResult finished(NewtonResult res, const Eigen::VectorXd& y, const Eigen::VectorXd& R) {
+  res.y = y;
+  res.residual_norm =
+      R.allFinite() ? R.cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
+  return res;
+}
+
 // Newton with backtracking on |R|^2 for a square system g(y) = 0.
 NewtonResult newton_square(const SystemFunction& g, Eigen::VectorXd y, const Eigen::VectorXd& scale,
                            double residual_scale, const NewtonOptions& opt) {
@@ -159,10 +167,7 @@ NewtonResult newton_square(const SystemFunction& g, Eigen::VectorXd y, const Eig
       break;
     }
   }
-  res.y = y;
-  res.residual_norm =
-      R.allFinite() ? R.cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
-  return res;
+  return finished(std::move(res), y, R);
 }
 
 // Reduction of |R| a chord step must achieve for the factorisation to be kept.
@@ -184,19 +189,14 @@ using ChordSolve = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
 // kChordContraction or reaches the residual tolerance; otherwise the Jacobian is evaluated
 // and factorised at the current iterate and the step retried, with a backtracking line
 // search as in newton_square when even that step does not contract. At most
-// opt.max_iterations factorisations and 4 opt.max_iterations steps.
+// max(2, opt.max_iterations / 4) factorisations and 4 opt.max_iterations steps.
 NewtonResult newton_chord(const SystemFunction& g, Eigen::VectorXd y, const Eigen::VectorXd& scale,
                           double residual_scale, const NewtonOptions& opt, ChordSolve solve) {
   NewtonResult res;
   Eigen::VectorXd R;
   Eigen::MatrixXd J;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-  auto failed = [&]() {
-    res.y = y;
-    res.residual_norm =
-        R.allFinite() ? R.cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
-    return res;
-  };
+  auto failed = [&]() { return finished(res, y, R); };
   // J (and R) at y, factorised.
   auto refactor = [&]() {
     evaluate(g, y, R, &J, res.failure);
@@ -215,6 +215,9 @@ NewtonResult newton_chord(const SystemFunction& g, Eigen::VectorXd y, const Eige
     fresh = true;
   }
   const double tol = opt.residual_tolerance * residual_scale;
+  // A corrector that needs many fresh Jacobians is not a chord iteration any more: it
+  // gives up early and full Newton (newton_square) takes over from the guess.
+  const int max_factorizations = std::max(2, opt.max_iterations / 4);
   double previous_step = 0.0;  // of the last chord step (0: none since the last Newton step)
   for (int it = 1; it <= 4 * opt.max_iterations; ++it) {
     res.iterations = it;
@@ -228,7 +231,7 @@ NewtonResult newton_chord(const SystemFunction& g, Eigen::VectorXd y, const Eige
     double t = 1.0;
     if (!contracts) {
       if (!fresh) {
-        if (res.factorizations >= opt.max_iterations || !refactor()) break;
+        if (res.factorizations >= max_factorizations || !refactor()) break;
         fresh = true;
         continue;
       }
@@ -279,10 +282,7 @@ NewtonResult newton_chord(const SystemFunction& g, Eigen::VectorXd y, const Eige
       break;
     }
   }
-  res.y = y;
-  res.residual_norm =
-      R.allFinite() ? R.cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
-  return res;
+  return finished(std::move(res), y, R);
 }
 
 }  // namespace

@@ -183,6 +183,22 @@ struct OutputPointResponse {
   Eigen::MatrixXd acceleration;  ///< points x 3
 };
 
+/// Where a placed element sits on a reduced model's interface (rough_contact elements
+/// placed on every interface element): the model's element index, centroid and area.
+struct ElementSite {
+  Eigen::Index interface_element = -1;  ///< -1: the element is not on an interface element
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< [m]
+  double area = 0.0;                                   ///< [m^2]
+};
+
+/// The interface along a curve: per point and element on the interface, the energy it
+/// dissipates per cycle over its area and (rough_contact) its cycle-mean normal pressure.
+struct InterfaceMap {
+  std::vector<std::size_t> elements;  ///< indices into VibrationCase::elements
+  Eigen::MatrixXd dissipation;        ///< points x elements [J/m^2 per cycle]
+  Eigen::MatrixXd mean_pressure;      ///< points x elements [Pa]; NaN if not rough_contact
+};
+
 struct VibrationCase {
   std::string source;  ///< the case file (or "<string>")
   Structure structure;
@@ -192,6 +208,8 @@ struct VibrationCase {
   /// The model's named output points (every one of a `model` with recovery rows).
   std::vector<OutputPoint> output_points;
   std::vector<PlacedElement> elements;
+  /// One per element (interface_element -1 where it sits on none).
+  std::vector<ElementSite> element_sites;
   HarmonicBalanceOptions harmonic_balance;
   std::optional<NonlinearModeOptions> nonlinear_mode;
   std::vector<FrequencyResponseCase> frequency_responses;
@@ -223,6 +241,8 @@ struct VibrationResult {
   std::optional<NonlinearModeResult> nonlinear_mode;
   /// The output points' response along the nonlinear mode (one per case output point).
   std::vector<OutputPointResponse> nonlinear_mode_output_points;
+  /// The interface along the nonlinear mode (when elements sit on interface elements).
+  std::optional<InterfaceMap> nonlinear_mode_interface;
   /// Every curve of every [[frequency_response]] table, in order (tables, then scales).
   std::vector<FrequencyResponseCurve> frequency_response;
   std::vector<std::size_t> frequency_response_table;  ///< the table (0-based) of each curve

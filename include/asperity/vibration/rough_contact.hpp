@@ -103,6 +103,11 @@ class RoughContactElement final : public Element {
   [[nodiscard]] double slip_force() const override;
   [[nodiscard]] dynamics::SummaryObject describe() const override;
 
+  /// The prestress pressure p0 [Pa] and the nominal area [m^2]; the element's normal force
+  /// (its third direction) is the change from p0 A.
+  [[nodiscard]] double prestress_pressure() const { return p0_; }
+  [[nodiscard]] double area() const { return area_; }
+
   /// Normal pressure over K H (p*) at closure u_n [m] from the prestress, and dp*/dy* with
   /// y* = u_n / sigma (both dimensionless; p* K H is the pressure in Pa).
   struct Pressure {
