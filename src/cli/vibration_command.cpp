@@ -35,8 +35,10 @@ struct VibrationOptions {
   bool stability = false;
 };
 
+// A CSV cell; NaN (a quantity that does not apply, e.g. a pressure of an element other
+// than rough_contact in interface_map.csv) is an empty cell.
 std::string num(double x) {
-  return fmt::format("{:.12g}", x);
+  return std::isnan(x) ? std::string() : fmt::format("{:.12g}", x);
 }
 
 // A forced-response curve's legend: its forcing amplitude F in N, the force scale times
@@ -131,7 +133,7 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
   if (r.nonlinear_mode && r.nonlinear_mode_interface) {
     // One row per point and interface element (issue 20's interface maps).
     const auto& m = *r.nonlinear_mode_interface;
-    std::vector<std::vector<double>> cols(8);
+    std::vector<std::vector<double>> cols(10);
     for (Eigen::Index k = 0; k < m.dissipation.rows(); ++k) {
       for (std::size_t j = 0; j < m.elements.size(); ++j) {
         const auto& site = c.element_sites[m.elements[j]];
@@ -143,11 +145,14 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
           cols[3 + static_cast<std::size_t>(d)].push_back(site.centroid(d));
         cols[6].push_back(m.dissipation(k, jj));
         cols[7].push_back(m.mean_pressure(k, jj));
+        cols[8].push_back(m.slip_fraction(k, jj));
+        cols[9].push_back(m.open_fraction(k, jj));
       }
     }
-    write("interface_map.csv", csv({"point", "log10_amplitude", "interface_element", "x_m", "y_m",
-                                    "z_m", "dissipation_J_per_m2", "mean_pressure_Pa"},
-                                   cols));
+    write("interface_map.csv",
+          csv({"point", "log10_amplitude", "interface_element", "x_m", "y_m", "z_m",
+               "dissipation_J_per_m2", "mean_pressure_Pa", "slip_fraction", "open_fraction"},
+              cols));
   }
   const auto& harmonics = c.harmonic_balance.harmonics;
   for (std::size_t k = 0; k < r.frequency_response.size(); ++k) {

@@ -103,6 +103,8 @@ std::optional<InterfaceMap> interface_map(const HarmonicBalance& hb,
   const auto N = static_cast<double>(hb.basis().time_points());
   m.dissipation.resize(np, ne);
   m.mean_pressure.setConstant(np, ne, std::numeric_limits<double>::quiet_NaN());
+  m.slip_fraction = m.mean_pressure;
+  m.open_fraction = m.mean_pressure;
   const Eigen::MatrixXd& E = hb.basis().synthesis();
   const Eigen::MatrixXd& D = hb.basis().derivative();
   PeriodicResponse resp;
@@ -120,8 +122,22 @@ std::optional<InterfaceMap> interface_map(const HarmonicBalance& hb,
       m.dissipation(k, j) =
           2.0 * std::numbers::pi * resp.f.cwiseProduct(du).sum() / N / sites[e].area;
       // The element's normal force is the change from its prestress p0 A.
-      if (const auto* rc = dynamic_cast<const RoughContactElement*>(pe.element.get()))
+      if (const auto* rc = dynamic_cast<const RoughContactElement*>(pe.element.get())) {
         m.mean_pressure(k, j) = rc->prestress_pressure() + resp.f.col(2).mean() / rc->area();
+        const double scale = rc->surface().pressure_scale();  // K H: p* = p / (K H)
+        int slipping = 0, open = 0;
+        for (Eigen::Index i = 0; i < resp.f.rows(); ++i) {
+          const double p_star = (rc->prestress_pressure() + resp.f(i, 2) / rc->area()) / scale;
+          if (!(p_star > 0.0)) {
+            ++open;
+            continue;
+          }
+          const double q_star = std::hypot(resp.f(i, 0), resp.f(i, 1)) / (scale * rc->area());
+          if (q_star >= (1.0 - 1e-9) * rc->limit_star(p_star).Q) ++slipping;
+        }
+        m.slip_fraction(k, j) = slipping / N;
+        m.open_fraction(k, j) = open / N;
+      }
     }
   }
   return m;
@@ -135,24 +151,29 @@ SummaryObject interface_map_summary(const InterfaceMap& m, const std::vector<Ele
     centroids.emplace_back(SummaryArray{x(0), x(1), x(2)});
     areas.emplace_back(sites[e].area);
   }
-  SummaryArray pressure;
-  for (Eigen::Index k = 0; k < m.mean_pressure.rows(); ++k) {
-    SummaryArray row;
-    for (Eigen::Index j = 0; j < m.mean_pressure.cols(); ++j) {
-      const double p = m.mean_pressure(k, j);
-      if (std::isfinite(p)) {
-        row.emplace_back(p);
-      } else {
-        row.emplace_back(nullptr);
+  // points x elements, NaN (an element other than rough_contact) as null.
+  const auto nullable = [](const Eigen::MatrixXd& x) {
+    SummaryArray out;
+    for (Eigen::Index k = 0; k < x.rows(); ++k) {
+      SummaryArray row;
+      for (Eigen::Index j = 0; j < x.cols(); ++j) {
+        if (std::isfinite(x(k, j))) {
+          row.emplace_back(x(k, j));
+        } else {
+          row.emplace_back(nullptr);
+        }
       }
+      out.emplace_back(std::move(row));
     }
-    pressure.emplace_back(std::move(row));
-  }
+    return out;
+  };
   return {{"interface_elements", std::move(elements)},
           {"centroid_m", std::move(centroids)},
           {"area_m2", std::move(areas)},
           {"dissipation_J_per_m2", rows(m.dissipation)},
-          {"mean_pressure_Pa", std::move(pressure)}};
+          {"mean_pressure_Pa", nullable(m.mean_pressure)},
+          {"slip_fraction", nullable(m.slip_fraction)},
+          {"open_fraction", nullable(m.open_fraction)}};
 }
 
 SummaryArray output_points_summary(const std::vector<OutputPoint>& points,

@@ -237,6 +237,14 @@ log10_amplitude = {{ from = -10.0, to = -8.0 }}
     first = np.array(it["mean_pressure_Pa"][0], dtype=float)
     if np.abs(first / p0 - 1.0).max() > 1e-6:
         return fail(f"mean pressure at the smallest amplitude {first[:3]}, prestress {p0[:3]}")
+    # Stick/slip: every element sticks at the smallest amplitude (no sample at its static
+    # limit, none open), and the fractions stay in [0, 1].
+    slip = np.array(it["slip_fraction"], dtype=float)
+    opened = np.array(it["open_fraction"], dtype=float)
+    if slip[0].max() != 0.0 or opened[0].max() != 0.0:
+        return fail(f"slip {slip[0].max()} or open {opened[0].max()} at the smallest amplitude")
+    if not (0.0 <= slip.min() and slip.max() <= 1.0 and 0.0 <= opened.min() and opened.max() <= 1.0):
+        return fail("slip or open fractions outside [0, 1]")
     rows = open(os.path.join(tmp, "map_out", "interface_map.csv")).read().splitlines()
     if len(rows) != 1 + len(a) * touching:
         return fail(f"interface_map.csv: {len(rows)} lines")

@@ -192,11 +192,16 @@ struct ElementSite {
 };
 
 /// The interface along a curve: per point and element on the interface, the energy it
-/// dissipates per cycle over its area and (rough_contact) its cycle-mean normal pressure.
+/// dissipates per cycle over its area and (rough_contact) its cycle-mean normal pressure
+/// and stick/slip state.
 struct InterfaceMap {
   std::vector<std::size_t> elements;  ///< indices into VibrationCase::elements
   Eigen::MatrixXd dissipation;        ///< points x elements [J/m^2 per cycle]
   Eigen::MatrixXd mean_pressure;      ///< points x elements [Pa]; NaN if not rough_contact
+  /// points x elements, rough_contact only (NaN otherwise): the fraction of the period's
+  /// samples in gross slip (the traction at the rough flat's static limit Q_max(p), Eq.
+  /// 4.7) and out of contact (p <= 0).
+  Eigen::MatrixXd slip_fraction, open_fraction;
 };
 
 struct VibrationCase {

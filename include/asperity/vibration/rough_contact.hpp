@@ -107,6 +107,7 @@ class RoughContactElement final : public Element {
   /// (its third direction) is the change from p0 A.
   [[nodiscard]] double prestress_pressure() const { return p0_; }
   [[nodiscard]] double area() const { return area_; }
+  [[nodiscard]] const RoughContactSurface& surface() const { return *surface_; }
 
   /// Normal pressure over K H (p*) at closure u_n [m] from the prestress, and dp*/dy* with
   /// y* = u_n / sigma (both dimensionless; p* K H is the pressure in Pa).
