@@ -6,9 +6,10 @@ by the tmdsimpy project (examples/structures/results/brb_epmc_meso.yaml, MIT lic
 LICENSE-tmdsimpy.txt beside this file), against the tip accelerometer's first-harmonic
 acceleration.
 
-Run after the two vibration runs (their --out directories as below):
+Run after the vibration runs (their --out directories as below; the constant-mu one is
+optional):
 
-    python3 examples/brb/plot_backbones.py out/brb_epmc out/brb_epmc_constant_mu \
+    python3 examples/brb/plot_backbones.py out/brb_epmc [out/brb_epmc_constant_mu] \
         docs/figures/brb_backbones.png
 
 The published model adds a mass-proportional linear damping of 0.087 % of critical at
@@ -61,12 +62,14 @@ def read(directory):
 
 
 def main(argv):
-    if len(argv) != 4:
+    if len(argv) not in (3, 4):
         sys.exit(__doc__)
-    physics, constant_mu, out = argv[1], argv[2], argv[3]
+    runs = [(argv[1], "thesis's physics (BKE, no fitted mu)", "-")]
+    if len(argv) == 4:
+        runs.append((argv[2], "constant mu = 0.03 (CFC)", "--"))
+    out = argv[-1]
     fig, (ax_f, ax_z) = plt.subplots(1, 2, figsize=(10, 4.2))
-    for directory, label, style in [(physics, "thesis's physics (BKE, no fitted mu)", "-"),
-                                    (constant_mu, "constant mu = 0.03 (CFC)", "--")]:
+    for directory, label, style in runs:
         a, f, z = read(directory)
         ax_f.semilogx(a, f, style, color="black", label=label)
         ax_z.loglog(a, z, style, color="black", label=label)
