@@ -76,3 +76,17 @@ def test_run_example_shows_the_compiler_error_when_the_build_fails(tmp_path):
     kept = list(logs.iterdir())
     assert len(kept) == 1 and str(kept[0]) in p.stderr  # the full log is kept and named
     assert "setting up" in kept[0].read_text()
+
+
+def test_brb_backbone_plot_script(tmp_path):
+    # examples/brb/plot_backbones.py on a stand-in for a run's nonlinear_mode.csv (the real
+    # runs take minutes): the columns it reads, the figure written.
+    run = tmp_path / "run"
+    run.mkdir()
+    rows = ["log10_amplitude,frequency_hz,damping_ratio,tip_z_acceleration_m_s2"]
+    rows += [f"{-7 + k},{184 - k},{1e-6 * 10 ** k},{0.03 * 10 ** k}" for k in range(4)]
+    (run / "nonlinear_mode.csv").write_text("\n".join(rows) + "\n")
+    png = tmp_path / "backbones.png"
+    subprocess.run([sys.executable, str(ROOT / "examples" / "brb" / "plot_backbones.py"),
+                    str(run), str(run), str(png)], check=True, capture_output=True, text=True)
+    assert png.stat().st_size > 10_000
