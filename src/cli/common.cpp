@@ -311,13 +311,8 @@ namespace {
 class TemporaryDirectory {
  public:
   TemporaryDirectory() {
-    std::string templ = (std::filesystem::temp_directory_path() / "asperity-plot-XXXXXX").string();
-    if (mkdtemp(templ.data()) == nullptr) {
-      throw Error(fmt::format("cannot create a temporary directory for gnuplot ({}): {}", templ,
-                              std::strerror(errno)));
-    }
-    path_ = templ;
-    slot_ = core::register_temporary(path_, true, path_.string());  // removed on SIGINT/SIGTERM
+    // removed on SIGINT/SIGTERM
+    path_ = core::create_registered_temporary_directory("asperity-plot", "gnuplot", &slot_);
   }
   ~TemporaryDirectory() {
     std::error_code ec;

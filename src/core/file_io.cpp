@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <map>
@@ -315,6 +316,18 @@ int register_temporary(const fs::path& temporary, bool is_directory,
   return -1;
 }
 
+fs::path create_registered_temporary_directory(std::string_view prefix, std::string_view what,
+                                               int* slot) {
+  std::string templ = (fs::temp_directory_path() / fmt::format("{}-XXXXXX", prefix)).string();
+  const SignalBlock block;  // created and registered before a SIGTERM can land
+  if (mkdtemp(templ.data()) == nullptr) {
+    throw Error(fmt::format("cannot create a temporary directory for {} ({}): {}", what, templ,
+                            std::strerror(errno)));
+  }
+  *slot = register_temporary(templ, true, templ);
+  return templ;
+}
+
 void unregister_temporary(int slot) noexcept {
   if (slot < 0 || slot >= kSlots) return;
   {
@@ -488,6 +501,7 @@ bool OutputSet::prepare(const std::string& path, Entry& e, int* fd_out) {
   }
   remove_stale_temporaries(e.target);
   e.temporary = temporary_sibling(e.target, "tmp");
+  const SignalBlock block;  // created and registered before a SIGTERM can land
   const int fd = ::open(e.temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd < 0) {
     const int err = errno;

@@ -598,14 +598,8 @@ class WorkDir {
       }
       return;
     }
-    std::string templ = (std::filesystem::temp_directory_path() / "asperity-gmsh-XXXXXX").string();
-    if (mkdtemp(templ.data()) == nullptr) {
-      throw InvalidInput(fmt::format("cannot create a temporary directory for gmsh ({}): {}", templ,
-                                     std::strerror(errno)));
-    }
-    path_ = templ;
+    path_ = core::create_registered_temporary_directory("asperity-gmsh", "gmsh", &slot_);
     temporary_ = true;
-    slot_ = core::register_temporary(path_, true, path_.string());
   }
   ~WorkDir() {
     if (!temporary_) return;

@@ -175,6 +175,7 @@ StagedDirectory::StagedDirectory(const std::string& final_dir, const std::string
   }
   core::remove_stale_temporaries(final_);
   tmp_ = core::temporary_sibling(final_, "tmp");
+  const core::SignalBlock block;  // created and registered before a SIGTERM can land
   if (!fs::create_directory(tmp_, ec) || ec) {
     remove_created_parents();
     throw InvalidInput(fmt::format(

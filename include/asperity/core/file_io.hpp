@@ -126,6 +126,13 @@ std::size_t remove_stale_temporaries(const std::filesystem::path& target) noexce
 /// name things inside the temporary (see shown_path).
 int register_temporary(const std::filesystem::path& temporary, bool is_directory,
                        const std::string& final_path);
+/// Creates a private directory "PREFIX-XXXXXX" under the system's temporary directory
+/// (mkdtemp) and registers it, with SIGINT/SIGTERM/SIGHUP blocked between the two so that
+/// a signal cannot leave it behind; its slot in *slot. Throws Error naming `what` (the
+/// program it is for) when it cannot be created.
+[[nodiscard]] std::filesystem::path create_registered_temporary_directory(std::string_view prefix,
+                                                                          std::string_view what,
+                                                                          int* slot);
 /// Forgets a slot (the temporary was renamed or removed by its owner).
 void unregister_temporary(int slot) noexcept;
 /// Removes every registered temporary (directories with their contents).
