@@ -86,6 +86,51 @@ void NonlinearModeOptions::validate() const {
   continuation.validate();
 }
 
+namespace {
+
+// A nonlinear mode's range must start where the joints stick (or microslip): along the stuck
+// mode at the start amplitude, no element with a slip limit may reach it. A start in gross
+// slip misses the linear end of the backbone, and its Newton start, the linear mode, is far
+// from the solution.
+void require_start_in_stick(const HarmonicBalance& hb, const StuckMode& sm,
+                            const NonlinearModeOptions& opt) {
+  const HarmonicBasis& basis = hb.basis();
+  const auto nc = static_cast<Eigen::Index>(basis.coefficients());
+  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(nc, hb.dofs());  // coefficients x DOFs
+  const double a = std::pow(10.0, opt.log10_amplitude_from);
+  X.row(basis.index_of(1, 0)) = a * sm.phi.transpose();
+  PeriodicResponse resp;
+  for (std::size_t e = 0; e < hb.elements().size(); ++e) {
+    const PlacedElement& pe = hb.elements()[e];
+    const Eigen::MatrixXd Xe = X * pe.T.transpose();
+    const Eigen::MatrixXd u = basis.synthesis() * Xe;
+    Eigen::MatrixXd v;
+    if (pe.element->velocity_dependent())
+      v = sm.omega * (basis.synthesis() * (basis.derivative() * Xe));
+    pe.element->periodic_response(u, v, false, resp);
+    const double slipping = pe.element->gross_slip_fraction(resp);
+    if (!(slipping > 0.0)) continue;  // NaN: no stuck state to leave
+    // The amplitude at which the stuck joint's force would reach the slip force.
+    const Eigen::VectorXd f0 = pe.element->initial_stiffness() * (pe.T * sm.phi);
+    const double tangential =
+        pe.element->directions() == 3 ? std::hypot(f0(0), f0(1)) : std::abs(f0(0));
+    std::string hint;
+    if (tangential > 0.0 && std::isfinite(pe.element->slip_force())) {
+      hint = fmt::format(
+          "; its stuck force reaches the slip force near log10 amplitude {:.2f}: start a decade or "
+          "more below",
+          std::log10(pe.element->slip_force() / tangential));
+    }
+    throw InvalidInput(fmt::format(
+        "nonlinear_mode: log10_amplitude starts at {} in gross slip: along the stuck mode {} at "
+        "amplitude {}, {} ({}) slides at its slip limit over {:.0f} % of the period{}",
+        core::format_value(opt.log10_amplitude_from), opt.mode, core::format_value(a), pe.name,
+        pe.element->type(), 100.0 * slipping, hint));
+  }
+}
+
+}  // namespace
+
 NonlinearModeResult nonlinear_mode(const HarmonicBalance& hb, const NonlinearModeOptions& opt,
                                    const std::vector<Eigen::Index>& outputs,
                                    const ProgressFunction& progress) {
@@ -150,6 +195,8 @@ NonlinearModeResult nonlinear_mode(const HarmonicBalance& hb, const NonlinearMod
   y0(nu) = sm.omega;
   y0(nu + 1) = sm.phi.dot(C * sm.phi);
   y0(nu + 2) = opt.log10_amplitude_from;
+
+  require_start_in_stick(hb, sm, opt);
 
   ContinuationProblem pb;
   pb.f = f;

@@ -124,19 +124,10 @@ std::optional<InterfaceMap> interface_map(const HarmonicBalance& hb,
       // The element's normal force is the change from its prestress p0 A.
       if (const auto* rc = dynamic_cast<const RoughContactElement*>(pe.element.get())) {
         m.mean_pressure(k, j) = rc->prestress_pressure() + resp.f.col(2).mean() / rc->area();
-        const double scale = rc->surface().pressure_scale();  // K H: p* = p / (K H)
-        int slipping = 0, open = 0;
-        for (Eigen::Index i = 0; i < resp.f.rows(); ++i) {
-          const double p_star = (rc->prestress_pressure() + resp.f(i, 2) / rc->area()) / scale;
-          if (!(p_star > 0.0)) {
-            ++open;
-            continue;
-          }
-          const double q_star = std::hypot(resp.f(i, 0), resp.f(i, 1)) / (scale * rc->area());
-          if (q_star >= (1.0 - 1e-9) * rc->limit_star(p_star).Q) ++slipping;
-        }
-        m.slip_fraction(k, j) = slipping / N;
-        m.open_fraction(k, j) = open / N;
+        const auto open =
+            ((rc->prestress_pressure() + resp.f.col(2).array() / rc->area()) <= 0.0).count();
+        m.slip_fraction(k, j) = rc->gross_slip_fraction(resp);
+        m.open_fraction(k, j) = static_cast<double>(open) / N;
       }
     }
   }

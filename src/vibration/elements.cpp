@@ -79,6 +79,29 @@ struct Reversal {
 
 }  // namespace
 
+double Element::gross_slip_fraction(const PeriodicResponse& /*r*/) const {
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+namespace {
+
+// Samples of direction 0 at the slip force (to 1e-9 of it, the rounding of the branch laws).
+double samples_at_limit(const PeriodicResponse& r, double limit) {
+  if (!std::isfinite(limit) || r.f.rows() == 0) return std::numeric_limits<double>::quiet_NaN();
+  return static_cast<double>((r.f.col(0).array().abs() >= (1.0 - 1e-9) * limit).count()) /
+         static_cast<double>(r.f.rows());
+}
+
+}  // namespace
+
+double MasingElement::gross_slip_fraction(const PeriodicResponse& r) const {
+  return samples_at_limit(r, backbone_->limit());
+}
+
+double JenkinsElement::gross_slip_fraction(const PeriodicResponse& r) const {
+  return samples_at_limit(r, p_.F_s);
+}
+
 void MasingElement::periodic_response(const Eigen::MatrixXd& u, const Eigen::MatrixXd& /*v*/,
                                       bool tangent, PeriodicResponse& out) const {
   require_finite_samples(u, "displacement");

@@ -557,6 +557,19 @@ double RoughContactElement::slip_force() const {
   return surface_->pressure_scale() * area_ * table0_->limit();
 }
 
+double RoughContactElement::gross_slip_fraction(const PeriodicResponse& r) const {
+  const double scale = surface_->pressure_scale();  // K H: p* = p / (K H)
+  int slipping = 0;
+  for (Eigen::Index i = 0; i < r.f.rows(); ++i) {
+    const double p_star = (p0_ + r.f(i, 2) / area_) / scale;
+    if (!(p_star > 0.0)) continue;
+    const double q_star = std::hypot(r.f(i, 0), r.f(i, 1)) / (scale * area_);
+    if (q_star >= (1.0 - 1e-9) * limit_star(p_star).Q) ++slipping;
+  }
+  return r.f.rows() > 0 ? slipping / static_cast<double>(r.f.rows())
+                        : std::numeric_limits<double>::quiet_NaN();
+}
+
 dynamics::SummaryObject RoughContactElement::describe() const {
   const RoughInterfaceParameters& c = surface_->parameters();
   return {{"type", std::string("rough_contact")},

@@ -781,10 +781,20 @@ BAD = {
                      ["element[1].T", "2 row"]),
     "no_harmonic_1": (JENKINS.replace("max = 3", "harmonics = [0, 2, 3]") + EPMC,
                       ["harmonic 1", "add 1"]),
-    "cannot_start": (JENKINS + """[nonlinear_mode]
+    # A Duffing mode at amplitude 1e3 is 1e6 times stiffer than its linear start: two
+    # Newton iterations cannot reach it.
+    "cannot_start": (JENKINS.replace('type = "jenkins"', 'type = "polynomial_stiffness"').replace(
+        "k_t = 0.25\nF_s = 0.2\n", "k3 = 1.0\n") + """[nonlinear_mode]
 log10_amplitude = { from = 3.0, to = 5.0 }
 continuation = { max_iterations = 2, target_iterations = 1 }
 """, ["cannot start", "nonlinear_mode"]),
+    # Issue 20: a range that starts in gross slip. The stuck mode (omega^2 = 1.25) at
+    # amplitude 10 moves the Jenkins slider 10 > F_s / k_t = 0.8: it slides; the stuck
+    # force k_t a reaches F_s at a = 0.8 (log10 -0.10).
+    "starts_in_gross_slip": (JENKINS + """[nonlinear_mode]
+log10_amplitude = { from = 1.0, to = 2.0 }
+""", ["nonlinear_mode", "log10_amplitude starts at 1 in gross slip", "element 1 (jenkins)",
+      "near log10 amplitude -0.10"]),
     "unknown_key": (JENKINS.replace("k_t = 0.25", "k_t = 0.25\nkt = 0.3") + EPMC,
                     ['"kt"', "line 10", "element[1]"]),
     "unknown_table": (JENKINS + EPMC + "[solver]\nx = 1\n", ['"solver"', "line"]),

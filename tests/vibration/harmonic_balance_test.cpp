@@ -5,6 +5,7 @@
 // dereferences when their entries are written (a known false positive at -O3).
 #pragma GCC diagnostic ignored "-Wnull-dereference"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -441,6 +442,29 @@ TEST(VibrationAnalysis, JenkinsSingleHarmonicMatchesDescribingFunction) {
     ++checked;
   }
   EXPECT_GT(checked, 10);
+}
+
+// Issue 20: a nonlinear mode must start where the joints stick. The Jenkins SDOF's stuck
+// mode is x = a cos(theta) (mass 1); its steady loop slips once the range 2a exceeds
+// 2 F_s / k_t (closed form): a = 0.8. Starting just below runs; just above is refused, naming
+// the element and the amplitude F_s / (k_t phi) = 0.8 at which the stuck force reaches F_s.
+TEST(VibrationAnalysis, RangeStartingInGrossSlipIsRefused) {
+  const double kt = 0.25, Fs = 0.2, a_slip = Fs / kt;
+  const auto hb = single_dof(make_jenkins_element(kt, Fs), 1.0, 1.0, 0.01, {1, 3}, 256);
+  NonlinearModeOptions opt;
+  opt.log10_amplitude_from = std::log10(0.98 * a_slip);
+  opt.log10_amplitude_to = std::log10(1.2 * a_slip);
+  EXPECT_TRUE(nonlinear_mode(hb, opt, {0}).continuation.complete);
+  opt.log10_amplitude_from = std::log10(1.02 * a_slip);
+  try {
+    (void)nonlinear_mode(hb, opt, {0});
+    ADD_FAILURE() << "a start in gross slip was accepted";
+  } catch (const InvalidInput& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("in gross slip"), std::string::npos) << m;
+    EXPECT_NE(m.find("(jenkins)"), std::string::npos) << m;
+    EXPECT_NE(m.find(fmt::format("{:.2f}", std::log10(a_slip))), std::string::npos) << m;
+  }
 }
 
 // EPMC against the quasi-static modal estimate at small damping (c = 0): the Jenkins SDOF

@@ -241,6 +241,38 @@ TEST(RoughContactElement, TangentialCurveAtOtherPressures) {
   }
 }
 
+// The gross-slip fraction (interface maps, nonlinear modes' start check): none in microslip
+// (Q_l < Q_max at x* << the slip distance) nor out of contact; at a sliding amplitude, the
+// samples whose traction is Q_max(p) (Eq. 4.7) of the sample's own pressure, counted directly.
+TEST(RoughContactElement, GrossSlipFraction) {
+  const RoughContactElement& e = shared_element();
+  const double sig = table_7_2().sigma;
+  const int N = 128;
+  auto path = [&](double tangential, double normal) {
+    Eigen::MatrixXd u(N, 3);
+    for (int i = 0; i < N; ++i) {
+      const double t = 2.0 * std::numbers::pi * i / N;
+      u.row(i) << tangential * std::cos(t), 0.0, normal * std::sin(t);
+    }
+    PeriodicResponse r;
+    e.periodic_response(u, Eigen::MatrixXd(), false, r);
+    return r;
+  };
+  EXPECT_EQ(e.gross_slip_fraction(path(1e-3 * sig, 0.0)), 0.0);
+  EXPECT_EQ(e.gross_slip_fraction(path(0.0, 0.0)), 0.0);
+  const PeriodicResponse sliding = path(200.0 * sig, 0.2 * sig);
+  const double scale = shared_surface()->pressure_scale();
+  int at_limit = 0;
+  for (int i = 0; i < N; ++i) {
+    const double p_star = (kPressure + sliding.f(i, 2) / kArea) / scale;
+    const double q_star = std::hypot(sliding.f(i, 0), sliding.f(i, 1)) / (scale * kArea);
+    EXPECT_LE(q_star, (1.0 + 1e-9) * e.limit_star(p_star).Q) << i;  // never past the limit
+    if (q_star >= (1.0 - 1e-9) * e.limit_star(p_star).Q) ++at_limit;
+  }
+  EXPECT_GT(at_limit, N / 2);  // 200 sigma: sliding over most of the period
+  EXPECT_EQ(e.gross_slip_fraction(sliding), at_limit / static_cast<double>(N));
+}
+
 // General paths (both tangential directions, normal load varying, with gross slip and inner
 // loops): the AFT tangent (local + history) against central differences, as
 // VibrationElements.PeriodicTangentMatchesFiniteDifferences; the dissipated energy

@@ -80,6 +80,11 @@ class Element {
   /// curve (the Odfalk-Vingsbo law): the quasi-static modal estimate, which builds the energy
   /// per cycle from the static push by Masing's rules, refuses it.
   [[nodiscard]] virtual bool masing_from_virgin_curve() const { return true; }
+  /// The fraction of a periodic response's samples `r` (from periodic_response) at which the
+  /// element slips grossly (its force at the slip limit), or NaN for an element without a
+  /// stuck state to leave (springs, dampers, regularized Coulomb) or not yet covered (the
+  /// dry-friction elements): the start check of nonlinear modes and the interface maps.
+  [[nodiscard]] virtual double gross_slip_fraction(const PeriodicResponse& r) const;
   /// The parameters in SI, for summaries.
   [[nodiscard]] virtual dynamics::SummaryObject describe() const = 0;
 };
@@ -100,6 +105,7 @@ class MasingElement final : public Element {
                        Eigen::MatrixXd& K) const override;
   [[nodiscard]] Eigen::MatrixXd initial_stiffness() const override;
   [[nodiscard]] double slip_force() const override { return backbone_->limit(); }
+  [[nodiscard]] double gross_slip_fraction(const PeriodicResponse& r) const override;
   [[nodiscard]] dynamics::SummaryObject describe() const override { return parameters_; }
   [[nodiscard]] const hysteresis::Backbone& backbone() const { return *backbone_; }
   [[nodiscard]] std::shared_ptr<const hysteresis::Backbone> backbone_ptr() const {
@@ -128,6 +134,7 @@ class JenkinsElement final : public Element {
                        Eigen::MatrixXd& K) const override;
   [[nodiscard]] Eigen::MatrixXd initial_stiffness() const override;
   [[nodiscard]] double slip_force() const override { return p_.F_s; }
+  [[nodiscard]] double gross_slip_fraction(const PeriodicResponse& r) const override;
   [[nodiscard]] dynamics::SummaryObject describe() const override;
   [[nodiscard]] const JenkinsParameters& parameters() const { return p_; }
 

@@ -101,6 +101,9 @@ class RoughContactElement final : public Element {
                        Eigen::MatrixXd& K) const override;
   [[nodiscard]] Eigen::MatrixXd initial_stiffness() const override;
   [[nodiscard]] double slip_force() const override;
+  /// Samples with the tangential traction at Q_max(p) of the sample's pressure (Eq. 4.7);
+  /// open samples (p <= 0) do not count.
+  [[nodiscard]] double gross_slip_fraction(const PeriodicResponse& r) const override;
   [[nodiscard]] dynamics::SummaryObject describe() const override;
 
   /// The prestress pressure p0 [Pa] and the nominal area [m^2]; the element's normal force
