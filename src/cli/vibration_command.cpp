@@ -72,6 +72,72 @@ std::string csv(const std::vector<std::string>& header,
   return s;
 }
 
+// The interface map for ParaView: a VTK XML unstructured grid (ASCII) of one vertex cell
+// (VTK_VERTEX = 1) per interface element at its centroid, with the element index and area,
+// and per backbone point k the quantities as arrays "<quantity> point <k> log10a <x>" (k as
+// in interface_map.csv). A quantity with a non-finite value at point k (a pressure of an
+// element other than rough_contact) is left out of that point.
+std::string interface_map_vtu(const InterfaceMap& m, const std::vector<ElementSite>& sites,
+                              const Eigen::VectorXd& log10_amplitude) {
+  const std::size_t n = m.elements.size();
+  std::string s =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <FieldData>\n";
+  s += fmt::format(
+      "      <DataArray type=\"Float64\" Name=\"log10_amplitude\" NumberOfTuples=\"{}\" "
+      "format=\"ascii\">\n",
+      log10_amplitude.size());
+  for (Eigen::Index k = 0; k < log10_amplitude.size(); ++k) {
+    s += fmt::format("{:.17g}\n", log10_amplitude(k));
+  }
+  s += "      </DataArray>\n    </FieldData>\n";
+  s += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n      <PointData>\n", n,
+                   n);
+  const auto array = [&](const std::string& type, const std::string& name, auto value) {
+    s += fmt::format("        <DataArray type=\"{}\" Name=\"{}\" format=\"ascii\">\n", type, name);
+    for (std::size_t j = 0; j < n; ++j) s += fmt::format("{}\n", value(j));
+    s += "        </DataArray>\n";
+  };
+  array("Int32", "interface_element",
+        [&](std::size_t j) { return sites[m.elements[j]].interface_element; });
+  array("Float64", "area_m2", [&](std::size_t j) { return sites[m.elements[j]].area; });
+  const std::size_t width =
+      fmt::format("{}", std::max<Eigen::Index>(log10_amplitude.size() - 1, 0)).size();
+  const std::pair<const char*, const Eigen::MatrixXd*> quantities[] = {
+      {"dissipation_J_per_m2", &m.dissipation},
+      {"mean_pressure_Pa", &m.mean_pressure},
+      {"slip_fraction", &m.slip_fraction},
+      {"open_fraction", &m.open_fraction}};
+  for (const auto& [quantity, values] : quantities) {
+    for (Eigen::Index k = 0; k < values->rows(); ++k) {
+      if (!values->row(k).allFinite()) continue;
+      array("Float64",
+            fmt::format("{} point {:0{}} log10a {:.2f}", quantity, k, width, log10_amplitude(k)),
+            [&](std::size_t j) {
+              return fmt::format("{:.12g}", (*values)(k, static_cast<Eigen::Index>(j)));
+            });
+    }
+  }
+  s += "      </PointData>\n      <Points>\n"
+       "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (std::size_t j = 0; j < n; ++j) {
+    const Eigen::Vector3d& x = sites[m.elements[j]].centroid;
+    s += fmt::format("{:.17g} {:.17g} {:.17g}\n", x(0), x(1), x(2));
+  }
+  s += "        </DataArray>\n      </Points>\n      <Cells>\n"
+       "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+  for (std::size_t j = 0; j < n; ++j) s += fmt::format("{}\n", j);
+  s += "        </DataArray>\n"
+       "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+  for (std::size_t j = 0; j < n; ++j) s += fmt::format("{}\n", j + 1);
+  s += "        </DataArray>\n"
+       "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+  for (std::size_t j = 0; j < n; ++j) s += "1\n";
+  s += "        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+  return s;
+}
+
 std::vector<double> vec(const Eigen::VectorXd& v) {
   return {v.data(), v.data() + v.size()};
 }
@@ -153,6 +219,8 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
           csv({"point", "log10_amplitude", "interface_element", "x_m", "y_m", "z_m",
                "dissipation_J_per_m2", "mean_pressure_Pa", "slip_fraction", "open_fraction"},
               cols));
+    write("interface_map.vtu",
+          interface_map_vtu(m, c.element_sites, r.nonlinear_mode->log10_amplitude));
   }
   const auto& harmonics = c.harmonic_balance.harmonics;
   for (std::size_t k = 0; k < r.frequency_response.size(); ++k) {

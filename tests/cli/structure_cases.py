@@ -250,6 +250,28 @@ log10_amplitude = {{ from = -10.0, to = -8.0 }}
         return fail(f"interface_map.csv: {len(rows)} lines")
     if not os.path.getsize(os.path.join(tmp, "map_out", "interface_dissipation.png")) > 0:
         return fail("interface_dissipation.png missing")
+    # interface_map.vtu for ParaView: one vertex per element at the summary's centroids, and
+    # per point the summary's values (written with 12 digits).
+    root = ET.parse(os.path.join(tmp, "map_out", "interface_map.vtu")).getroot()
+    piece = root.find("UnstructuredGrid/Piece")
+    if int(piece.get("NumberOfPoints")) != touching or int(piece.get("NumberOfCells")) != touching:
+        return fail(f"interface_map.vtu: {piece.attrib}")
+    arrays = {a.get("Name"): np.array(a.text.split(), dtype=float) for a in root.iter("DataArray")}
+    xyz = arrays[None].reshape(-1, 3) if None in arrays else None
+    if xyz is None or np.abs(xyz - np.array(it["centroid_m"])).max() > 1e-15:
+        return fail("interface_map.vtu: points are not the centroids")
+    if not np.array_equal(arrays["types"], np.ones(touching)):
+        return fail("interface_map.vtu: cells are not VTK_VERTEX")
+    if not np.array_equal(arrays["log10_amplitude"], np.array(v["log10_amplitude"])):
+        return fail("interface_map.vtu: log10_amplitude field")
+    width = len(str(len(a) - 1))
+    for k in [0, len(a) - 1]:
+        for q, want in [("dissipation_J_per_m2", it["dissipation_J_per_m2"]),
+                        ("slip_fraction", slip), ("mean_pressure_Pa", it["mean_pressure_Pa"])]:
+            name = f"{q} point {k:0{width}d} log10a {v['log10_amplitude'][k]:.2f}"
+            want_k = np.array(want[k], dtype=float)
+            if name not in arrays or np.abs(arrays[name] - want_k).max() > 1e-11 * np.abs(want_k).max() + 1e-300:
+                return fail(f"interface_map.vtu: {name} missing or not the summary's")
     return 0
 
 
