@@ -25,7 +25,8 @@ from the same C++ code as ``asperity vibration``. SI units throughout.
   2015), :meth:`HarmonicBalance.frequency_response`, :meth:`HarmonicBalance.force_response`
   (continuation in the force amplitude at one frequency),
   :meth:`HarmonicBalance.amplitude_control` and :meth:`HarmonicBalance.phase_resonance`
-  (response-controlled harmonic balance) and
+  (response-controlled harmonic balance), :meth:`HarmonicBalance.superharmonic_resonance`
+  (an r:1 resonance followed in force) and
   :meth:`HarmonicBalance.quasi_static_mode` (also as module functions of the same names).
 
 The unknowns ``U`` stack per DOF the coefficients ``[a_0, a_h1, b_h1, a_h2, b_h2, ...]``
@@ -55,7 +56,8 @@ __all__ = [
     "rough_contact_on_interface",
     "HarmonicBalance", "Result", "nonlinear_mode",
     "frequency_response", "force_response", "amplitude_control", "phase_resonance",
-    "quasi_static_mode", "linear_modes", "read_matrix_market", "rayleigh", "run_case",
+    "superharmonic_resonance", "quasi_static_mode", "linear_modes", "read_matrix_market",
+    "rayleigh", "run_case",
     "run_case_text", "plot_mode", "plot_response", "force_label", "fit_loops",
 ]
 
@@ -927,6 +929,23 @@ class HarmonicBalance:
         _issue(r, "phase_resonance")
         return r
 
+    def superharmonic_resonance(self, force, harmonic: int = 3, log10_force=(-2.0, 0.0),
+                                mode: int = 1, output_dofs: Sequence[int] = (),
+                                **continuation) -> Result:
+        """The ``harmonic``:1 superharmonic resonance followed as the force scale grows
+        (variable-phase resonance nonlinear mode, VPRNM; Porter & Brake 2024): harmonic r of
+        the response in quadrature with the elements' force at harmonic r from the lower
+        harmonics; continuation in ``log10`` of the force scale ``lambda`` (``F_ex = lambda
+        force``) from the stuck mode ``mode``'s frequency over r. Returns ``force_scale,
+        omega`` (the excitation's), ``output_amplitude`` (harmonic 1),
+        ``output_harmonic_amplitude`` (harmonic r), ``harmonics, continuation, warnings``."""
+        lo, hi = log10_force
+        r = Result(_v.superharmonic_resonance(
+            self._core, np.ascontiguousarray(force, dtype=float), int(harmonic), int(mode),
+            float(lo), float(hi), [int(d) for d in output_dofs], dict(continuation)))
+        _issue(r, "superharmonic_resonance")
+        return r
+
     def quasi_static_mode(self, mode: int = 1, amplitude=(1e-7, 1e-4), points: int = 60) -> Result:
         """Quasi-static modal estimate (static push along the stuck mode, Masing's rules):
         arrays ``amplitude (modal, log-spaced), omega, frequency_hz, damping_ratio,
@@ -973,6 +992,14 @@ def phase_resonance(hb: HarmonicBalance, force, dof: int, log10_amplitude=(-3.0,
     return hb.phase_resonance(force, dof, log10_amplitude, mode, output_dofs, **continuation)
 
 
+def superharmonic_resonance(hb: HarmonicBalance, force, harmonic: int = 3,
+                            log10_force=(-2.0, 0.0), mode: int = 1,
+                            output_dofs: Sequence[int] = (), **continuation) -> Result:
+    """:meth:`HarmonicBalance.superharmonic_resonance`."""
+    return hb.superharmonic_resonance(force, harmonic, log10_force, mode, output_dofs,
+                                      **continuation)
+
+
 def quasi_static_mode(hb: HarmonicBalance, mode: int = 1, amplitude=(1e-7, 1e-4),
                       points: int = 60) -> Result:
     """:meth:`HarmonicBalance.quasi_static_mode`."""
@@ -1002,6 +1029,7 @@ def _case_result(d: dict, source: str) -> Result:
         out["force_response"].append(r)
     out["amplitude_control"] = [Result(c) for c in d["amplitude_control"]]
     out["phase_resonance"] = [Result(c) for c in d["phase_resonance"]]
+    out["superharmonic_resonance"] = [Result(c) for c in d["superharmonic_resonance"]]
     out["backbone_rom"] = [
         Result(table=c["table"], force_scale=c["force_scale"],
                omega=np.asarray(c["omega_rad_s"], dtype=float),
@@ -1023,8 +1051,9 @@ def run_case(path: str | os.PathLike, *, stability: bool = False) -> Result:
     ``frequency_response`` (one :class:`Result` per curve, ``table`` its
     ``[[frequency_response]]`` table, counted from 1 as in messages and file names,
     ``force_amplitude`` its forcing amplitude [N]: the norm of the table's force vector times
-    the force scale), ``force_response``, ``amplitude_control`` and ``phase_resonance`` (one
-    per table of that name that ran, ``table`` its position, from 1),
+    the force scale), ``force_response``, ``amplitude_control``, ``phase_resonance`` and
+    ``superharmonic_resonance`` (one per table of that name that ran, ``table`` its position,
+    from 1),
     ``backbone_rom`` (one per ``[[backbone_rom]]`` table and force scale, with ``table``,
     ``force_scale`` and the arrays of :meth:`HarmonicBalance.mode_rom`),
     ``complete`` (every continuation reached its end),

@@ -298,6 +298,20 @@ nb::dict case_system(const VibrationCase& c) {
 }
 
 // run_case as a dict: summary (summary.json), the analyses' arrays, complete, warnings.
+
+nb::dict superharmonic_dict(const SuperharmonicResonanceResult& r, Eigen::Index nu) {
+  nb::dict d;
+  d["harmonic"] = r.harmonic;
+  d["force_scale"] = copy_of(r.force_scale);
+  d["omega"] = copy_of(r.omega);
+  d["output_amplitude"] = copy_of(r.output_amplitude);
+  d["output_harmonic_amplitude"] = copy_of(r.output_harmonic_amplitude);
+  d["harmonics"] = copy_of(stack(r.harmonics, nu));
+  d["continuation"] = continuation_dict(r.continuation);
+  d["warnings"] = string_list(r.warnings);
+  return d;
+}
+
 nb::dict case_result(VibrationCase c, bool stability) {
   if (stability) {
     for (auto& fr : c.frequency_responses) fr.options.stability = true;
@@ -352,8 +366,15 @@ nb::dict case_result(VibrationCase c, bool stability) {
     cd["warnings"] = string_list(p.warnings);
     phase_resonances.append(cd);
   }
+  nb::list superharmonics;
+  for (std::size_t k = 0; k < r.superharmonic_resonance.size(); ++k) {
+    nb::dict cd = superharmonic_dict(r.superharmonic_resonance[k], nu);
+    cd["table"] = r.superharmonic_resonance_table[k] + 1;
+    superharmonics.append(cd);
+  }
   d["amplitude_control"] = amplitude_controls;
   d["phase_resonance"] = phase_resonances;
+  d["superharmonic_resonance"] = superharmonics;
   d["quasi_static_mode"] =
       r.quasi_static_mode ? nb::object(quasi_static_dict(*r.quasi_static_mode)) : nb::none();
   d["complete"] = r.complete;
@@ -885,6 +906,26 @@ void bind_vibration(nb::module_& parent) {
       "continuation"_a,
       "First harmonic of `dof` lagging the force there by 90 degrees; continuation in log10 of "
       "its amplitude.");
+  m.def(
+      "superharmonic_resonance",
+      [](const PyHarmonicBalance& p, const Vector& force, int harmonic, int mode, double log10_from,
+         double log10_to, const std::vector<long>& outputs, const nb::dict& continuation) {
+        SuperharmonicResonanceOptions o;
+        o.force = force;
+        o.harmonic = harmonic;
+        o.mode = mode;
+        o.log10_force_from = log10_from;
+        o.log10_force_to = log10_to;
+        o.continuation = continuation_options(o.continuation, continuation);
+        const SuperharmonicResonanceResult r = locked(p, [&](const HarmonicBalance& hb) {
+          return superharmonic_resonance(hb, o, dof_list(outputs));
+        });
+        return superharmonic_dict(r, p.hb.unknowns());
+      },
+      "hb"_a, "force"_a, "harmonic"_a, "mode"_a, "log10_from"_a, "log10_to"_a, "output_dofs"_a,
+      "continuation"_a,
+      "The harmonic:1 superharmonic resonance (VPRNM); continuation in log10 of the force "
+      "scale.");
   m.def(
       "force_response",
       [](const PyHarmonicBalance& p, const Vector& force, const Vector& force_per_omega,

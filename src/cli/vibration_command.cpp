@@ -293,6 +293,21 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
     }
     write(fmt::format("phase_resonance_{}.csv", r.phase_resonance_table[k] + 1), csv(h, cols));
   }
+  for (std::size_t k = 0; k < r.superharmonic_resonance.size(); ++k) {
+    const auto& p = r.superharmonic_resonance[k];
+    std::vector<std::string> h{"force_scale", "omega_rad_s", "frequency_hz"};
+    std::vector<std::vector<double>> cols{vec(p.force_scale), vec(p.omega),
+                                          vec(p.omega / (2.0 * std::numbers::pi))};
+    for (std::size_t o = 0; o < c.output_dofs.size(); ++o) {
+      const auto oi = static_cast<Eigen::Index>(o);
+      h.push_back(fmt::format("amplitude_dof{}_m", c.output_dofs[o]));
+      cols.push_back(vec(p.output_amplitude.col(oi)));
+      h.push_back(fmt::format("harmonic{}_dof{}_m", p.harmonic, c.output_dofs[o]));
+      cols.push_back(vec(p.output_harmonic_amplitude.col(oi)));
+    }
+    write(fmt::format("superharmonic_resonance_{}.csv", r.superharmonic_resonance_table[k] + 1),
+          csv(h, cols));
+  }
   for (std::size_t k = 0; k < r.backbone_rom.size(); ++k) {
     const auto& m = r.backbone_rom[k];
     std::vector<std::string> h{"omega_rad_s", "frequency_hz", "modal_amplitude", "side"};
@@ -640,6 +655,21 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
     }
     plot_png(dir.file("phase_resonance.png"), p);
     written.push_back("phase_resonance.png");
+  }
+  if (!r.superharmonic_resonance.empty()) {
+    // The excitation frequency times r: where the superharmonic meets the mode it excites.
+    PlotSpec p{.title = "Superharmonic resonance (VPRNM): r times the excitation frequency",
+               .xlabel = "force scale lambda (F_ex = lambda force)",
+               .ylabel = "r x excitation frequency [Hz]",
+               .logx = true};
+    for (std::size_t k = 0; k < r.superharmonic_resonance.size(); ++k) {
+      const auto& sr = r.superharmonic_resonance[k];
+      p.series.push_back(positive_series(
+          fmt::format("{}:1, table {}", sr.harmonic, r.superharmonic_resonance_table[k] + 1),
+          sr.force_scale, sr.harmonic * sr.omega / two_pi, false, "linespoints pt 7 ps 0.5"));
+    }
+    plot_png(dir.file("superharmonic_resonance.png"), p);
+    written.push_back("superharmonic_resonance.png");
   }
   return written;
 }

@@ -293,8 +293,8 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
   const toml::table root = core::toml_case::parse(file_text, path);
   check_keys(root, path,
              {"structure", "element", "harmonic_balance", "nonlinear_mode", "frequency_response",
-              "force_response", "amplitude_control", "phase_resonance", "backbone_rom",
-              "quasi_static_mode", "joint", "load", "profiles", "interface"});
+              "force_response", "amplitude_control", "phase_resonance", "superharmonic_resonance",
+              "backbone_rom", "quasi_static_mode", "joint", "load", "profiles", "interface"});
   if (!root.get("joint")) {
     for (const char* k : {"load", "profiles", "interface"}) {
       if (root.get(k)) {
@@ -668,6 +668,29 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     c.phase_resonances.push_back(std::move(o));
   });
 
+  tables("superharmonic_resonance", [&](const toml::table& t, const std::string& w) {
+    check_keys(t, w, {"force_cos", "force_sin", "harmonic", "mode", "log10_force", "continuation"});
+    if (!t.get("force_cos") && !t.get("force_sin")) {
+      throw InvalidInput(fmt::format(
+          "{} needs force_cos and/or force_sin (rows: harmonics, columns: DOFs){}", w, at_line(t)));
+    }
+    SuperharmonicResonanceOptions o;
+    Eigen::MatrixXd fc, fs;
+    o.force = force_pair(t, w, "force", basis, n, nh, fc, fs);
+    if (!t.get("harmonic")) {
+      throw InvalidInput(
+          fmt::format("{} needs harmonic, the order r of the r:1 resonance (2 .. {}){}", w,
+                      basis.max_harmonic(), at_line(t)));
+    }
+    o.harmonic = static_cast<int>(integer(t, "harmonic", w, 3, 2, basis.max_harmonic()));
+    o.mode = static_cast<int>(integer(t, "mode", w, 1, 1, n));
+    const auto [from, to] = range(t, "log10_force", w, finite_number);
+    o.log10_force_from = from;
+    o.log10_force_to = to;
+    parse_continuation(t, w, o.continuation);
+    c.superharmonic_resonances.push_back(std::move(o));
+  });
+
   // [[backbone_rom]]: forced responses from the backbone of [nonlinear_mode]
   tables("backbone_rom", [&](const toml::table& t, const std::string& w) {
     check_keys(t, w, {"force_cos", "force_sin", "force_scales", "subdivisions"});
@@ -735,10 +758,12 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     c.quasi_static_mode = o;
   }
   if (!c.nonlinear_mode && c.frequency_responses.empty() && c.force_responses.empty() &&
-      c.amplitude_controls.empty() && c.phase_resonances.empty() && !c.quasi_static_mode) {
+      c.amplitude_controls.empty() && c.phase_resonances.empty() &&
+      c.superharmonic_resonances.empty() && !c.quasi_static_mode) {
     throw InvalidInput(fmt::format(
         "{}: nothing to run: add [nonlinear_mode], [[frequency_response]], [[force_response]], "
-        "[[amplitude_control]], [[phase_resonance]] or [quasi_static_mode]",
+        "[[amplitude_control]], [[phase_resonance]], [[superharmonic_resonance]] or "
+        "[quasi_static_mode]",
         path));
   }
   return c;

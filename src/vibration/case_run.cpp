@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -557,7 +558,8 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
     }
     j.emplace_back("force_response", std::move(curves));
   }
-  // [[amplitude_control]] and [[phase_resonance]]: one continuation per table.
+  // [[amplitude_control]], [[phase_resonance]], [[superharmonic_resonance]]: one
+  // continuation per table.
   const auto controlled = [&](const char* name, std::size_t tables, const auto& run_one) {
     if (tables == 0) return;
     SummaryArray curves;
@@ -576,6 +578,12 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
         o.emplace_back("solver", solver_summary(w));
         curves.emplace_back(std::move(o));
         add_analysis(total, w, curve);
+      } catch (const InvalidInput& e) {
+        // The library names the analysis ("phase_resonance.mode = ..."); the case names the
+        // table: "phase_resonance[2].mode = ...".
+        const std::string m = e.what();
+        throw InvalidInput(m.starts_with(name) ? curve + m.substr(std::strlen(name))
+                                               : fmt::format("{}: {}", curve, m));
       } catch (const NumericalError& e) {
         r.failures.push_back(cannot_start(curve, e).what());
         r.warnings.push_back(r.failures.back());
@@ -621,10 +629,27 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
                r.phase_resonance_table.push_back(k);
                return out;
              });
+  controlled("superharmonic_resonance", c.superharmonic_resonances.size(),
+             [&](std::size_t k, const ProgressFunction& sub, Work& w) {
+               const SuperharmonicResonanceOptions& o = c.superharmonic_resonances[k];
+               SuperharmonicResonanceResult p = superharmonic_resonance(hb, o, c.output_dofs, sub);
+               add_continuation(w, p.continuation, o.continuation.max_points);
+               r.warnings.insert(r.warnings.end(), p.warnings.begin(), p.warnings.end());
+               SummaryObject out{{"table", k + 1},
+                                 {"harmonic", o.harmonic},
+                                 {"force_scale", array(p.force_scale)},
+                                 {"omega_rad_s", array(p.omega)},
+                                 {"frequency_hz", array(p.omega / (2.0 * std::numbers::pi))},
+                                 {"output_amplitude", rows(p.output_amplitude)},
+                                 {"output_harmonic_amplitude", rows(p.output_harmonic_amplitude)}};
+               r.superharmonic_resonance.push_back(std::move(p));
+               r.superharmonic_resonance_table.push_back(k);
+               return out;
+             });
   // Nothing computed at all: the case is bad input as a whole (exit 2).
   if (!r.failures.empty() && r.frequency_response.empty() && r.force_response.empty() &&
-      r.amplitude_control.empty() && r.phase_resonance.empty() && !r.nonlinear_mode &&
-      !c.quasi_static_mode) {
+      r.amplitude_control.empty() && r.phase_resonance.empty() &&
+      r.superharmonic_resonance.empty() && !r.nonlinear_mode && !c.quasi_static_mode) {
     throw InvalidInput(r.failures.front());
   }
 
@@ -669,7 +694,8 @@ VibrationResult run_case(const VibrationCase& c, const CaseProgress& progress) {
         total.stop_reason =
             fmt::format("{} of {} forced response curve(s) could not start: {}", r.failures.size(),
                         r.failures.size() + r.frequency_response.size() + r.force_response.size() +
-                            r.amplitude_control.size() + r.phase_resonance.size(),
+                            r.amplitude_control.size() + r.phase_resonance.size() +
+                            r.superharmonic_resonance.size(),
                         r.failures.front());
       }
     }

@@ -294,4 +294,176 @@ PhaseResonanceResult phase_resonance(const HarmonicBalance& hb, const PhaseReson
   return r;
 }
 
+// ---------------------------------------------------------------------------------------
+// Superharmonic resonance (VPRNM)
+
+void SuperharmonicResonanceOptions::validate(const HarmonicBalance& hb) const {
+  require_force(hb, force, "superharmonic_resonance");
+  const HarmonicBasis& b = hb.basis();
+  if (harmonic < 2 || b.index_of(harmonic, 0) < 0) {
+    throw InvalidInput(fmt::format(
+        "superharmonic_resonance.harmonic = {}: a harmonic >= 2 kept in harmonic_balance is "
+        "needed (kept: up to {})",
+        harmonic, b.max_harmonic()));
+  }
+  if (b.index_of(1, 0) < 0) {
+    throw InvalidInput(
+        "superharmonic_resonance: harmonic 1 is not kept; the excitation and the lower harmonics "
+        "that drive harmonic r need it");
+  }
+  core::require_finite("superharmonic_resonance.log10_force.from", log10_force_from);
+  core::require_finite("superharmonic_resonance.log10_force.to", log10_force_to);
+  if (log10_force_from == log10_force_to) {
+    throw InvalidInput("superharmonic_resonance.log10_force: from and to are equal");
+  }
+  continuation.validate();
+}
+
+SuperharmonicResonanceResult superharmonic_resonance(const HarmonicBalance& hb,
+                                                     const SuperharmonicResonanceOptions& opt,
+                                                     const std::vector<Eigen::Index>& outputs,
+                                                     const ProgressFunction& progress) {
+  opt.validate(hb);
+  require_outputs(hb, outputs);
+  const Eigen::Index nu = hb.unknowns(), n = hb.dofs();
+  const HarmonicBasis& b = hb.basis();
+  const int r = opt.harmonic;
+  // The coefficients of harmonic r (X_r) and of the harmonics below it (U_low), all DOFs.
+  std::vector<Eigen::Index> low, high;
+  for (Eigen::Index d = 0; d < n; ++d) {
+    for (std::size_t c = 0; c < b.coefficients(); ++c) {
+      if (b.harmonic_of(c) < r) low.push_back(hb.index(d, c));
+      if (b.harmonic_of(c) == r) high.push_back(hb.index(d, c));
+    }
+  }
+  const auto n_r = static_cast<Eigen::Index>(high.size());
+  const auto take = [&](const Eigen::VectorXd& v) {
+    Eigen::VectorXd x(n_r);
+    for (Eigen::Index i = 0; i < n_r; ++i) x(i) = v(high[static_cast<std::size_t>(i)]);
+    return x;
+  };
+  const auto lower = [&](const Eigen::VectorXd& U) {
+    Eigen::VectorXd L = Eigen::VectorXd::Zero(nu);
+    for (const Eigen::Index i : low) L(i) = U(i);
+    return L;
+  };
+
+  const LinearModes lm = linear_modes(hb.stuck_stiffness(), hb.structure().M);
+  if (opt.mode < 1 || opt.mode > lm.omega.size()) {
+    throw InvalidInput(
+        fmt::format("superharmonic_resonance.mode = {}: the structure has modes 1 .. {}", opt.mode,
+                    lm.omega.size()));
+  }
+  const double w_mode = lm.omega(opt.mode - 1);
+  if (!(w_mode > 0.0)) {
+    throw InvalidInput(fmt::format(
+        "superharmonic_resonance.mode = {}: a rigid-body mode of the stuck structure (zero "
+        "frequency)",
+        opt.mode));
+  }
+  // Start: the stuck linear response at omega_mode / r, plus its harmonic r driven by F_r.
+  const double w0 = w_mode / r, lambda0 = std::pow(10.0, opt.log10_force_from);
+  const HarmonicBalance lin = stuck_linear(hb);
+  const Eigen::MatrixXd C =
+      hb.structure().C.size() ? hb.structure().C : Eigen::MatrixXd::Zero(n, n);
+  const Eigen::PartialPivLU<Eigen::MatrixXd> A0(lin.dynamic_stiffness(w0, C));
+  Eigen::VectorXd U0 = A0.solve(lambda0 * opt.force);
+  Eigen::VectorXd G;
+  hb.nonlinear_force(lower(U0), w0, G, nullptr, nullptr);
+  Eigen::VectorXd drive = Eigen::VectorXd::Zero(nu);
+  for (const Eigen::Index i : high) drive(i) = -G(i);
+  // Round-off of the AFT leaves ~1e-16 of the force in harmonics it cannot hold.
+  if (!(take(drive).norm() > 1e-10 * G.norm()) || !drive.allFinite()) {
+    throw InvalidInput(fmt::format(
+        "superharmonic_resonance: the elements' force has no harmonic {} from the lower "
+        "harmonics at the start (omega = {} rad/s, force scale {}): nothing drives this "
+        "superharmonic (a symmetric law has no even ones; a linear structure none)",
+        r, core::format_value(w0), core::format_value(lambda0)));
+  }
+  const Eigen::VectorXd Ur = A0.solve(drive);
+  for (const Eigen::Index i : high) U0(i) = Ur(i);
+
+  const Eigen::Index iw = nu, ip = nu + 1;
+  const double residual_scale = opt.force.cwiseAbs().maxCoeff();
+  Eigen::VectorXd y0(nu + 2);
+  y0.head(nu) = U0 / lambda0;
+  y0(iw) = w0;
+  y0(ip) = opt.log10_force_from;
+
+  ContinuationProblem pb;
+  pb.f = [&](const Eigen::VectorXd& y, Eigen::VectorXd& R, Eigen::MatrixXd* J) {
+    const double w = y(iw), lambda = std::pow(10.0, y(ip));
+    const Eigen::VectorXd Psi = y.head(nu);
+    Eigen::VectorXd Rh, dRw, Gl, dGw;
+    Eigen::MatrixXd dR, dG;
+    hb.residual(lambda * Psi, w, lambda * opt.force, Rh, J ? &dR : nullptr, J ? &dRw : nullptr);
+    const Eigen::VectorXd Ul = lower(lambda * Psi);
+    hb.nonlinear_force(Ul, w, Gl, J ? &dG : nullptr, J ? &dGw : nullptr);
+    const Eigen::VectorXd F = -take(Gl), X = take(Psi);
+    const double nF = F.norm(), nX = X.norm();
+    if (!(nF > 0.0) || !(nX > 0.0)) {
+      throw NumericalError(
+          fmt::format("superharmonic_resonance: harmonic {} of the {} vanished (omega = {} rad/s)",
+                      r, nF > 0.0 ? "response" : "elements' force from the lower harmonics",
+                      core::format_value(w)));
+    }
+    const double c = F.dot(X) / (nF * nX);
+    R.resize(nu + 1);
+    R.head(nu) = Rh / lambda;
+    R(nu) = residual_scale * c;  // Eq. VPRNM: harmonic r in quadrature with its drive
+    if (!J) return;
+    J->setZero(nu + 1, nu + 2);
+    J->topLeftCorner(nu, nu) = dR;
+    J->block(0, iw, nu, 1) = dRw / lambda;
+    J->block(0, ip, nu, 1) = kLn10 * (dR * Psi - opt.force - R.head(nu));
+    const Eigen::VectorXd dc_dF = X / (nF * nX) - c * F / (nF * nF);
+    const Eigen::VectorXd dc_dX = F / (nF * nX) - c * X / (nX * nX);
+    // F = -S_r G(U_low): dF/dPsi_low = -S_r dG lambda, dF/domega = -S_r dG_w,
+    // dF/dlog10 lambda = -S_r dG U_low ln 10.
+    Eigen::VectorXd row = Eigen::VectorXd::Zero(nu);
+    for (Eigen::Index i = 0; i < n_r; ++i) {
+      const Eigen::Index gi = high[static_cast<std::size_t>(i)];
+      for (const Eigen::Index j : low) row(j) -= dc_dF(i) * dG(gi, j) * lambda;
+      row(gi) += dc_dX(i);
+      (*J)(nu, iw) -= residual_scale * dc_dF(i) * dGw(gi);
+      (*J)(nu, ip) -= residual_scale * dc_dF(i) * kLn10 * dG.row(gi).dot(Ul);
+    }
+    J->block(nu, 0, 1, nu) = residual_scale * row.transpose();
+  };
+  pb.parameter = ip;
+  pb.scale = Eigen::VectorXd::Constant(nu + 2, std::max(1e-300, y0.head(nu).cwiseAbs().maxCoeff()));
+  pb.scale(iw) = w0;
+  pb.scale(ip) = 1.0;
+  pb.residual_scale = residual_scale;
+  pb.parameter_end = opt.log10_force_to;
+
+  SuperharmonicResonanceResult res;
+  res.harmonic = r;
+  res.continuation = continue_curve(pb, y0, opt.continuation, progress);
+  const auto np = static_cast<Eigen::Index>(res.continuation.points.size());
+  const auto no = static_cast<Eigen::Index>(outputs.size());
+  res.force_scale.resize(np);
+  res.omega.resize(np);
+  res.output_amplitude.resize(np, no);
+  res.output_harmonic_amplitude.resize(np, no);
+  for (Eigen::Index k = 0; k < np; ++k) {
+    const Eigen::VectorXd& y = res.continuation.points[static_cast<std::size_t>(k)];
+    const double lambda = std::pow(10.0, y(ip));
+    const Eigen::VectorXd U = lambda * y.head(nu);
+    res.force_scale(k) = lambda;
+    res.omega(k) = y(iw);
+    for (Eigen::Index o = 0; o < no; ++o) {
+      const Eigen::Index d = outputs[static_cast<std::size_t>(o)];
+      res.output_amplitude(k, o) = hb.harmonic_amplitude(U, d, 1);
+      res.output_harmonic_amplitude(k, o) = hb.harmonic_amplitude(U, d, r);
+    }
+    res.harmonics.push_back(U);
+  }
+  if (!res.continuation.complete) {
+    res.warnings.push_back(
+        fmt::format("superharmonic resonance {}:1: {}", r, res.continuation.stop_reason));
+  }
+  return res;
+}
+
 }  // namespace asperity::vibration

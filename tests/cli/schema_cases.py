@@ -36,7 +36,7 @@ INVOCATIONS = {
     "synthesize": [[CASE, "--imposed", "6.75um", "--out", "{tmp}/s.csv", "--json"], [CASE, "--imposed", "2um", "--no-imposed", "--out", "{tmp}/t.csv", "--json"]],
     "validate": [["--json"]],
     "dynamics": [[f"examples/dynamics/{n}.toml", "--json"] for n in ["impulse_dankowicz", "ramp_dankowicz_soft", "harmonic_mindlin", "impulse_joint_steel420", "impulse_none"]],
-    "vibration": [[f"examples/vibration/{n}.toml", "--json"] for n in ["jenkins_sdof", "steel420_sdof", "steel420_2dof", "duffing_force_sweep", "duffing_phase_resonance", "rough_contact_3d", "jenkins_backbone_rom"]] + [["examples/vibration/steel420_2dof.toml", "--json", "--stability"]],
+    "vibration": [[f"examples/vibration/{n}.toml", "--json"] for n in ["jenkins_sdof", "steel420_sdof", "steel420_2dof", "duffing_force_sweep", "duffing_phase_resonance", "duffing_superharmonic", "rough_contact_3d", "jenkins_backbone_rom"]] + [["examples/vibration/steel420_2dof.toml", "--json", "--stability"]],
     "structure": [["examples/structures/two_blocks.toml", "--json"]],
 }
 

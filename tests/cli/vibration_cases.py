@@ -737,7 +737,8 @@ def plots_of_controlled_analyses(exe):
     """The shipped force-sweep and phase-resonance examples write one PNG per analysis
     (gnuplot), listed in the text summary; --no-plots writes none."""
     want = {"duffing_force_sweep": ["force_response.png"],
-            "duffing_phase_resonance": ["amplitude_control.png", "phase_resonance.png"]}
+            "duffing_phase_resonance": ["amplitude_control.png", "phase_resonance.png"],
+            "duffing_superharmonic": ["superharmonic_resonance.png"]}
     for name, pngs in want.items():
         case = open(os.path.join(EXAMPLES, name + ".toml")).read()
         for extra in [(), ("--no-plots",)]:
@@ -795,6 +796,13 @@ continuation = { max_iterations = 2, target_iterations = 1 }
 log10_amplitude = { from = 1.0, to = 2.0 }
 """, ["nonlinear_mode", "log10_amplitude starts at 1 in gross slip", "element 1 (jenkins)",
       "near log10 amplitude -0.10"]),
+    # A cubic spring makes no even harmonics: nothing drives a 2:1 superharmonic.
+    "superharmonic_not_driven": (JENKINS.replace('type = "jenkins"', 'type = "polynomial_stiffness"').replace(
+        "k_t = 0.25\nF_s = 0.2\n", "k3 = 1.0\n").replace("max = 3", "harmonics = [1, 2, 3]") + """[[superharmonic_resonance]]
+force_cos = [[1.0]]
+harmonic = 2
+log10_force = { from = -2.0, to = 0.0 }
+""", ["superharmonic_resonance[1]", "no harmonic 2 from the lower harmonics", "symmetric"]),
     "unknown_key": (JENKINS.replace("k_t = 0.25", "k_t = 0.25\nkt = 0.3") + EPMC,
                     ['"kt"', "line 10", "element[1]"]),
     "unknown_table": (JENKINS + EPMC + "[solver]\nx = 1\n", ['"solver"', "line"]),

@@ -105,6 +105,13 @@
 //   log10_amplitude = { from = -3.0, to = 0.0 }   # of that DOF's amplitude [m]
 //   continuation = { ... }
 //
+//   [[superharmonic_resonance]] # any number: the r:1 resonance followed in force (VPRNM)
+//   force_cos = [[0.0], [1.0]]  # as frequency_response; F_ex = lambda force
+//   harmonic = 3                # r >= 2, kept in harmonic_balance
+//   mode = 1                    # optional: the stuck mode; the search starts at its omega / r
+//   log10_force = { from = -2.0, to = 0.0 }   # log10 lambda
+//   continuation = { ... }
+//
 //   [[backbone_rom]]            # any number: forced responses from the [nonlinear_mode]
 //   force_cos = [[0.0], [0.1]]  #   of the same case (single nonlinear mode theory,
 //   force_sin = ..              #   mode_rom.hpp); layout as frequency_response, only the
@@ -221,6 +228,7 @@ struct VibrationCase {
   std::vector<ForceResponseCase> force_responses;
   std::vector<AmplitudeControlOptions> amplitude_controls;
   std::vector<PhaseResonanceOptions> phase_resonances;
+  std::vector<SuperharmonicResonanceOptions> superharmonic_resonances;
   std::vector<BackboneRomCase> backbone_roms;  ///< need nonlinear_mode
   std::optional<QuasiStaticModeOptions> quasi_static_mode;
   /// The `joint` section when a rough_flat element comes from a [joint] table.
@@ -259,6 +267,9 @@ struct VibrationResult {
   std::vector<std::size_t> amplitude_control_table;
   std::vector<PhaseResonanceResult> phase_resonance;
   std::vector<std::size_t> phase_resonance_table;
+  /// Every [[superharmonic_resonance]] that ran, with its table.
+  std::vector<SuperharmonicResonanceResult> superharmonic_resonance;
+  std::vector<std::size_t> superharmonic_resonance_table;
   /// Every [[backbone_rom]] curve (tables, then scales), its table and force scale.
   std::vector<ModeRomCurve> backbone_rom;
   std::vector<std::size_t> backbone_rom_table;

@@ -73,4 +73,38 @@ struct PhaseResonanceResult {
                                                    const std::vector<Eigen::Index>& output_dofs,
                                                    const ProgressFunction& progress = {});
 
+/// Variable-phase resonance nonlinear modes (VPRNM; Porter & Brake, MSSP 215 (2024)
+/// 111410): the superharmonic resonance of order r of a forced response, followed as the
+/// force scale lambda grows. Harmonic r of the response is driven by the elements' force at
+/// harmonic r from the response's lower harmonics alone, F_r = -[F_nl(U_{h<r})]_r; the
+/// resonance is where the response's harmonic r is in quadrature with it:
+///   F_r . X_r / (|F_r| |X_r|) = 0       (over all DOFs' cosine and sine coefficients),
+/// a phase resonance of harmonic r as [[phase_resonance]] is of harmonic 1. Unknowns U,
+/// omega; continuation in log10 lambda. A linear structure has no F_r: refused.
+struct SuperharmonicResonanceOptions {
+  /// Excitation at lambda = 1 in the unknowns' layout (as FrequencyResponseOptions).
+  Eigen::VectorXd force;
+  int harmonic = 3;  ///< r >= 2, kept in the harmonics (as is 1); the kept ones below r drive it
+  int mode = 1;      ///< the stuck mode whose frequency / r starts the search
+  double log10_force_from = -2.0;  ///< log10 lambda
+  double log10_force_to = 0.0;
+  ContinuationOptions continuation{.step = 0.05, .min_step = 1e-6, .max_step = 0.1};
+  void validate(const HarmonicBalance& hb) const;
+};
+
+struct SuperharmonicResonanceResult {
+  int harmonic = 3;
+  Eigen::VectorXd force_scale;       ///< lambda per point
+  Eigen::VectorXd omega;             ///< [rad/s], the excitation's frequency (r omega: the mode's)
+  Eigen::MatrixXd output_amplitude;  ///< points x outputs: harmonic 1 [m]
+  Eigen::MatrixXd output_harmonic_amplitude;  ///< points x outputs: harmonic r [m]
+  std::vector<Eigen::VectorXd> harmonics;     ///< U per point
+  ContinuationResult continuation;            ///< raw points [U / lambda, omega, log10 lambda]
+  std::vector<std::string> warnings;
+};
+
+[[nodiscard]] SuperharmonicResonanceResult superharmonic_resonance(
+    const HarmonicBalance& hb, const SuperharmonicResonanceOptions& options,
+    const std::vector<Eigen::Index>& output_dofs, const ProgressFunction& progress = {});
+
 }  // namespace asperity::vibration
