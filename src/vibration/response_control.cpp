@@ -319,6 +319,84 @@ void SuperharmonicResonanceOptions::validate(const HarmonicBalance& hb) const {
   continuation.validate();
 }
 
+namespace {
+
+// The coefficients of harmonic r (X_r) and of the harmonics below it (U_low), all DOFs.
+struct HarmonicSplit {
+  std::vector<Eigen::Index> low, high;
+  Eigen::Index unknowns = 0;
+  HarmonicSplit(const HarmonicBalance& hb, int r) : unknowns(hb.unknowns()) {
+    const HarmonicBasis& b = hb.basis();
+    for (Eigen::Index d = 0; d < hb.dofs(); ++d) {
+      for (std::size_t c = 0; c < b.coefficients(); ++c) {
+        if (b.harmonic_of(c) < r) low.push_back(hb.index(d, c));
+        if (b.harmonic_of(c) == r) high.push_back(hb.index(d, c));
+      }
+    }
+  }
+  [[nodiscard]] Eigen::VectorXd take(const Eigen::VectorXd& v) const {
+    Eigen::VectorXd x(static_cast<Eigen::Index>(high.size()));
+    for (std::size_t i = 0; i < high.size(); ++i) x(static_cast<Eigen::Index>(i)) = v(high[i]);
+    return x;
+  }
+  [[nodiscard]] Eigen::VectorXd lower(const Eigen::VectorXd& U) const {
+    Eigen::VectorXd L = Eigen::VectorXd::Zero(unknowns);
+    for (const Eigen::Index i : low) L(i) = U(i);
+    return L;
+  }
+};
+
+}  // namespace
+
+void superharmonic_resonance_system(const HarmonicBalance& hb,
+                                    const SuperharmonicResonanceOptions& opt,
+                                    const Eigen::VectorXd& y, Eigen::VectorXd& R,
+                                    Eigen::MatrixXd* J) {
+  const Eigen::Index nu = hb.unknowns(), iw = nu, ip = nu + 1;
+  const int r = opt.harmonic;
+  const HarmonicSplit split(hb, r);
+  const auto& low = split.low;
+  const auto& high = split.high;
+  const auto n_r = static_cast<Eigen::Index>(high.size());
+  const double residual_scale = opt.force.cwiseAbs().maxCoeff();
+  const double w = y(iw), lambda = std::pow(10.0, y(ip));
+  const Eigen::VectorXd Psi = y.head(nu);
+  Eigen::VectorXd Rh, dRw, Gl, dGw;
+  Eigen::MatrixXd dR, dG;
+  hb.residual(lambda * Psi, w, lambda * opt.force, Rh, J ? &dR : nullptr, J ? &dRw : nullptr);
+  const Eigen::VectorXd Ul = split.lower(lambda * Psi);
+  hb.nonlinear_force(Ul, w, Gl, J ? &dG : nullptr, J ? &dGw : nullptr);
+  const Eigen::VectorXd F = -split.take(Gl), X = split.take(Psi);
+  const double nF = F.norm(), nX = X.norm();
+  if (!(nF > 0.0) || !(nX > 0.0)) {
+    throw NumericalError(fmt::format(
+        "superharmonic_resonance: harmonic {} of the {} vanished (omega = {} rad/s)", r,
+        nF > 0.0 ? "response" : "elements' force from the lower harmonics", core::format_value(w)));
+  }
+  const double c = F.dot(X) / (nF * nX);
+  R.resize(nu + 1);
+  R.head(nu) = Rh / lambda;
+  R(nu) = residual_scale * c;  // Eq. VPRNM: harmonic r in quadrature with its drive
+  if (!J) return;
+  J->setZero(nu + 1, nu + 2);
+  J->topLeftCorner(nu, nu) = dR;
+  J->block(0, iw, nu, 1) = dRw / lambda;
+  J->block(0, ip, nu, 1) = kLn10 * (dR * Psi - opt.force - R.head(nu));
+  const Eigen::VectorXd dc_dF = X / (nF * nX) - c * F / (nF * nF);
+  const Eigen::VectorXd dc_dX = F / (nF * nX) - c * X / (nX * nX);
+  // F = -S_r G(U_low): dF/dPsi_low = -S_r dG lambda, dF/domega = -S_r dG_w,
+  // dF/dlog10 lambda = -S_r dG U_low ln 10.
+  Eigen::VectorXd row = Eigen::VectorXd::Zero(nu);
+  for (Eigen::Index i = 0; i < n_r; ++i) {
+    const Eigen::Index gi = high[static_cast<std::size_t>(i)];
+    for (const Eigen::Index j : low) row(j) -= dc_dF(i) * dG(gi, j) * lambda;
+    row(gi) += dc_dX(i);
+    (*J)(nu, iw) -= residual_scale * dc_dF(i) * dGw(gi);
+    (*J)(nu, ip) -= residual_scale * dc_dF(i) * kLn10 * dG.row(gi).dot(Ul);
+  }
+  J->block(nu, 0, 1, nu) = residual_scale * row.transpose();
+}
+
 SuperharmonicResonanceResult superharmonic_resonance(const HarmonicBalance& hb,
                                                      const SuperharmonicResonanceOptions& opt,
                                                      const std::vector<Eigen::Index>& outputs,
@@ -326,27 +404,8 @@ SuperharmonicResonanceResult superharmonic_resonance(const HarmonicBalance& hb,
   opt.validate(hb);
   require_outputs(hb, outputs);
   const Eigen::Index nu = hb.unknowns(), n = hb.dofs();
-  const HarmonicBasis& b = hb.basis();
   const int r = opt.harmonic;
-  // The coefficients of harmonic r (X_r) and of the harmonics below it (U_low), all DOFs.
-  std::vector<Eigen::Index> low, high;
-  for (Eigen::Index d = 0; d < n; ++d) {
-    for (std::size_t c = 0; c < b.coefficients(); ++c) {
-      if (b.harmonic_of(c) < r) low.push_back(hb.index(d, c));
-      if (b.harmonic_of(c) == r) high.push_back(hb.index(d, c));
-    }
-  }
-  const auto n_r = static_cast<Eigen::Index>(high.size());
-  const auto take = [&](const Eigen::VectorXd& v) {
-    Eigen::VectorXd x(n_r);
-    for (Eigen::Index i = 0; i < n_r; ++i) x(i) = v(high[static_cast<std::size_t>(i)]);
-    return x;
-  };
-  const auto lower = [&](const Eigen::VectorXd& U) {
-    Eigen::VectorXd L = Eigen::VectorXd::Zero(nu);
-    for (const Eigen::Index i : low) L(i) = U(i);
-    return L;
-  };
+  const HarmonicSplit split(hb, r);
 
   const LinearModes lm = linear_modes(hb.stuck_stiffness(), hb.structure().M);
   if (opt.mode < 1 || opt.mode > lm.omega.size()) {
@@ -369,11 +428,11 @@ SuperharmonicResonanceResult superharmonic_resonance(const HarmonicBalance& hb,
   const Eigen::PartialPivLU<Eigen::MatrixXd> A0(lin.dynamic_stiffness(w0, C));
   Eigen::VectorXd U0 = A0.solve(lambda0 * opt.force);
   Eigen::VectorXd G;
-  hb.nonlinear_force(lower(U0), w0, G, nullptr, nullptr);
+  hb.nonlinear_force(split.lower(U0), w0, G, nullptr, nullptr);
   Eigen::VectorXd drive = Eigen::VectorXd::Zero(nu);
-  for (const Eigen::Index i : high) drive(i) = -G(i);
+  for (const Eigen::Index i : split.high) drive(i) = -G(i);
   // Round-off of the AFT leaves ~1e-16 of the force in harmonics it cannot hold.
-  if (!(take(drive).norm() > 1e-10 * G.norm()) || !drive.allFinite()) {
+  if (!(split.take(drive).norm() > 1e-10 * G.norm()) || !drive.allFinite()) {
     throw InvalidInput(fmt::format(
         "superharmonic_resonance: the elements' force has no harmonic {} from the lower "
         "harmonics at the start (omega = {} rad/s, force scale {}): nothing drives this "
@@ -381,7 +440,7 @@ SuperharmonicResonanceResult superharmonic_resonance(const HarmonicBalance& hb,
         r, core::format_value(w0), core::format_value(lambda0)));
   }
   const Eigen::VectorXd Ur = A0.solve(drive);
-  for (const Eigen::Index i : high) U0(i) = Ur(i);
+  for (const Eigen::Index i : split.high) U0(i) = Ur(i);
 
   const Eigen::Index iw = nu, ip = nu + 1;
   const double residual_scale = opt.force.cwiseAbs().maxCoeff();
@@ -392,43 +451,7 @@ SuperharmonicResonanceResult superharmonic_resonance(const HarmonicBalance& hb,
 
   ContinuationProblem pb;
   pb.f = [&](const Eigen::VectorXd& y, Eigen::VectorXd& R, Eigen::MatrixXd* J) {
-    const double w = y(iw), lambda = std::pow(10.0, y(ip));
-    const Eigen::VectorXd Psi = y.head(nu);
-    Eigen::VectorXd Rh, dRw, Gl, dGw;
-    Eigen::MatrixXd dR, dG;
-    hb.residual(lambda * Psi, w, lambda * opt.force, Rh, J ? &dR : nullptr, J ? &dRw : nullptr);
-    const Eigen::VectorXd Ul = lower(lambda * Psi);
-    hb.nonlinear_force(Ul, w, Gl, J ? &dG : nullptr, J ? &dGw : nullptr);
-    const Eigen::VectorXd F = -take(Gl), X = take(Psi);
-    const double nF = F.norm(), nX = X.norm();
-    if (!(nF > 0.0) || !(nX > 0.0)) {
-      throw NumericalError(
-          fmt::format("superharmonic_resonance: harmonic {} of the {} vanished (omega = {} rad/s)",
-                      r, nF > 0.0 ? "response" : "elements' force from the lower harmonics",
-                      core::format_value(w)));
-    }
-    const double c = F.dot(X) / (nF * nX);
-    R.resize(nu + 1);
-    R.head(nu) = Rh / lambda;
-    R(nu) = residual_scale * c;  // Eq. VPRNM: harmonic r in quadrature with its drive
-    if (!J) return;
-    J->setZero(nu + 1, nu + 2);
-    J->topLeftCorner(nu, nu) = dR;
-    J->block(0, iw, nu, 1) = dRw / lambda;
-    J->block(0, ip, nu, 1) = kLn10 * (dR * Psi - opt.force - R.head(nu));
-    const Eigen::VectorXd dc_dF = X / (nF * nX) - c * F / (nF * nF);
-    const Eigen::VectorXd dc_dX = F / (nF * nX) - c * X / (nX * nX);
-    // F = -S_r G(U_low): dF/dPsi_low = -S_r dG lambda, dF/domega = -S_r dG_w,
-    // dF/dlog10 lambda = -S_r dG U_low ln 10.
-    Eigen::VectorXd row = Eigen::VectorXd::Zero(nu);
-    for (Eigen::Index i = 0; i < n_r; ++i) {
-      const Eigen::Index gi = high[static_cast<std::size_t>(i)];
-      for (const Eigen::Index j : low) row(j) -= dc_dF(i) * dG(gi, j) * lambda;
-      row(gi) += dc_dX(i);
-      (*J)(nu, iw) -= residual_scale * dc_dF(i) * dGw(gi);
-      (*J)(nu, ip) -= residual_scale * dc_dF(i) * kLn10 * dG.row(gi).dot(Ul);
-    }
-    J->block(nu, 0, 1, nu) = residual_scale * row.transpose();
+    superharmonic_resonance_system(hb, opt, y, R, J);
   };
   pb.parameter = ip;
   pb.scale = Eigen::VectorXd::Constant(nu + 2, std::max(1e-300, y0.head(nu).cwiseAbs().maxCoeff()));

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "../support.hpp"
 #include "asperity/vibration/analysis.hpp"
@@ -236,6 +237,49 @@ TEST(VibrationSuperharmonicResonance, UndrivenHarmonicIsRefused) {
   EXPECT_THROW((void)superharmonic_resonance(hb, o, {0}), InvalidInput);
   o.harmonic = 4;  // not kept
   EXPECT_THROW((void)superharmonic_resonance(hb, o, {0}), InvalidInput);
+}
+
+// The VPRNM equations' Jacobian against central differences on a 2-DOF system with a cubic
+// spring, cubic damping (the omega derivative of the drive) and a Jenkins joint (AFT history
+// terms), at a point off the solution: step 1e-6 of each unknown's scale, agreement to 1e-6
+// of the largest entry (the differences' truncation and round-off).
+TEST(VibrationSuperharmonicResonance, JacobianMatchesFiniteDifferences) {
+  Structure s{Eigen::Matrix2d{{1.0, 0.0}, {0.0, 0.5}}, Eigen::Matrix2d{{2.0, -1.0}, {-1.0, 1.0}},
+              Eigen::Matrix2d{{0.02, 0.0}, {0.0, 0.01}}};
+  const Eigen::MatrixXd t0{{1.0, 0.0}}, t1{{1.0, -1.0}};
+  const HarmonicBalance hb(std::move(s),
+                           {{make_polynomial_stiffness_element({.k3 = 0.7}), t0, "cubic"},
+                            {make_cubic_damping_element(0.05), t1, "cubic damper"},
+                            {make_jenkins_element(0.3, 0.05), t1, "jenkins"}},
+                           HarmonicBalanceOptions{{0, 1, 2, 3}, 128});
+  SuperharmonicResonanceOptions o;
+  o.force = cosine_force(hb, 1.0);
+  o.harmonic = 2;
+  const Eigen::Index nu = hb.unknowns();
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  Eigen::VectorXd y(nu + 2);
+  for (Eigen::Index k = 0; k < nu; ++k) y(k) = u(rng);
+  y(nu) = 0.45;
+  y(nu + 1) = -0.2;
+  Eigen::VectorXd R, Rp, Rm;
+  Eigen::MatrixXd J;
+  superharmonic_resonance_system(hb, o, y, R, &J);
+  ASSERT_EQ(J.rows(), nu + 1);
+  ASSERT_EQ(J.cols(), nu + 2);
+  Eigen::MatrixXd Jfd(nu + 1, nu + 2);
+  for (Eigen::Index k = 0; k < nu + 2; ++k) {
+    const double h = 1e-6 * std::max(1.0, std::abs(y(k)));
+    Eigen::VectorXd yp = y, ym = y;
+    yp(k) += h;
+    ym(k) -= h;
+    superharmonic_resonance_system(hb, o, yp, Rp, nullptr);
+    superharmonic_resonance_system(hb, o, ym, Rm, nullptr);
+    Jfd.col(k) = (Rp - Rm) / (2.0 * h);
+  }
+  EXPECT_LT((J - Jfd).cwiseAbs().maxCoeff(), 1e-6 * J.cwiseAbs().maxCoeff());
+  EXPECT_LT((J.row(nu) - Jfd.row(nu)).cwiseAbs().maxCoeff(),
+            1e-6 * J.row(nu).cwiseAbs().maxCoeff());
 }
 
 }  // namespace

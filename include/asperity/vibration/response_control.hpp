@@ -103,6 +103,14 @@ struct SuperharmonicResonanceResult {
   std::vector<std::string> warnings;
 };
 
+/// The VPRNM equations at y = [U / lambda, omega, log10 lambda] (unknowns + 2): R = [the
+/// harmonic-balance residual / lambda; max|force| times the quadrature condition] and, when J
+/// is given, dR/dy ((unknowns + 1) x (unknowns + 2)). What superharmonic_resonance continues.
+void superharmonic_resonance_system(const HarmonicBalance& hb,
+                                    const SuperharmonicResonanceOptions& options,
+                                    const Eigen::VectorXd& y, Eigen::VectorXd& R,
+                                    Eigen::MatrixXd* J);
+
 [[nodiscard]] SuperharmonicResonanceResult superharmonic_resonance(
     const HarmonicBalance& hb, const SuperharmonicResonanceOptions& options,
     const std::vector<Eigen::Index>& output_dofs, const ProgressFunction& progress = {});
