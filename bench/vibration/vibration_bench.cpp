@@ -12,7 +12,10 @@
 //    exp(-eps/2 * 2 pi * 200) < 1e-8 of its start), target >= 100 times faster;
 //  - one 3-D rough-contact element's AFT residual + Jacobian (issue 20: < 50 us at H = 3,
 //    N_t = 128) against a Jenkins element on the same basis;
-//  - chord against full Newton on the EPMC of a 200-DOF chain (1403 unknowns).
+//  - chord against full Newton on the EPMC of a 200-DOF chain (1403 unknowns);
+//  - the 3-D dry friction element on a circular slip path (a dense tangent: every sample
+//    depends on every earlier one), AFT residual + Jacobian at H = 3, N_t = 256, against
+//    the 2-D element on a straight path on the same basis.
 // g++ 12 reports writes into Eigen's dynamic matrices as potential null dereferences
 // (a known false positive of -Wnull-dereference at -O3).
 #pragma GCC diagnostic ignored "-Wnull-dereference"
@@ -28,6 +31,7 @@
 #include "asperity/dynamics/system.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 #include "asperity/vibration/analysis.hpp"
+#include "asperity/vibration/contact_elements.hpp"
 #include "asperity/vibration/rough_contact.hpp"
 
 namespace {
@@ -205,6 +209,43 @@ void BM_AftJenkinsResidualJacobianNt128(benchmark::State& state) {
 }
 BENCHMARK(BM_AftJenkinsResidualJacobianNt128)->Unit(benchmark::kMicrosecond);
 
+// A 3-DOF point mass on a 3-D dry friction contact (k_t = k_n = 1, mu = 0.5, N0 = 1) moved
+// on a circle of radius 10 mu N0 / k_t (slipping throughout, the slip direction turning
+// with every sample), and the 2-D element moved along t1 with the same amplitude.
+HarmonicBalance dry_friction_block(bool three_d) {
+  const Eigen::Index n = three_d ? 3 : 2;
+  Structure s{Eigen::MatrixXd::Identity(n, n), Eigen::MatrixXd::Identity(n, n),
+              Eigen::MatrixXd::Zero(n, n)};
+  std::shared_ptr<const Element> e =
+      three_d
+          ? make_elastic_dry_friction_3d_element({.k_t = 1.0, .k_n = 1.0, .mu = 0.5, .N0 = 1.0})
+          : make_elastic_dry_friction_2d_element({.k_t = 1.0, .k_n = 1.0, .mu = 0.5, .N0 = 1.0});
+  return HarmonicBalance(s, {{e, Eigen::MatrixXd::Identity(n, n), "contact"}},
+                         HarmonicBalanceOptions{{0, 1, 2, 3}, 256});
+}
+
+void aft_dry_friction(benchmark::State& state, bool three_d) {
+  const auto hb = dry_friction_block(three_d);
+  Eigen::VectorXd U = Eigen::VectorXd::Zero(hb.unknowns());
+  U(hb.index(0, static_cast<std::size_t>(hb.basis().index_of(1, 0)))) = 5.0;
+  if (three_d) U(hb.index(1, static_cast<std::size_t>(hb.basis().index_of(1, 1)))) = 5.0;
+  const Eigen::VectorXd F = Eigen::VectorXd::Zero(hb.unknowns());
+  Eigen::VectorXd R, dRw;
+  Eigen::MatrixXd J;
+  for (auto _ : state) {
+    hb.residual(U, 1.0, F, R, &J, &dRw);
+    benchmark::DoNotOptimize(J.data());
+  }
+}
+void BM_AftDryFriction3dCircleNt256(benchmark::State& state) {
+  aft_dry_friction(state, true);
+}
+void BM_AftDryFriction2dLineNt256(benchmark::State& state) {
+  aft_dry_friction(state, false);
+}
+BENCHMARK(BM_AftDryFriction3dCircleNt256)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_AftDryFriction2dLineNt256)->Unit(benchmark::kMicrosecond);
+
 // Chord Newton against full Newton (ContinuationOptions::chord_unknowns) on the EPMC of a
 // chain of 200 unit masses and springs with a Jenkins joint between every tenth mass and
 // ground, H = 3, N_t = 64 (1400 unknowns: the size where one dense LU costs as much as many
@@ -270,6 +311,8 @@ int main(int argc, char** argv) {
   const double rough = get("BM_AftRoughContactResidualJacobian");
   const double jenkins128 = get("BM_AftJenkinsResidualJacobianNt128");
   const double chain_full = get("BM_EpmcJenkinsChainFullNewton");
+  const double dry3 = get("BM_AftDryFriction3dCircleNt256");
+  const double dry2 = get("BM_AftDryFriction2dLineNt256");
   const double chain_chord = get("BM_EpmcJenkinsChainChordNewton");
   std::printf("\nRatios (same run):\n");
   if (rough > 0) {
@@ -280,6 +323,12 @@ int main(int argc, char** argv) {
   }
   if (rough > 0 && jenkins128 > 0) {
     std::printf("  3-D rough contact / Jenkins on the same basis = %7.2f\n", rough / jenkins128);
+  }
+  if (dry3 > 0 && dry2 > 0) {
+    std::printf(
+        "  AFT residual + Jacobian, N_t = 256: 3-D dry friction on a circle %.1f us / 2-D on a "
+        "line %.1f us = %7.2f\n",
+        dry3 * 1e6, dry2 * 1e6, dry3 / dry2);
   }
   if (chain_full > 0 && chain_chord > 0) {
     std::printf(

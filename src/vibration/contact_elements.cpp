@@ -114,6 +114,7 @@ void ElasticDryFriction3dElement::periodic_response(const Eigen::MatrixXd& u,
   out.dv.resize(0, 0);
   if (tangent) {
     out.du.setZero(n, 9);
+    out.history.reserve(static_cast<std::size_t>(6 * n * n));  // dense on a curved slip path
   } else {
     out.du.resize(0, 0);
   }
@@ -152,7 +153,11 @@ void ElasticDryFriction3dElement::periodic_response(const Eigen::MatrixXd& u,
         if (tangent) {
           const Eigen::Matrix2d P =
               (mu * fn / norm) * (Eigen::Matrix2d::Identity() - e * e.transpose());
-          S = (P * S).eval();
+          for (Eigen::Index c = 0; c < S.cols(); ++c) {  // S = P S, in place
+            const double a = S(0, c), b = S(1, c);
+            S(0, c) = P(0, 0) * a + P(0, 1) * b;
+            S(1, c) = P(1, 0) * a + P(1, 1) * b;
+          }
           S.col(i + 2 * n) += mu * kn * e;
         }
       } else {

@@ -274,7 +274,21 @@ void HarmonicBalance::nonlinear_force(const Eigen::VectorXd& U, double omega, Ei
   ++counters_.residual_evaluations;
   if (dF_dU) ++counters_.jacobian_evaluations;
   const Eigen::Map<const Eigen::MatrixXd> X(U.data(), nc, n);  // coefficients x DOFs
-  PeriodicResponse resp;
+  // The elements' responses reuse this thread's storage from one evaluation to the next
+  // (a dense history, 3-D dry friction on a curved slip path, holds 6 N_t^2 terms); a call
+  // nested in an element's response (a Python element running its own harmonic balance)
+  // takes fresh storage.
+  thread_local PeriodicResponse reused;
+  thread_local int depth = 0;
+  PeriodicResponse fresh;
+  PeriodicResponse& resp = depth == 0 ? reused : fresh;
+  struct Depth {
+    int& d;
+    explicit Depth(int& x) : d(x) { ++d; }
+    ~Depth() { --d; }
+    Depth(const Depth&) = delete;
+    Depth& operator=(const Depth&) = delete;
+  } const guard(depth);
   for (const PlacedElement& pe : elements_) {
     const Element& el = *pe.element;
     const auto dirs = static_cast<Eigen::Index>(el.directions());
@@ -345,7 +359,9 @@ void HarmonicBalance::nonlinear_force(const Eigen::VectorXd& U, double omega, Ei
           }
           W.col(k).setZero();
         }
-        W.block(nc * t.d, k, nc, 1) += t.value * P.col(t.i);
+        double* w = W.col(k).data() + nc * t.d;
+        const double* p = P.col(t.i).data();
+        for (Eigen::Index c = 0; c < nc; ++c) w[c] += t.value * p[c];
       }
       for (std::size_t k = 0; k < touched.size(); ++k) {
         const Eigen::Index col = touched[k];
