@@ -53,6 +53,22 @@ HarmonicBalance stuck_linear(const HarmonicBalance& hb) {
                          HarmonicBalanceOptions{hb.basis().harmonics(), hb.basis().time_points()});
 }
 
+// The stuck structure's angular frequency of mode `mode` (1-based), refused when the mode
+// does not exist or is a rigid-body one.
+double stuck_mode_frequency(const HarmonicBalance& hb, int mode, const char* what) {
+  const LinearModes lm = linear_modes(hb.stuck_stiffness(), hb.structure().M);
+  if (mode < 1 || mode > lm.omega.size()) {
+    throw InvalidInput(
+        fmt::format("{}.mode = {}: the structure has modes 1 .. {}", what, mode, lm.omega.size()));
+  }
+  const double w = lm.omega(mode - 1);
+  if (!(w > 0.0)) {
+    throw InvalidInput(fmt::format(
+        "{}.mode = {}: a rigid-body mode of the stuck structure (zero frequency)", what, mode));
+  }
+  return w;
+}
+
 // Indices in U of the cosine and sine coefficients of harmonic 1 of `dof`.
 std::pair<Eigen::Index, Eigen::Index> first_harmonic(const HarmonicBalance& hb, Eigen::Index dof) {
   return {hb.index(dof, static_cast<std::size_t>(hb.basis().index_of(1, 0))),
@@ -198,17 +214,7 @@ PhaseResonanceResult phase_resonance(const HarmonicBalance& hb, const PhaseReson
   const double fm = std::hypot(opt.force(ic), opt.force(is));
   const Eigen::Vector2d eF(opt.force(ic) / fm, opt.force(is) / fm);
   const Eigen::Vector2d eLag(-eF(1), eF(0));
-  const LinearModes lm = linear_modes(hb.stuck_stiffness(), hb.structure().M);
-  if (opt.mode < 1 || opt.mode > lm.omega.size()) {
-    throw InvalidInput(fmt::format("phase_resonance.mode = {}: the structure has modes 1 .. {}",
-                                   opt.mode, lm.omega.size()));
-  }
-  const double w0 = lm.omega(opt.mode - 1);
-  if (!(w0 > 0.0)) {
-    throw InvalidInput(fmt::format(
-        "phase_resonance.mode = {}: a rigid-body mode of the stuck structure (zero frequency)",
-        opt.mode));
-  }
+  const double w0 = stuck_mode_frequency(hb, opt.mode, "phase_resonance");
   const HarmonicBalance lin = stuck_linear(hb);
   const Eigen::MatrixXd C =
       hb.structure().C.size() ? hb.structure().C : Eigen::MatrixXd::Zero(hb.dofs(), hb.dofs());
@@ -407,19 +413,7 @@ SuperharmonicResonanceResult superharmonic_resonance(const HarmonicBalance& hb,
   const int r = opt.harmonic;
   const HarmonicSplit split(hb, r);
 
-  const LinearModes lm = linear_modes(hb.stuck_stiffness(), hb.structure().M);
-  if (opt.mode < 1 || opt.mode > lm.omega.size()) {
-    throw InvalidInput(
-        fmt::format("superharmonic_resonance.mode = {}: the structure has modes 1 .. {}", opt.mode,
-                    lm.omega.size()));
-  }
-  const double w_mode = lm.omega(opt.mode - 1);
-  if (!(w_mode > 0.0)) {
-    throw InvalidInput(fmt::format(
-        "superharmonic_resonance.mode = {}: a rigid-body mode of the stuck structure (zero "
-        "frequency)",
-        opt.mode));
-  }
+  const double w_mode = stuck_mode_frequency(hb, opt.mode, "superharmonic_resonance");
   // Start: the stuck linear response at omega_mode / r, plus its harmonic r driven by F_r.
   const double w0 = w_mode / r, lambda0 = std::pow(10.0, opt.log10_force_from);
   const HarmonicBalance lin = stuck_linear(hb);
