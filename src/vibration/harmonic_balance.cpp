@@ -9,6 +9,7 @@
 #include <kissfft/kissfft.hh>
 
 #include "asperity/core/error.hpp"
+#include "asperity/core/parallel.hpp"
 
 namespace asperity::vibration {
 
@@ -255,6 +256,12 @@ Eigen::MatrixXd HarmonicBalance::dynamic_stiffness_derivative(double omega,
   return kronecker_sum(s_, C_eff, basis_, unknowns_, 0.0, 1.0, 2.0 * omega);
 }
 
+namespace {
+// Element evaluation goes parallel from this many elements and element-samples on.
+constexpr std::size_t kParallelElements = 8;
+constexpr std::size_t kParallelSamples = 8192;
+}  // namespace
+
 void HarmonicBalance::nonlinear_force(const Eigen::VectorXd& U, double omega, Eigen::VectorXd& F,
                                       Eigen::MatrixXd* dF_dU, Eigen::VectorXd* dF_domega) const {
   if (U.size() != unknowns_) {
@@ -274,22 +281,12 @@ void HarmonicBalance::nonlinear_force(const Eigen::VectorXd& U, double omega, Ei
   ++counters_.residual_evaluations;
   if (dF_dU) ++counters_.jacobian_evaluations;
   const Eigen::Map<const Eigen::MatrixXd> X(U.data(), nc, n);  // coefficients x DOFs
-  // The elements' responses reuse this thread's storage from one evaluation to the next
-  // (a dense history, 3-D dry friction on a curved slip path, holds 6 N_t^2 terms); a call
-  // nested in an element's response (a Python element running its own harmonic balance)
-  // takes fresh storage.
-  thread_local PeriodicResponse reused;
-  thread_local int depth = 0;
-  PeriodicResponse fresh;
-  PeriodicResponse& resp = depth == 0 ? reused : fresh;
-  struct Depth {
-    int& d;
-    explicit Depth(int& x) : d(x) { ++d; }
-    ~Depth() { --d; }
-    Depth(const Depth&) = delete;
-    Depth& operator=(const Depth&) = delete;
-  } const guard(depth);
-  for (const PlacedElement& pe : elements_) {
+  // One element's contribution: its force coefficients Fe (nc x dirs), d Fe / d omega and
+  // its Jacobian Je ((nc dirs) x (nc dirs), index c + nc d), each only when asked for.
+  struct Contribution {
+    Eigen::MatrixXd Fe, Fw, Je;
+  };
+  const auto evaluate = [&](const PlacedElement& pe, PeriodicResponse& resp, Contribution& out) {
     const Element& el = *pe.element;
     const auto dirs = static_cast<Eigen::Index>(el.directions());
     const Eigen::MatrixXd Xe = X * pe.T.transpose();  // nc x dirs
@@ -301,13 +298,14 @@ void HarmonicBalance::nonlinear_force(const Eigen::VectorXd& U, double omega, Ei
       throw NumericalError(
           fmt::format("{} ({}): a force sample is not finite", pe.name, el.type()));
     }
-    Eigen::MatrixXd Fe(nc, dirs);
-    for (Eigen::Index d = 0; d < dirs; ++d) basis_.project(resp.f.col(d).data(), Fe.col(d).data());
-    Eigen::Map<Eigen::MatrixXd>(F.data(), nc, n) += Fe * pe.T;
-
+    out.Fe.resize(nc, dirs);
+    for (Eigen::Index d = 0; d < dirs; ++d) {
+      basis_.project(resp.f.col(d).data(), out.Fe.col(d).data());
+    }
+    out.Fw.resize(0, 0);
     if (dF_domega && el.velocity_dependent() && omega != 0.0) {
       // v = omega E D Xe: d f / d omega = (df/dv) v / omega.
-      Eigen::MatrixXd Fw = Eigen::MatrixXd::Zero(nc, dirs);
+      out.Fw.setZero(nc, dirs);
       Eigen::VectorXd sig(N), coef(nc);
       for (Eigen::Index d = 0; d < dirs; ++d) {
         sig.setZero();
@@ -315,14 +313,12 @@ void HarmonicBalance::nonlinear_force(const Eigen::VectorXd& U, double omega, Ei
           sig += resp.dv.col(d + dirs * e).cwiseProduct(v.col(e)) / omega;
         }
         basis_.project(sig.data(), coef.data());
-        Fw.col(d) = coef;
+        out.Fw.col(d) = coef;
       }
-      Eigen::Map<Eigen::MatrixXd>(dF_domega->data(), nc, n) += Fw * pe.T;
     }
-    if (!dF_dU) continue;
-
-    // Element Jacobian Je: (nc dirs) x (nc dirs), index c + nc d.
-    Eigen::MatrixXd Je = Eigen::MatrixXd::Zero(nc * dirs, nc * dirs);
+    if (!dF_dU) return;
+    Eigen::MatrixXd& Je = out.Je;
+    Je.setZero(nc * dirs, nc * dirs);
     Eigen::MatrixXd blk(nc, nc);
     for (Eigen::Index d = 0; d < dirs; ++d) {
       for (Eigen::Index e = 0; e < dirs; ++e) {
@@ -369,6 +365,12 @@ void HarmonicBalance::nonlinear_force(const Eigen::VectorXd& U, double omega, Ei
         Je.middleCols(nc * e, nc).noalias() += W.col(static_cast<Eigen::Index>(k)) * E.row(j);
       }
     }
+  };
+  const auto accumulate = [&](const PlacedElement& pe, const Contribution& c) {
+    const auto dirs = static_cast<Eigen::Index>(pe.element->directions());
+    Eigen::Map<Eigen::MatrixXd>(F.data(), nc, n) += c.Fe * pe.T;
+    if (c.Fw.size() > 0) Eigen::Map<Eigen::MatrixXd>(dF_domega->data(), nc, n) += c.Fw * pe.T;
+    if (!dF_dU) return;
     // Structure: dF/dX += (T^T (x) I) Je (T (x) I).
     for (Eigen::Index d = 0; d < dirs; ++d) {
       for (Eigen::Index p = 0; p < n; ++p) {
@@ -378,11 +380,47 @@ void HarmonicBalance::nonlinear_force(const Eigen::VectorXd& U, double omega, Ei
           for (Eigen::Index q = 0; q < n; ++q) {
             const double teq = pe.T(e, q);
             if (teq == 0.0) continue;
-            dF_dU->block(p * nc, q * nc, nc, nc) += tdp * teq * Je.block(nc * d, nc * e, nc, nc);
+            dF_dU->block(p * nc, q * nc, nc, nc) += tdp * teq * c.Je.block(nc * d, nc * e, nc, nc);
           }
         }
       }
     }
+  };
+
+  // Many elements (a finite-element interface): evaluated in parallel over the elements
+  // (core::parallel_for, ASPERITY_THREADS), then summed in element order, so that the
+  // result does not depend on the thread count. Few or cheap ones stay on this thread,
+  // where a team of threads would cost more than it saves.
+  const std::size_t ne = elements_.size();
+  if (ne >= kParallelElements && ne * static_cast<std::size_t>(N) >= kParallelSamples &&
+      core::worker_count() > 1) {
+    std::vector<Contribution> parts(ne);
+    core::parallel_for(ne, [&](std::size_t k) {
+      PeriodicResponse resp;
+      evaluate(elements_[k], resp, parts[k]);
+    });
+    for (std::size_t k = 0; k < ne; ++k) accumulate(elements_[k], parts[k]);
+    return;
+  }
+  // The elements' responses reuse this thread's storage from one evaluation to the next
+  // (a dense history, 3-D dry friction on a curved slip path, holds 6 N_t^2 terms); a call
+  // nested in an element's response (a Python element running its own harmonic balance)
+  // takes fresh storage.
+  thread_local PeriodicResponse reused;
+  thread_local int depth = 0;
+  PeriodicResponse fresh;
+  PeriodicResponse& resp = depth == 0 ? reused : fresh;
+  struct Depth {
+    int& d;
+    explicit Depth(int& x) : d(x) { ++d; }
+    ~Depth() { --d; }
+    Depth(const Depth&) = delete;
+    Depth& operator=(const Depth&) = delete;
+  } const guard(depth);
+  Contribution c;
+  for (const PlacedElement& pe : elements_) {
+    evaluate(pe, resp, c);
+    accumulate(pe, c);
   }
 }
 

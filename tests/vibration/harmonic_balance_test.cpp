@@ -14,6 +14,7 @@
 #include <random>
 
 #include "../support.hpp"
+#include "asperity/core/parallel.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 #include "asperity/hysteresis/masing.hpp"
 #include "asperity/surface/rough_flat.hpp"
@@ -442,6 +443,45 @@ TEST(VibrationAnalysis, JenkinsSingleHarmonicMatchesDescribingFunction) {
     ++checked;
   }
   EXPECT_GT(checked, 10);
+}
+
+// Issue 20: many elements are evaluated in parallel (core::parallel_for) and summed in
+// element order, so the force, its Jacobian and d/domega do not depend on the thread count:
+// 12 Jenkins and regularized Coulomb joints on a 12-DOF chain, N_t = 1024 (past the
+// parallel threshold), with one thread and with two, equal bit for bit.
+TEST(VibrationHarmonicBalance, ParallelElementsEqualSerialBitForBit) {
+  constexpr Eigen::Index n = 12;
+  Eigen::MatrixXd K = 2.0 * Eigen::MatrixXd::Identity(n, n);
+  for (Eigen::Index i = 0; i + 1 < n; ++i) K(i, i + 1) = K(i + 1, i) = -1.0;
+  std::vector<PlacedElement> elements;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Eigen::MatrixXd T = Eigen::MatrixXd::Zero(1, n);
+    T(0, i) = 1.0;
+    if (i + 1 < n) T(0, i + 1) = -1.0;
+    elements.push_back({i % 2 == 0 ? make_jenkins_element(0.3 + 0.01 * static_cast<double>(i), 0.05)
+                                   : make_coulomb_element(0.02, 50.0),
+                        T, ""});
+  }
+  const HarmonicBalance hb(
+      Structure{Eigen::MatrixXd::Identity(n, n), K, Eigen::MatrixXd::Zero(n, n)},
+      std::move(elements), HarmonicBalanceOptions{{0, 1, 2, 3}, 1024});
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  Eigen::VectorXd U(hb.unknowns());
+  for (Eigen::Index k = 0; k < U.size(); ++k) U(k) = u(rng);
+  const std::size_t before = core::worker_count();
+  Eigen::VectorXd F1, F2, w1, w2;
+  Eigen::MatrixXd J1, J2;
+  core::set_worker_count(1);
+  hb.nonlinear_force(U, 1.3, F1, &J1, &w1);
+  core::set_worker_count(2);
+  hb.nonlinear_force(U, 1.3, F2, &J2, &w2);
+  core::set_worker_count(before);
+  EXPECT_TRUE(F1 == F2);
+  EXPECT_TRUE(J1 == J2);
+  EXPECT_TRUE(w1 == w2);
+  EXPECT_GT(J1.cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_GT(w1.cwiseAbs().maxCoeff(), 0.0);  // the Coulomb joints depend on omega
 }
 
 // Issue 20: a nonlinear mode must start where the joints stick. The Jenkins SDOF's stuck
