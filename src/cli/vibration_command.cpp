@@ -676,10 +676,23 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
 
 std::string text_summary(const VibrationCase& c, const VibrationResult& r) {
   std::string out;
-  std::string types;
+  // Element types in order of first appearance, with their counts when repeated
+  // ("rough_contact x 200" for a finite-element interface).
+  std::vector<std::pair<std::string, std::size_t>> counted;
   for (const auto& e : c.elements) {
+    const std::string t = e.element->type();
+    const auto it =
+        std::find_if(counted.begin(), counted.end(), [&](const auto& tc) { return tc.first == t; });
+    if (it == counted.end()) {
+      counted.emplace_back(t, 1);
+    } else {
+      ++it->second;
+    }
+  }
+  std::string types;
+  for (const auto& [t, count] : counted) {
     if (!types.empty()) types += ", ";
-    types += e.element->type();
+    types += count > 1 ? fmt::format("{} x {}", t, count) : t;
   }
   std::string hs;
   for (int h : c.harmonic_balance.harmonics) {

@@ -344,6 +344,18 @@ def without_out_prints_the_summary(exe):
             return fail(f"exit {r.returncode}: {r.stdout} {r.stderr}")
         if sorted(os.listdir(tmp)) != ["case.toml"]:
             return fail(f"wrote {os.listdir(tmp)}")
+        # Repeated element types are counted, not listed one by one (a finite-element
+        # interface has hundreds): two Jenkins joints read "jenkins x 2".
+        with open(path, "w") as f:
+            f.write((JENKINS + EPMC).replace("[harmonic_balance]", """[[element]]
+type = "jenkins"
+T = [[1.0]]
+k_t = 0.1
+F_s = 0.3
+[harmonic_balance]"""))
+        r = subprocess.run([exe, "vibration", path], capture_output=True, text=True, timeout=300)
+        if r.returncode != 0 or "2 element(s) (jenkins x 2)" not in r.stdout:
+            return fail(f"exit {r.returncode}: {r.stdout} {r.stderr}")
     return 0
 
 
