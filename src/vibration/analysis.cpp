@@ -123,7 +123,7 @@ void require_start_in_stick(const HarmonicBalance& hb, const StuckMode& sm,
     }
     throw InvalidInput(fmt::format(
         "nonlinear_mode: log10_amplitude starts at {} in gross slip: along the stuck mode {} at "
-        "amplitude {}, {} ({}) slides at its slip limit over {:.0f} % of the period{}",
+        "amplitude {}, {} ({}) slides at its slip limit over {:.3g} % of the period{}",
         core::format_value(opt.log10_amplitude_from), opt.mode, core::format_value(a), pe.name,
         pe.element->type(), 100.0 * slipping, hint));
   }
