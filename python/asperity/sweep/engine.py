@@ -617,6 +617,37 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
 
             submit_more()
             no_workers_since = None
+
+            def heartbeat():
+                # Tasks wait for a worker silently when every worker is gone (also a
+                # finished task whose result died with its worker: it is recomputed); say so
+                # after worker_timeout seconds instead of waiting forever.
+                nonlocal no_workers_since
+                try:
+                    workers_now = len(client.nthreads())
+                except Exception as e:  # noqa: BLE001  (the scheduler itself is gone)
+                    raise ClusterError(f"lost the Dask scheduler {address_of(client)}: "
+                                       f"{type(e).__name__}: {e}; {count} of "
+                                       f"{sweep.size} samples done") from None
+                if workers_now:
+                    no_workers_since = None
+                elif no_workers_since is None:
+                    no_workers_since = time.monotonic()
+                elif time.monotonic() - no_workers_since >= worker_timeout:
+                    raise ClusterError(
+                        f"no Dask worker connected to the scheduler "
+                        f"{address_of(client)} for {worker_timeout:g} s (every worker "
+                        f"gone); {count} of {sweep.size} samples done: start workers "
+                        "(dask worker ADDRESS) and run again, or raise --worker-timeout")
+
+            def result_of(f):
+                while True:
+                    try:
+                        return f.result(timeout=HEARTBEAT_S)
+                    except TimeoutError:
+                        _check_termination()
+                        heartbeat()
+
             while futures:
                 try:
                     finished = wait([f for f, _ in futures.values()], timeout=HEARTBEAT_S,
@@ -625,29 +656,12 @@ def run(sweep: Sweep, out: str, *, scheduler: str | None = None, workers: int | 
                     finished = set()
                 _check_termination()
                 if not finished:
-                    # Heartbeat: tasks wait for a worker silently when every worker is
-                    # gone; say so after worker_timeout seconds instead of waiting forever.
-                    try:
-                        workers_now = len(client.nthreads())
-                    except Exception as e:  # noqa: BLE001  (the scheduler itself is gone)
-                        raise ClusterError(f"lost the Dask scheduler {address_of(client)}: "
-                                           f"{type(e).__name__}: {e}; {count} of "
-                                           f"{sweep.size} samples done") from None
-                    if workers_now:
-                        no_workers_since = None
-                    elif no_workers_since is None:
-                        no_workers_since = time.monotonic()
-                    elif time.monotonic() - no_workers_since >= worker_timeout:
-                        raise ClusterError(
-                            f"no Dask worker connected to the scheduler "
-                            f"{address_of(client)} for {worker_timeout:g} s (every worker "
-                            f"gone); {count} of {sweep.size} samples done: start workers "
-                            "(dask worker ADDRESS) and run again, or raise --worker-timeout")
+                    heartbeat()
                     continue
                 for f in sorted(finished, key=lambda f: futures[f.key][1]):
                     _, j = futures.pop(f.key)
                     try:
-                        done[j] = f.result()
+                        done[j] = result_of(f)
                     except KilledWorker as e:
                         # The batch took down every worker that ran it (Dask's allowed
                         # failures): its samples are recorded as failed, the rest goes on.
