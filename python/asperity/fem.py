@@ -64,27 +64,33 @@ def read_reduced_model(path: str) -> dict:
     recovery), ``output_names``, ``output_points``, ``source``, and ``rough``: ``None``, or
     for a model written with a ``[rough_contact]`` table (docs/rough_contact.md) a dict of the
     rough surface (``E_star``, ``G_star``, ``H`` [Pa], ``nu``, ``sigma``, ``R`` [m], ``eta``
-    [1/m^2], ``summit_sigma``, ``model``), each element's prestress ``pressure`` [Pa] and
+    [1/m^2], ``summit_sigma``, ``summit_heights``: None or the measured summit-height density
+    summed over, (n, 2) heights [m] from their mean and densities [1/m], ``model``), each
+    element's prestress ``pressure`` [Pa] and
     ``in_contact`` (bool: at least one asperity expected in contact).
     :func:`asperity.vibration.rough_contact_on_interface` places rough-contact elements on it."""
     return _core.fem_read_reduced_model(str(path))
 
 
-def rough_prestress(path: str, E_star: float, G_star: float, H: float, sigma: float,
+def rough_prestress(path: str, E_star: float, G_star: float, H: float, sigma: float | None,
                     R: float, eta: float, *, nu: float = 0.3, model: str = "bke",
-                    summit_sigma: bool = False, gap=None) -> dict:
+                    summit_sigma: bool = False, gap=None, summit_heights=None) -> dict:
     """The bolt preloads of a reduced model file on an interface whose normal law is the
     thesis's rough flat (docs/rough_contact.md; ``asperity structure``'s ``[rough_contact]``
     step): the surfaces as combined values (SI), an optional initial ``gap`` [m] per
-    interface element. Returns ``x`` (reduced displacement), per element ``pressure`` [Pa],
+    interface element, an optional measured ``summit_heights`` density ((n, 2) heights [m] and
+    densities, summed over instead of the Gaussian; sigma is then its standard deviation:
+    give None or that value). Returns ``x`` (reduced displacement), per element ``pressure`` [Pa],
     ``separation_star``, ``real_area_ratio``, ``normal_stiffness`` and
     ``tangential_stiffness`` [Pa/m], ``in_contact``; ``interface_load`` and ``bolt_load``
     [N], ``contact_area`` and ``real_contact_area`` [m^2], ``iterations``, ``residual``.
     Tangentially frictionless while the bolts are tightened."""
     g = np.zeros(0) if gap is None else np.ascontiguousarray(gap, dtype=float).reshape(-1)
+    table = None if summit_heights is None else np.ascontiguousarray(summit_heights, dtype=float)
     return _core.fem_rough_prestress(str(path), float(E_star), float(G_star), float(H),
-                                     float(nu), float(sigma), float(R), float(eta), str(model),
-                                     bool(summit_sigma), g)
+                                     float(nu), None if sigma is None else float(sigma),
+                                     float(R), float(eta), str(model), bool(summit_sigma), g,
+                                     table)
 
 
 def read_mesh(path: str) -> dict:

@@ -510,31 +510,50 @@ class OdfalkVingsbo(Element):
         self.backbone = backbone
 
 
+def _sigma(sigma) -> float | None:
+    # None: the length scale of a summit_heights table.
+    return None if sigma is None else float(sigma)
+
+
+def _heights(table):
+    return None if table is None else np.ascontiguousarray(table, dtype=float)
+
+
 class RoughContactSurface:
     """The two rough surfaces of an interface (combined values, SI: ``E_star``, ``G_star``,
     ``H`` [Pa], ``nu``, ``sigma`` [m], ``R`` [m], ``eta`` [1/m^2], the asperity ``model``
     ``"bke"``, ``"ke"``, ``"ceb"`` or ``"cfc"``, ``mu_cfc`` for CFC, ``summit_sigma``: sigma is
-    the summit heights' standard deviation) as the rough flat per unit nominal area, with its
+    the summit heights' standard deviation; ``summit_heights``: a measured summit-height
+    density to sum over instead of the Gaussian, an (n, 2) array of heights [m] and densities,
+    linear between rows, whose standard deviation is then sigma: give ``sigma=None`` or that
+    value) as the rough flat per unit nominal area, with its
     tangential tables over the normal pressure from ``p_low`` to ``p_high`` [Pa]
     (docs/rough_contact.md). Build it once per interface and place elements with
     :meth:`element`: the tables are shared. Raises :class:`asperity.InvalidInput` naming the
     field."""
 
-    def __init__(self, E_star: float, G_star: float, H: float, sigma: float, R: float,
+    def __init__(self, E_star: float, G_star: float, H: float, sigma: float | None, R: float,
                  eta: float, *, p_low: float, p_high: float, nu: float = 0.3,
-                 model: str = "bke", mu_cfc: float | None = None, summit_sigma: bool = False):
+                 model: str = "bke", mu_cfc: float | None = None, summit_sigma: bool = False,
+                 summit_heights=None):
         self.parameters = {"E_star": float(E_star), "G_star": float(G_star), "H": float(H),
-                           "nu": float(nu), "sigma": float(sigma), "R": float(R),
+                           "nu": float(nu), "sigma": _sigma(sigma), "R": float(R),
                            "eta": float(eta), "model": str(model), "mu_cfc": mu_cfc,
-                           "summit_sigma": bool(summit_sigma)}
+                           "summit_sigma": bool(summit_sigma),
+                           "summit_heights": _heights(summit_heights)}
         self.core = _v.rough_contact_surface(**self.parameters, p_low=float(p_low),
                                              p_high=float(p_high))
+        self.parameters["sigma"] = float(self.core.sigma)
+        self.parameters["summit_sigma"] = self.parameters["summit_sigma"] or (
+            summit_heights is not None)
 
     @staticmethod
     def max_pressure_of(**parameters) -> float:
         """The largest nominal pressure [Pa] the rough flat of these surfaces represents (its
         load at ``d = -5 sigma_a``): the highest ``p_high`` allowed."""
         p = {"nu": 0.3, "model": "bke", "mu_cfc": None, "summit_sigma": False, **parameters}
+        p["sigma"] = _sigma(p.get("sigma"))
+        p["summit_heights"] = _heights(p.get("summit_heights"))
         return float(_v.rough_flat_max_pressure(**p))
 
     @property
@@ -631,6 +650,7 @@ def rough_contact_on_interface(model, asperity_model: str | None = None,
                       stacklevel=2)
     params = {k: r[k] for k in ("E_star", "G_star", "H", "nu", "sigma", "R", "eta",
                                 "summit_sigma")}
+    params["summit_heights"] = r.get("summit_heights")
     params["model"] = asperity_model if asperity_model is not None else r["model"]
     params["mu_cfc"] = mu_cfc
     p_t = pressure[touching]

@@ -1,6 +1,7 @@
 // asperity.fem: the steps of `asperity structure` (mesh, interfaces, bolts, reduction,
 // linear modes) and reduced-model files, as dicts of numpy arrays.
 #include <nanobind/eigen/dense.h>
+#include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
@@ -15,6 +16,7 @@
 #include "asperity/fem/structure.hpp"
 #include "asperity/surface/rough_flat.hpp"
 #include "bindings.hpp"
+#include "summit_table.hpp"
 
 namespace asperity::python {
 namespace {
@@ -94,6 +96,10 @@ nb::dict model_dict(const ReducedModel& m) {
     rd["R"] = r.R;
     rd["eta"] = r.eta;
     rd["summit_sigma"] = r.summit_sigma;
+    if (r.summit_heights)
+      rd["summit_heights"] = summit_table_array(*r.summit_heights, r.sigma);
+    else
+      rd["summit_heights"] = nb::none();
     rd["model"] = r.model;
     rd["pressure"] = array(r.pressure);
     Eigen::Matrix<bool, Eigen::Dynamic, 1> touching(static_cast<Eigen::Index>(r.in_contact.size()));
@@ -169,14 +175,17 @@ void bind_fem_structure(nb::module_& m) {
       "direction [Pa/m] (3 per element: t1, t2, n).");
   m.def(
       "fem_rough_prestress",
-      [](const std::string& path, double E_star, double G_star, double H, double nu, double sigma,
-         double R, double eta, const std::string& model, bool summit_sigma,
-         const Eigen::VectorXd& gap) {
+      [](const std::string& path, double E_star, double G_star, double H, double nu,
+         std::optional<double> sigma_given, double R, double eta, const std::string& model,
+         bool summit_sigma, const Eigen::VectorXd& gap,
+         const std::optional<Eigen::MatrixXd>& summit_heights) {
         const ReducedModel rm = read_reduced_model(path);
+        double sigma = 0.0;
+        auto table = summit_table_from(summit_heights, sigma_given, sigma, summit_sigma);
         // The rough flat per unit nominal area (A0 = 1 m^2): its force scale is K H [Pa].
-        const auto flat =
-            surface::RoughFlat::from_combined(E_star, G_star, H, nu, sigma, R, eta,
-                                              contact::parse_model_name(model), {}, summit_sigma);
+        const auto flat = surface::RoughFlat::from_combined(E_star, G_star, H, nu, sigma, R, eta,
+                                                            contact::parse_model_name(model), {},
+                                                            summit_sigma, std::move(table));
         const RoughSurfaceScales scales{
             .sigma = sigma, .pressure_scale = contact::hardness_factor(nu) * H, .eta = eta};
         const RoughPrestress r = [&] {
@@ -203,8 +212,8 @@ void bind_fem_structure(nb::module_& m) {
         d["residual"] = r.residual;
         return d;
       },
-      "path"_a, "E_star"_a, "G_star"_a, "H"_a, "nu"_a, "sigma"_a, "R"_a, "eta"_a, "model"_a,
-      "summit_sigma"_a, "gap"_a,
+      "path"_a, "E_star"_a, "G_star"_a, "H"_a, "nu"_a, "sigma"_a.none(), "R"_a, "eta"_a, "model"_a,
+      "summit_sigma"_a, "gap"_a, "summit_heights"_a.none() = nb::none(),
       "The bolt preloads of a reduced model file on its interface with the rough flat's normal "
       "law (fem::rough_prestress): pressures, contact area, linearised stiffnesses.");
 }

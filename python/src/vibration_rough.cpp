@@ -22,6 +22,7 @@
 #include "asperity/surface/rough_flat.hpp"
 #include "asperity/vibration/rough_contact.hpp"
 #include "bindings.hpp"
+#include "summit_table.hpp"
 
 namespace asperity::python {
 
@@ -31,9 +32,12 @@ using namespace asperity::vibration;
 namespace {
 
 RoughInterfaceParameters interface_parameters(double E_star, double G_star, double H, double nu,
-                                              double sigma, double R, double eta,
-                                              const std::string& model,
-                                              std::optional<double> mu_cfc, bool summit_sigma) {
+                                              std::optional<double> sigma_given, double R,
+                                              double eta, const std::string& model,
+                                              std::optional<double> mu_cfc, bool summit_sigma,
+                                              const std::optional<Eigen::MatrixXd>& heights) {
+  double sigma = 0.0;
+  auto table = summit_table_from(heights, sigma_given, sigma, summit_sigma);
   RoughInterfaceParameters p{.E_star = E_star,
                              .G_star = G_star,
                              .H = H,
@@ -43,7 +47,8 @@ RoughInterfaceParameters interface_parameters(double E_star, double G_star, doub
                              .eta = eta,
                              .model = contact::parse_model_name(model),
                              .friction = {},
-                             .summit_sigma = summit_sigma};
+                             .summit_sigma = summit_sigma,
+                             .summit_heights = std::move(table)};
   if (mu_cfc) {
     core::require_positive("rough_contact.mu_cfc", *mu_cfc);
     p.friction.mu_cfc = *mu_cfc;
@@ -55,7 +60,7 @@ RoughInterfaceParameters interface_parameters(double E_star, double G_star, doub
 // The largest pressure the rough flat represents (its load at d = -5 sigma_a) [Pa].
 double flat_max_pressure(const RoughInterfaceParameters& p) {
   return surface::RoughFlat::from_combined(p.E_star, p.G_star, p.H, p.nu, p.sigma, p.R, p.eta,
-                                           p.model, p.friction, p.summit_sigma)
+                                           p.model, p.friction, p.summit_sigma, p.summit_heights)
              .max_load_star() *
          contact::hardness_factor(p.nu) * p.H;
 }
@@ -90,28 +95,30 @@ void bind_vibration_rough(nb::module_& vibration) {
 
   vibration.def(
       "rough_contact_surface",
-      [](double E_star, double G_star, double H, double nu, double sigma, double R, double eta,
-         const std::string& model, std::optional<double> mu_cfc, bool summit_sigma, double p_low,
-         double p_high) {
-        const RoughInterfaceParameters p =
-            interface_parameters(E_star, G_star, H, nu, sigma, R, eta, model, mu_cfc, summit_sigma);
+      [](double E_star, double G_star, double H, double nu, std::optional<double> sigma, double R,
+         double eta, const std::string& model, std::optional<double> mu_cfc, bool summit_sigma,
+         double p_low, double p_high, const std::optional<Eigen::MatrixXd>& summit_heights) {
+        const RoughInterfaceParameters p = interface_parameters(
+            E_star, G_star, H, nu, sigma, R, eta, model, mu_cfc, summit_sigma, summit_heights);
         nb::gil_scoped_release release;
         return std::make_shared<RoughContactSurface>(p, p_low, p_high);
       },
-      "E_star"_a, "G_star"_a, "H"_a, "nu"_a, "sigma"_a, "R"_a, "eta"_a, "model"_a,
+      "E_star"_a, "G_star"_a, "H"_a, "nu"_a, "sigma"_a.none(), "R"_a, "eta"_a, "model"_a,
       "mu_cfc"_a.none(), "summit_sigma"_a, "p_low"_a, "p_high"_a,
+      "summit_heights"_a.none() = nb::none(),
       "The rough surface of an interface (combined values, SI) with tables from p_low to "
       "p_high [Pa].");
 
   vibration.def(
       "rough_flat_max_pressure",
-      [](double E_star, double G_star, double H, double nu, double sigma, double R, double eta,
-         const std::string& model, std::optional<double> mu_cfc, bool summit_sigma) {
+      [](double E_star, double G_star, double H, double nu, std::optional<double> sigma, double R,
+         double eta, const std::string& model, std::optional<double> mu_cfc, bool summit_sigma,
+         const std::optional<Eigen::MatrixXd>& summit_heights) {
         return flat_max_pressure(interface_parameters(E_star, G_star, H, nu, sigma, R, eta, model,
-                                                      mu_cfc, summit_sigma));
+                                                      mu_cfc, summit_sigma, summit_heights));
       },
-      "E_star"_a, "G_star"_a, "H"_a, "nu"_a, "sigma"_a, "R"_a, "eta"_a, "model"_a,
-      "mu_cfc"_a.none(), "summit_sigma"_a,
+      "E_star"_a, "G_star"_a, "H"_a, "nu"_a, "sigma"_a.none(), "R"_a, "eta"_a, "model"_a,
+      "mu_cfc"_a.none(), "summit_sigma"_a, "summit_heights"_a.none() = nb::none(),
       "The largest nominal pressure [Pa] the rough flat of these surfaces represents.");
 
   vibration.def(

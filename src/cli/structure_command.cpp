@@ -93,6 +93,10 @@ Json summary(const StructureCase& c, const StructureResult& r) {
          "rough flat (thesis Eq. 4.4) per interface element, frictionless while the bolts are "
          "tightened; stiffnesses linearised about it (docs/rough_contact.md)"},
         {"asperity_model", std::string(contact::to_string(c.rough.model))},
+        {"summit_heights", c.rough.heights ? fmt::format("measured table ({} points)",
+                                                         c.rough.heights->z_star().size())
+                                           : std::string("gaussian")},
+        {"sigma_m", c.rough.sigma},
         {"bolt_load_N", q.bolt_load},
         {"interface_normal_force_N", q.interface_load},
         {"contact_area_m2", q.contact_area},

@@ -229,6 +229,15 @@ void write_reduced_model(const std::string& path, const ReducedModel& model) {
       for (Eigen::Index e = 0; e < touching.rows(); ++e)
         touching(e, 0) = r->in_contact[static_cast<std::size_t>(e)] ? 1.0 : 0.0;
       write_matrix(mat.get(), "rough_in_contact", touching, path);
+      if (const auto& table = r->summit_heights) {
+        const auto n = static_cast<Eigen::Index>(table->z_star().size());
+        Eigen::MatrixXd heights(n, 2);
+        for (Eigen::Index k = 0; k < n; ++k) {
+          heights(k, 0) = table->z_star()[static_cast<std::size_t>(k)];
+          heights(k, 1) = table->density_star()[static_cast<std::size_t>(k)];
+        }
+        write_matrix(mat.get(), "rough_summit_heights", heights, path);
+      }
     }
   }
   std::error_code ec;
@@ -301,6 +310,21 @@ ReducedModel read_reduced_model(const std::string& path) {
       const Eigen::MatrixXd touching = require(mat.get(), "rough_in_contact", path);
       for (Eigen::Index e = 0; e < touching.size(); ++e)
         r.in_contact.push_back(touching.reshaped()[e] != 0.0 ? 1 : 0);
+      if (const auto heights = read_matrix(mat.get(), "rough_summit_heights", path)) {
+        if (heights->cols() != 2)
+          throw InvalidInput(
+              fmt::format("\"{}\": rough_summit_heights is {} x {}; expected n x 2 (z*, phi*)",
+                          path, heights->rows(), heights->cols()));
+        const Eigen::VectorXd z = heights->col(0), p = heights->col(1);
+        r.summit_heights = std::make_shared<const surface::SummitHeightTable>(
+            std::vector<double>(z.begin(), z.end()), std::vector<double>(p.begin(), p.end()),
+            fmt::format("rough_summit_heights of \"{}\"", path));
+        if (!r.summit_sigma)
+          throw InvalidInput(fmt::format(
+              "\"{}\": rough_summit_heights needs rough_surface's summit_sigma = 1 (sigma the "
+              "summit heights' standard deviation)",
+              path));
+      }
       m.rough = std::move(r);
     }
   } else {

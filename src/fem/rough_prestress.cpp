@@ -28,7 +28,19 @@ class LoadingLaw {
  public:
   explicit LoadingLaw(const surface::RoughFlat& flat)
       : d_min_(-5.0 * flat.sigma_a_over_sigma() * (1.0 - 1e-9)) {
-    const auto n = static_cast<std::size_t>(std::ceil((kOpenSeparation - d_min_) / kStep)) + 1;
+    auto n = static_cast<std::size_t>(std::ceil((kOpenSeparation - d_min_) / kStep)) + 1;
+    if (const auto* table = flat.summit_heights()) {
+      // A measured table ends at its highest summit: the grid stops half a step below it
+      // (P* there ~ (top - d*)^{7/2} as the density falls linearly to zero; 0 beyond).
+      const double top = table->top() - 0.5 * kStep;
+      if (!(top > d_min_ + 3.0 * kStep)) {
+        throw InvalidInput(fmt::format(
+            "rough prestress: the summit-height table's highest summit lies at z/sigma = {}, "
+            "below the rough flat's lowest separation {}: it cannot be a measured surface's",
+            table->top(), d_min_));
+      }
+      n = std::min(n, static_cast<std::size_t>(std::floor((top - d_min_) / kStep)) + 1);
+    }
     std::vector<double> lnP(n);
     core::parallel_for(n, [&](std::size_t k) {
       const double P = flat.normal_load_star(d_min_ + static_cast<double>(k) * kStep);

@@ -267,9 +267,10 @@ StructureCase read_structure_case(const std::string& path) {
     }
   if (const auto* rc = tc::subtable(doc, "rough_contact", "top level")) {
     const std::string where = "[rough_contact]";
-    tc::check_keys(*rc, where,
-                   {"hardness", "sigma", "sigma_summits", "R", "eta", "surface_data",
-                    "asperity_model", "gap_map", "gap_variable", "gap_origin"});
+    tc::check_keys(
+        *rc, where,
+        {"hardness", "sigma", "sigma_summits", "R", "eta", "surface_data", "asperity_model",
+         "gap_map", "gap_variable", "gap_origin", "summit_distribution"});
     RoughContactCase& rough = c.rough;
     rough.given = true;
     rough.hardness = r.quantity(*rc, "hardness", where, core::dim::pressure, 0);
@@ -302,15 +303,13 @@ StructureCase read_structure_case(const std::string& path) {
                            "(3 or more points) with a density >= 0",
                            rough.surface_data),
                rc->get("surface_data"));
-      double I = 0, m1 = 0, m2 = 0;  // trapezoidal moments of the summit density
+      double I = 0;  // the density's integral (trapezoidal: it is linear between nodes)
       for (Eigen::Index k = 0; k + 1 < z.size(); ++k) {
         const double h = z(k + 1) - z(k);
         if (!(h > 0))
           r.fail(where, fmt::format("\"{}\": normzinterp must increase", rough.surface_data),
                  rc->get("surface_data"));
         I += 0.5 * h * (pz(k) + pz(k + 1));
-        m1 += 0.5 * h * (pz(k) * z(k) + pz(k + 1) * z(k + 1));
-        m2 += 0.5 * h * (pz(k) * z(k) * z(k) + pz(k + 1) * z(k + 1) * z(k + 1));
       }
       if (!(I > 0) || std::abs(I - 1.0) > 1e-3)
         r.fail(where,
@@ -318,9 +317,34 @@ StructureCase read_structure_case(const std::string& path) {
                            "density integrates to 1",
                            rough.surface_data, I),
                rc->get("surface_data"));
-      rough.sigma = z_max * std::sqrt(std::max(0.0, m2 / I - (m1 / I) * (m1 / I)));
+      std::vector<double> z_m(static_cast<std::size_t>(z.size())), p(z_m.size());
+      for (Eigen::Index k = 0; k < z.size(); ++k) {
+        z_m[static_cast<std::size_t>(k)] = z.reshaped()(k) * z_max;
+        p[static_cast<std::size_t>(k)] = pz.reshaped()(k);
+      }
+      try {
+        rough.heights = std::make_shared<const surface::SummitHeightTable>(
+            z_m, p, fmt::format("pzinterp over normzinterp of \"{}\"", rough.surface_data));
+      } catch (const InvalidInput& e) {
+        r.fail(where, e.what(), rc->get("surface_data"));
+      }
+      rough.sigma = rough.heights->standard_deviation();
+      const std::string shape = r.text(*rc, "summit_distribution", where, "table");
+      if (shape == "gaussian") {
+        rough.heights = nullptr;
+      } else if (shape != "table") {
+        r.fail(where,
+               fmt::format("`summit_distribution` = \"{}\": allowed are \"table\" (the measured "
+                           "density, the default) and \"gaussian\" (a Gaussian of its standard "
+                           "deviation)",
+                           shape),
+               rc->get("summit_distribution"));
+      }
       rough.summit_sigma = true;
     } else {
+      if (rc->get("summit_distribution"))
+        r.fail(where, "`summit_distribution` needs a measured table: give `surface_data`",
+               rc->get("summit_distribution"));
       if (rc->get("sigma") && rc->get("sigma_summits"))
         r.fail(where, "give `sigma` (surface heights) or `sigma_summits`, not both", rc);
       rough.summit_sigma = rc->get("sigma_summits") != nullptr;
@@ -553,11 +577,12 @@ StructureResult run_structure(const StructureCase& c, const StructureOptions& op
     };
     const auto ma = material_of(c.interfaces.front().spec.body_a);
     const auto mb = material_of(c.interfaces.front().spec.body_b);
-    const auto flat = c.rough.summit_sigma
-                          ? surface::RoughFlat::from_summit_heights(
-                                ma, mb, c.rough.sigma, c.rough.eta, c.rough.R, 1.0, c.rough.model)
-                          : surface::RoughFlat::from_dimensional(ma, mb, c.rough.sigma, c.rough.eta,
-                                                                 c.rough.R, 1.0, c.rough.model);
+    const auto flat =
+        c.rough.summit_sigma
+            ? surface::RoughFlat::from_summit_heights(ma, mb, c.rough.sigma, c.rough.eta, c.rough.R,
+                                                      1.0, c.rough.model, {}, c.rough.heights)
+            : surface::RoughFlat::from_dimensional(ma, mb, c.rough.sigma, c.rough.eta, c.rough.R,
+                                                   1.0, c.rough.model);
     const RoughSurfaceScales scales{
         .sigma = c.rough.sigma, .pressure_scale = flat.scales()->force, .eta = c.rough.eta};
     if (c.rough.gap) res.gap = gap_at_elements(*c.rough.gap, m, c.rough.gap_origin);
@@ -571,6 +596,7 @@ StructureResult run_structure(const StructureCase& c, const StructureOptions& op
                                    .R = c.rough.R,
                                    .eta = c.rough.eta,
                                    .summit_sigma = c.rough.summit_sigma,
+                                   .summit_heights = c.rough.heights,
                                    .model = std::string(contact::to_string(c.rough.model)),
                                    .pressure = res.rough->pressure,
                                    .in_contact = res.rough->in_contact};

@@ -23,8 +23,9 @@ struct LoadingMoments {
 /// (1 - w)^{1/2} next to a slip boundary), inner chunks 20-point Gauss-Legendre. The
 /// nodes move continuously with delta* except where a slip boundary appears or vanishes
 /// (critical_displacements), so Q*_l is as smooth in delta* as the exact sum between
-/// those points. Relative accuracy ~1e-13 (tests/surface/rough_flat_test.cpp checks it
-/// against the adaptive quadrature of RoughFlat).
+/// those points. Over a measured summit-height table its nodes split the pieces too (inner
+/// pieces 10-point Gauss-Legendre). Relative accuracy ~1e-13 (tests/surface/rough_flat_test.cpp
+/// checks it against the adaptive quadrature of RoughFlat).
 class FastLoadingSum {
  public:
   FastLoadingSum(const RoughFlat& flat, double d_star);
@@ -51,6 +52,7 @@ class FastLoadingSum {
   [[nodiscard]] std::vector<double> boundaries(double level) const;
 
   const RoughFlat& flat_;
+  const SummitHeightTable* table_;  // null: Gaussian heights (Eq. 4.2)
   double d_;
   double s_a_;
   double wc_;
@@ -60,6 +62,7 @@ class FastLoadingSum {
   double norm_ = 0.0;
   double Q_max_ = 0.0;
   std::vector<double> law_breaks_;
+  std::vector<double> table_nodes_;  // a measured table's nodes in u, ascending
   std::vector<Extremum> extrema_;
   // lambda sampled on each law segment, including its interior extrema, so that lambda is
   // monotone between neighbouring samples: [segment_start_[k], segment_start_[k+1]).

@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "asperity/contact/mindlin.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/core/numerics.hpp"
 #include "asperity/core/validate.hpp"
+#include "detail/piecewise_quadrature.hpp"
 
 namespace asperity::surface {
 
@@ -44,9 +46,14 @@ struct Break {
 class Kernel {
  public:
   Kernel(const RoughFlat& flat, double d_star)
-      : flat_(flat), d_(d_star), s_a_(flat.sigma_a_over_sigma()), wc_(flat.omega_c_star()) {
-    const double z0 = std::max(d_, 0.0);
-    u_max_ = std::sqrt(z0 * z0 + 2.0 * kTailExponent * s_a_ * s_a_) - d_;
+      : flat_(flat),
+        table_(flat.summit_heights()),
+        d_(d_star),
+        s_a_(flat.sigma_a_over_sigma()),
+        wc_(flat.omega_c_star()) {
+    auto range = detail::height_range(table_, d_, s_a_, kTailExponent);
+    u_max_ = range.u_max;
+    table_breaks_ = std::move(range.nodes);
     for (double w : flat.laws().break_points()) {
       const double u = w * wc_;
       if (u < u_max_) law_breaks_.push_back(u);
@@ -55,7 +62,8 @@ class Kernel {
   }
 
   [[nodiscard]] double u_max() const { return u_max_; }
-  [[nodiscard]] double phi(double u) const {  // Eq. 4.2
+  [[nodiscard]] double phi(double u) const {  // Eq. 4.2, or the measured table
+    if (table_) return table_->density(d_ + u);
     const double z = (d_ + u) / s_a_;
     return norm_ * std::exp(-0.5 * z * z);
   }
@@ -135,7 +143,8 @@ class Kernel {
   /// Integral over u in [0, u_max] of g, split at u = 0, the law branch points and the
   /// given slip boundaries, where the integrand may behave like (u - u_b)^{k/2} (or, for
   /// CEB near w = 1, like a square root just outside the piece): tanh-sinh on each piece,
-  /// whose double-exponential clustering at the ends copes with both.
+  /// whose double-exponential clustering at the ends copes with both; a measured table's
+  /// nodes split the pieces further (detail::integrate_between_nodes).
   template <class G>
   [[nodiscard]] double integrate(G g, const std::vector<double>& slip_breaks = {}) const {
     std::vector<double> breaks;
@@ -147,33 +156,31 @@ class Kernel {
     }
     breaks.push_back(u_max_);
     std::sort(breaks.begin(), breaks.end());
-    double total = 0.0;
-    for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
-      if (!(breaks[i + 1] > breaks[i])) continue;
-      auto checked = [&](double u) {
-        const double v = g(u);
-        if (!std::isfinite(v)) {
-          throw NumericalError(fmt::format(
-              "rough-flat statistical sum: non-finite integrand {} at z* - d* = {:.17g} (d* = {})",
-              v, u, d_));
-        }
-        return v;
-      };
-      total += core::integrate_tanh_sinh(checked, breaks[i], breaks[i + 1], kQuadratureTol,
-                                         "rough-flat statistical sum")
-                   .value;
-    }
-    return total;
+    auto checked = [&](double u) {
+      const double v = g(u);
+      if (!std::isfinite(v)) {
+        throw NumericalError(fmt::format(
+            "rough-flat statistical sum: non-finite integrand {} at z* - d* = {:.17g} (d* = {})", v,
+            u, d_));
+      }
+      return v;
+    };
+    const auto tanh_sinh = [](const auto& f, double a, double b) {
+      return core::integrate_tanh_sinh(f, a, b, kQuadratureTol, "rough-flat statistical sum").value;
+    };
+    return detail::integrate_between_nodes(checked, tanh_sinh, breaks, table_breaks_);
   }
 
  private:
   const RoughFlat& flat_;
+  const SummitHeightTable* table_;
   double d_;
   double s_a_;
   double wc_;
   double u_max_ = 0.0;
   double norm_ = 0.0;
   std::vector<double> law_breaks_;
+  std::vector<double> table_breaks_;  // the table's nodes in u, ascending
 };
 
 void require_separation(double d_star) {
@@ -183,6 +190,11 @@ void require_separation(double d_star) {
 }  // namespace
 
 void RoughFlatParameters::validate() const {
+  if (summit_heights && !summit_sigma) {
+    throw InvalidInput(
+        "a summit-height table sets the length scale (its standard deviation): the rough flat "
+        "needs summit_sigma = true with it");
+  }
   if (summit_sigma && !(std::isfinite(beta) && beta > 0.0)) {
     throw InvalidInput(
         fmt::format("beta = sigma_a R eta = {} is not allowed: give sigma_a, R and eta > 0",
@@ -251,7 +263,8 @@ void validate_from_inputs(const RoughFlatParameters& p, double E_star, double H,
 
 RoughFlat RoughFlat::from_combined(double E_star, double G_star, double H, double nu, double sigma,
                                    double R, double eta, contact::ModelName model,
-                                   const contact::FrictionParameters& friction, bool summit_sigma) {
+                                   const contact::FrictionParameters& friction, bool summit_sigma,
+                                   std::shared_ptr<const SummitHeightTable> heights) {
   core::require_positive("E_star", E_star);
   core::require_positive("G_star", G_star);
   core::require_positive("H", H);
@@ -269,10 +282,16 @@ RoughFlat RoughFlat::from_combined(double E_star, double G_star, double H, doubl
   if (summit_sigma) {
     // As from_summit_heights: sigma is sigma_a itself (no McCool relation).
     p.summit_sigma = true;
+    p.summit_heights = std::move(heights);
     p.psi =
         2.0 * E_star / (std::numbers::pi * contact::hardness_factor(nu) * H) * std::sqrt(sigma / R);
     validate_from_inputs(p, E_star, H, "sigma_a", sigma, R, eta);
     return RoughFlat(p);
+  }
+  if (heights) {
+    throw InvalidInput(
+        "a summit-height table needs sigma to be the summit heights' standard deviation "
+        "(summit_sigma), not the rms roughness of the surface");
   }
   if (!(p.beta > 0.01928)) p.validate();  // throws with the message about beta
   const double s_a = std::sqrt(1.0 - 3.717e-4 / (p.beta * p.beta));
@@ -286,7 +305,8 @@ RoughFlat RoughFlat::from_combined(double E_star, double G_star, double H, doubl
 RoughFlat RoughFlat::from_summit_heights(const contact::Material& body1,
                                          const contact::Material& body2, double sigma_summits,
                                          double eta, double R, double A0, contact::ModelName model,
-                                         const contact::FrictionParameters& friction) {
+                                         const contact::FrictionParameters& friction,
+                                         std::shared_ptr<const SummitHeightTable> heights) {
   core::require_positive("sigma_a (standard deviation of the summit heights)", sigma_summits);
   core::require_positive("eta (areal density of asperities)", eta);
   core::require_positive("R (mean asperity radius)", R);
@@ -295,6 +315,7 @@ RoughFlat RoughFlat::from_summit_heights(const contact::Material& body1,
   RoughFlatParameters p;
   p.model = model;
   p.summit_sigma = true;
+  p.summit_heights = std::move(heights);
   p.beta = sigma_summits * R * eta;
   p.nu = pair.nu;
   p.G_over_E = pair.G_star / pair.E_star;
@@ -400,6 +421,7 @@ double RoughFlat::contact_area_ratio(double d_star) const {
 
 double RoughFlat::contact_fraction(double d_star) const {
   require_separation(d_star);
+  if (const auto* t = summit_heights()) return t->survival(d_star);
   return 0.5 * std::erfc(d_star / (s_a_ * std::numbers::sqrt2));
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "asperity/core/numerics.hpp"
 #include "asperity/core/validate.hpp"
 #include "asperity/surface/rough_flat.hpp"
+#include "detail/piecewise_quadrature.hpp"
 
 namespace asperity::surface {
 
@@ -29,12 +31,17 @@ double RoughFlat::normal_load_after_set_star(double d_star, double d_set_star) c
   const double s_a = s_a_;
   const double wc = omega_c_star_;
   const double norm = 1.0 / (std::sqrt(2.0 * std::numbers::pi) * s_a);
-  const auto phi = [&](double z) {  // Eq. 4.2
+  const SummitHeightTable* table = summit_heights();
+  const auto phi = [&](double z) {  // Eq. 4.2, or the measured table
+    if (table) return table->density(z);
     const double t = z / s_a;
     return norm * std::exp(-0.5 * t * t);
   };
   const double z0 = std::max(std::min(d_star, d_set_star), 0.0);
-  const double z_max = std::sqrt(z0 * z0 + 2.0 * kTailExponent * s_a * s_a);
+  const double z_max = table ? table->top() : std::sqrt(z0 * z0 + 2.0 * kTailExponent * s_a * s_a);
+  const std::vector<double> nodes =
+      table ? table->nodes_between(-std::numeric_limits<double>::infinity(), table->top())
+            : std::vector<double>{};
   const std::vector<double> law_breaks = laws_.break_points();
   // delta_u(w_m) = 3 P_m/(4 E* a_m) over omega_c: the elastic recovery of an asperity set at
   // w_m. In the laws' scales, (P_m/P_c)/(a_m/a_c) times 3 P_c/(4 E* a_c omega_c) = c_a/c_P,
@@ -60,17 +67,13 @@ double RoughFlat::normal_load_after_set_star(double d_star, double d_set_star) c
   };
   const auto integrate = [&](auto g, std::vector<double> breaks) {
     std::sort(breaks.begin(), breaks.end());
-    double total = 0.0;
-    for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
-      if (!(breaks[i + 1] > breaks[i])) continue;
-      total += core::integrate_tanh_sinh(g, breaks[i], breaks[i + 1], kQuadratureTol,
-                                         "rough-flat unloading sum")
-                   .value;
-    }
-    return total;
+    const auto tanh_sinh = [](const auto& f, double a, double b) {
+      return core::integrate_tanh_sinh(f, a, b, kQuadratureTol, "rough-flat unloading sum").value;
+    };
+    return detail::integrate_between_nodes(g, tanh_sinh, breaks, nodes);
   };
   double total = 0.0;
-  if (d_star < d_set_star) {
+  if (d_star < d_set_star && d_star < z_max) {
     std::vector<double> b{d_star, std::min(d_set_star, z_max)};
     for (double w : law_breaks) {
       const double z = d_star + w * wc;

@@ -589,7 +589,8 @@ std::vector<PlacedElement> parse_interface_rough_contact(const toml::table& t, s
                               .model = core::toml_case::named_choice(
                                   t, "asperity_model", w, r.model, contact::parse_model_name),
                               .friction = {},
-                              .summit_sigma = r.summit_sigma};
+                              .summit_sigma = r.summit_sigma,
+                              .summit_heights = r.summit_heights};
   if (t.get("mu_cfc")) rp.friction.mu_cfc = number(t, "mu_cfc", w, 0.0);
   // The elements in contact by the prestress's rule (at least one asperity expected in
   // contact, eta A Phi(d) >= 1): those its linearised modes stiffen.
@@ -615,7 +616,7 @@ std::vector<PlacedElement> parse_interface_rough_contact(const toml::table& t, s
   // docs/rough_contact.md), below the largest load the rough flat represents.
   const double p_flat_max =
       surface::RoughFlat::from_combined(rp.E_star, rp.G_star, rp.H, rp.nu, rp.sigma, rp.R, rp.eta,
-                                        rp.model, rp.friction, rp.summit_sigma)
+                                        rp.model, rp.friction, rp.summit_sigma, rp.summit_heights)
           .max_load_star() *
       contact::hardness_factor(rp.nu) * rp.H;
   const auto surface = std::make_shared<const RoughContactSurface>(

@@ -36,7 +36,7 @@ constexpr std::size_t kMaxPeriods = 64;
 surface::RoughFlat make_flat(const RoughInterfaceParameters& c) {
   c.validate();
   return surface::RoughFlat::from_combined(c.E_star, c.G_star, c.H, c.nu, c.sigma, c.R, c.eta,
-                                           c.model, c.friction, c.summit_sigma);
+                                           c.model, c.friction, c.summit_sigma, c.summit_heights);
 }
 
 void require_finite_samples(const Eigen::MatrixXd& u) {
@@ -105,6 +105,11 @@ void RoughInterfaceParameters::validate() const {
   core::require_positive("rough_contact.sigma", sigma);
   core::require_positive("rough_contact.R", R);
   core::require_positive("rough_contact.eta", eta);
+  if (summit_heights && !summit_sigma) {
+    throw InvalidInput(
+        "rough_contact: a summit-height table needs sigma to be the summit heights' standard "
+        "deviation (summit_sigma)");
+  }
   if (!(G_star < E_star)) {
     throw InvalidInput(fmt::format("rough_contact.G_star = {} Pa: must be below E_star = {} Pa",
                                    core::format_value(G_star), core::format_value(E_star)));

@@ -40,6 +40,25 @@ def write(tmp, name, text):
     return path
 
 
+def rough_on_every_element(tmp, model):
+    """A vibration case with rough_contact on every interface element of the model file in
+    contact at its rough prestress, and mode 7's backbone at small amplitudes."""
+    return write(tmp, "rough.toml", f"""[structure]
+model = "{model}"
+rayleigh = {{ alpha = 0.0, beta = 1e-7 }}
+output_dofs = [0]
+[[element]]
+type = "rough_contact"
+T = {{ interface_element = "all" }}
+[harmonic_balance]
+max = 1
+time_points = 32
+[nonlinear_mode]
+mode = 7
+log10_amplitude = {{ from = -10.0, to = -8.0 }}
+""")
+
+
 def case_summary_keys(exe, tmp):
     p = run(exe, ["structure", EXAMPLE, "--json"])
     if p.returncode != 0:
@@ -142,20 +161,7 @@ points = 5
     # for two eigensolvers), and the nonlinear mode starts there (within zeta^2 = 8.4e-6,
     # EPMC's frequency of a damped mode).
     summary = json.load(open(os.path.join(out, "summary.json")))
-    case = write(tmp, "rough.toml", f"""[structure]
-model = "{os.path.join(out, 'reduced_model.mat')}"
-rayleigh = {{ alpha = 0.0, beta = 1e-7 }}
-output_dofs = [0]
-[[element]]
-type = "rough_contact"
-T = {{ interface_element = "all" }}
-[harmonic_balance]
-max = 1
-time_points = 32
-[nonlinear_mode]
-mode = 7
-log10_amplitude = {{ from = -10.0, to = -8.0 }}
-""")
+    case = rough_on_every_element(tmp, os.path.join(out, "reduced_model.mat"))
     p = run(exe, ["vibration", case, "--json"])
     if p.returncode != 0:
         return fail(f"rough_contact on every element: exit {p.returncode}: {p.stderr}")
@@ -335,6 +341,115 @@ def case_bad_input_model_missing_matrix(exe, tmp):
     if p.returncode != 2 or "has no matrix named K" not in p.stderr:
         return fail(f"exit {p.returncode}: {p.stderr}")
     return 0
+
+
+BRB_SURFACE = os.path.join(HERE, "..", "..", "examples", "brb", "brb_surface_data.mat")
+
+
+def surface_case(tmp, extra="", pz=None):
+    """The two-block example with the measured BRB summit table (surface_data) in place of
+    sigma, R and eta; pz replaces its density."""
+    d = scipy.io.loadmat(BRB_SURFACE)
+    keep = {k: d[k] for k in ["Re", "area_density", "z_max", "normzinterp", "pzinterp"]}
+    if pz is not None:
+        keep["pzinterp"] = pz
+    scipy.io.savemat(os.path.join(tmp, "surface.mat"), keep)
+    text = TWO_BLOCKS.replace('sigma = "2.7 um"\nR = "30.1 um"\neta = "2.9e8 m^-2"\n',
+                              f'surface_data = "surface.mat"\n{extra}')
+    # A coarser mesh than the example's (a third of its run time): the checks below are
+    # about the summit table, not the mesh.
+    text = text.replace("size = 6\ninterface_size = 3\nhole_size = 2\n",
+                        "size = 10\ninterface_size = 5\nhole_size = 3\n")
+    assert "surface_data" in text and "size = 10\n" in text
+    return write(tmp, "surface.toml", text)
+
+
+def linear_moments(z, p):
+    """Integral, mean and variance of the density linear between nodes (exact)."""
+    a, b, pa, pb = z[:-1], z[1:], p[:-1], p[1:]
+    h = b - a
+    I = np.sum(0.5 * h * (pa + pb))
+    m1 = np.sum(h / 6 * (pa * (2 * a + b) + pb * (a + 2 * b))) / I
+    m2 = np.sum(h / 12 * (pa * (3 * a * a + 2 * a * b + b * b) + pb * (a * a + 2 * a * b + 3 * b * b))) / I
+    return I, m1, m2 - m1 * m1
+
+
+def case_measured_summit_table(exe, tmp):
+    # The measured summit-height density is summed as such (Eq. 4.4 over the table): the
+    # reduced model carries it standardized (unit integral, mean 0, standard deviation 1,
+    # exact moments of the piecewise-linear density: 1e-12) with sigma its standard
+    # deviation in metres; the prestress differs from the Gaussian's of the same sigma
+    # (summit_distribution = "gaussian": real contact area 2 % apart here, > 0.5 % asserted)
+    # while both carry the bolt load; and rough_contact elements built from the model's
+    # table have the structure's linearised modes as their stuck modes (1e-9, as above).
+    path = surface_case(tmp)
+    out = os.path.join(tmp, "out")
+    p = run(exe, ["structure", path, "--out", out, "--json"])
+    if p.returncode != 0:
+        return fail(f"exit {p.returncode}: {p.stderr}")
+    table = json.loads(p.stdout)
+    m = scipy.io.loadmat(os.path.join(out, "reduced_model.mat"))
+    if "rough_summit_heights" not in m or m["rough_summit_heights"].shape[1] != 2:
+        return fail(f"reduced model variables {sorted(m)}")
+    zs, ps = m["rough_summit_heights"][:, 0], m["rough_summit_heights"][:, 1]
+    I, mean, var = linear_moments(zs, ps)
+    if abs(I - 1) > 1e-12 or abs(mean) > 1e-12 or abs(var - 1) > 1e-12:
+        return fail(f"stored table: integral {I}, mean {mean}, variance {var}")
+    d = scipy.io.loadmat(BRB_SURFACE)
+    _, _, var0 = linear_moments(d["normzinterp"].ravel() * d["z_max"].item(), d["pzinterp"].ravel())
+    surface = m["rough_surface"].ravel()
+    if abs(surface[4] / np.sqrt(var0) - 1) > 1e-12 or surface[7] != 1:
+        return fail(f"rough_surface {surface}: sigma should be {np.sqrt(var0)} m, summit flag 1")
+    p = run(exe, ["structure", surface_case(tmp, 'summit_distribution = "gaussian"\n'), "--json"])
+    if p.returncode != 0:
+        return fail(f"gaussian: exit {p.returncode}: {p.stderr}")
+    gauss = json.loads(p.stdout)
+    for s in (table, gauss):
+        r = s["rough_prestress"]
+        if abs(r["interface_normal_force_N"] / r["bolt_load_N"] - 1) > 1e-8:
+            return fail(f"rough prestress {r}")
+    # The summary says which: the table's rows over its support (runs of zero density at
+    # either end dropped but for one zero row: here rows 0-971 of 1001).
+    nz = np.flatnonzero(d["pzinterp"].ravel())
+    rows = min(nz[-1] + 1, d["pzinterp"].size - 1) - max(nz[0] - 1, 0) + 1
+    said = (table["rough_prestress"]["summit_heights"], gauss["rough_prestress"]["summit_heights"])
+    if said != (f"measured table ({rows} points)", "gaussian"):
+        return fail(f"summit_heights {said}")
+    if abs(table["rough_prestress"]["sigma_m"] / np.sqrt(var0) - 1) > 1e-12:
+        return fail(f"sigma_m {table['rough_prestress']['sigma_m']}")
+    a_t = table["rough_prestress"]["real_contact_area_m2"]
+    a_g = gauss["rough_prestress"]["real_contact_area_m2"]
+    if not abs(a_t / a_g - 1) > 5e-3:
+        return fail(f"real contact area {a_t} over the table, {a_g} over the Gaussian: the same")
+    case = rough_on_every_element(tmp, os.path.join(out, "reduced_model.mat"))
+    p = run(exe, ["vibration", case, "--json"])
+    if p.returncode != 0:
+        return fail(f"rough_contact over the table: exit {p.returncode}: {p.stderr}")
+    want = table["linear_modes"]["rough"]["frequency_hz"]
+    got = json.loads(p.stdout)["structure"]["linear_frequencies_hz_elements_stuck"][6:6 + len(want)]
+    if any(abs(a - b) > 1e-9 * b for a, b in zip(got, want)):
+        return fail(f"stuck linear modes {got}, the structure's rough modes {want}")
+    return 0
+
+
+def case_bad_input_summit_table_negative(exe, tmp):
+    d = scipy.io.loadmat(BRB_SURFACE)
+    pz = d["pzinterp"].copy()
+    pz[0, 500] = -0.1
+    path = surface_case(tmp, pz=pz)
+    return bad(exe, tmp, open(path).read(), "with a density >= 0", name="neg.toml")
+
+
+def case_bad_input_summit_distribution_unknown(exe, tmp):
+    path = surface_case(tmp, 'summit_distribution = "lognormal"\n')
+    return bad(exe, tmp, open(path).read(), '`summit_distribution` = "lognormal": allowed are',
+               name="unknown.toml")
+
+
+def case_bad_input_summit_distribution_without_table(exe, tmp):
+    return bad(exe, tmp, TWO_BLOCKS.replace('asperity_model = "bke"',
+                                            'asperity_model = "bke"\nsummit_distribution = "table"'),
+               "`summit_distribution` needs a measured table")
 
 
 def case_bad_input_model_not_symmetric(exe, tmp):

@@ -194,6 +194,24 @@ def reduced_model_file(path, pressures, in_contact):
     return Q
 
 
+def every_element_case(case, model):
+    """A vibration case file placing rough_contact on every interface element of `model`
+    in contact at its rough prestress (the case form ``interface_element = "all"``)."""
+    case.write_text(f"""[structure]
+model = "{model}"
+[[element]]
+type = "rough_contact"
+T = {{ interface_element = "all" }}
+[harmonic_balance]
+max = 1
+time_points = 32
+[nonlinear_mode]
+mode = 1
+log10_amplitude = {{ from = -9.0, to = -8.0 }}
+""")
+    return case
+
+
 def test_every_interface_element_as_the_case_places_them(tmp_path):
     path = tmp_path / "model.mat"
     pressures = [18e6, 22e6, 0.0, 20e6]
@@ -205,20 +223,7 @@ def test_every_interface_element_as_the_case_places_them(tmp_path):
     assert r["pressure"].tolist() == pressures
     with pytest.warns(RuntimeWarning, match="1 of the 4 interface elements"):
         mine = vib.rough_contact_on_interface(model)
-    case = tmp_path / "all.toml"
-    case.write_text(f"""[structure]
-model = "{path}"
-[[element]]
-type = "rough_contact"
-T = {{ interface_element = "all" }}
-[harmonic_balance]
-max = 1
-time_points = 32
-[nonlinear_mode]
-mode = 1
-log10_amplitude = {{ from = -9.0, to = -8.0 }}
-""")
-    ref = vib.HarmonicBalance.from_case(case)
+    ref = vib.HarmonicBalance.from_case(every_element_case(tmp_path / "all.toml", path))
     ref_elements = ref.elements
     assert len(mine) == len(ref_elements) == 3
     s = table_7_2()["sigma"]
@@ -230,6 +235,95 @@ log10_amplitude = {{ from = -9.0, to = -8.0 }}
         fb = b.core.periodic_response(u, tangent=False)["f"]
         # Same surface tables (same pressure range), same element: round-off only.
         assert np.abs(fa - fb).max() <= 1e-13 * np.abs(fb).max()
+
+
+def skewed_summit_table() -> np.ndarray:
+    """(z*, phi*) of a measured-like summit density: skewed (a Gumbel of the lower tail),
+    standardized with the exact piecewise-linear moments (as SummitHeightTable), 401 rows."""
+    z = np.linspace(-6.0, 3.0, 401)
+    phi = np.exp(z - np.exp(z))
+    a, b, pa, pb = z[:-1], z[1:], phi[:-1], phi[1:]
+    h = b - a
+    integral = np.sum(0.5 * h * (pa + pb))
+    mean = np.sum(h / 6 * (pa * (2 * a + b) + pb * (a + 2 * b))) / integral
+    m2 = np.sum(h / 12 * (pa * (3 * a * a + 2 * a * b + b * b)
+                          + pb * (a * a + 2 * a * b + 3 * b * b))) / integral
+    sd = np.sqrt(m2 - mean * mean)
+    return np.column_stack([(z - mean) / sd, phi * sd / integral])
+
+
+def test_a_models_summit_table_reaches_the_elements(tmp_path):
+    # A model file with a measured summit table (rough_summit_heights, summit flag 1): the
+    # Python placement and the case file's build the same elements from it, and
+    # the table is what they sum over: the forces differ from the Gaussian's of the same sigma.
+    table = skewed_summit_table()
+    forces = {}
+    for name, heights in (("table", table), ("gaussian", None)):
+        path = tmp_path / f"{name}.mat"
+        reduced_model_file(path, [18e6, 22e6], [1, 1])
+        m = scipy.io.loadmat(path)
+        m = {k: v for k, v in m.items() if not k.startswith("__")}
+        m["rough_surface"][0, 7] = 1.0  # sigma: the summit heights' standard deviation
+        if heights is not None:
+            m["rough_summit_heights"] = heights
+        scipy.io.savemat(path, m)
+        model = fem.read_reduced_model(path)
+        sigma = model["rough"]["sigma"]
+        if heights is None:
+            assert model["rough"]["summit_heights"] is None
+        else:
+            # Read back in metres from the mean and 1/m: the stored table scaled by sigma.
+            got = model["rough"]["summit_heights"]
+            assert np.allclose(got[:, 0], heights[:, 0] * sigma, rtol=1e-12, atol=0)
+            assert np.allclose(got[:, 1], heights[:, 1] / sigma, rtol=1e-12, atol=0)
+        mine = vib.rough_contact_on_interface(model)
+        ref = vib.HarmonicBalance.from_case(
+            every_element_case(tmp_path / f"{name}.toml", path)).elements
+        u = period(32, [0.2 * sigma, 0.1 * sigma, 0.05 * sigma], seed=7)
+        fa = mine[0].core.periodic_response(u, tangent=False)["f"]
+        fb = ref[0].core.periodic_response(u, tangent=False)["f"]
+        # The Python path hands the table over in metres and standardizes it again (heights
+        # equal to ~1e-16), so its tangential tables are tabulated anew: within their
+        # verified bound, 1e-9 (measured 5e-12), not bit for bit.
+        assert np.abs(fa - fb).max() <= 1e-9 * np.abs(fb).max()
+        forces[name] = fa
+    change = np.abs(forces["table"] - forces["gaussian"]).max() / np.abs(forces["gaussian"]).max()
+    assert change > 1e-2, change
+
+
+def test_uniform_summit_table_gives_the_closed_form_separation():
+    # CEB asperities over a uniform summit density of standard deviation sigma (heights
+    # [-sqrt 3, sqrt 3] sigma), all elastic (omega_c/sigma = 1/psi^2 > 2 sqrt 3): Eq. 4.4
+    # integrates to P* = (2 pi/3) beta omega_c*^{-1/2} (2/5) s^{5/2}/(2 sqrt 3) with
+    # s = sqrt 3 - d* (as the C++ test SummitHeightTableFlat.Uniform...), so the surface's
+    # separation for the pressure K H P* is d*. sigma = None takes the table's.
+    p = table_7_2()
+    p["model"] = "ceb"
+    p["H"] = 30e9  # psi = 0.50: omega_c* = 3.96 > 2 sqrt 3, every contacting asperity elastic
+    sigma = 0.5e-6
+    r3 = np.sqrt(3.0)
+    heights = np.array([[-r3 * sigma, 1.0], [0.0, 1.0], [r3 * sigma, 1.0]])
+    p.pop("sigma")
+    surface = vib.RoughContactSurface(**p, sigma=None, summit_heights=heights, p_low=1e5,
+                                      p_high=1e6)
+    assert abs(surface.parameters["sigma"] / sigma - 1) < 1e-14
+    assert surface.parameters["summit_sigma"] is True
+    beta = sigma * p["R"] * p["eta"]
+    K = surface.pressure_scale / p["H"]
+    psi = 2 * p["E_star"] / (np.pi * K * p["H"]) * np.sqrt(sigma / p["R"])
+    wc = 1 / psi ** 2
+    assert wc > 2 * r3
+    for d in (-1.0, 0.5, 1.5):
+        s = r3 - d
+        P = 2 * np.pi / 3 * beta / np.sqrt(wc) * 0.4 * s ** 2.5 / (2 * r3)
+        assert surface.core.separation_star(P * surface.pressure_scale) == pytest.approx(
+            d, rel=1e-9, abs=1e-9)
+    with pytest.raises(asperity.InvalidInput, match="table's standard deviation"):
+        vib.RoughContactSurface(**p, sigma=2 * sigma, summit_heights=heights, p_low=1e5,
+                                p_high=1e6)
+    with pytest.raises(asperity.InvalidInput, match="not a distribution: density -1"):
+        vib.RoughContactSurface(**p, sigma=None, summit_heights=heights * [1, -1], p_low=1e5,
+                                p_high=1e6)
 
 
 def test_a_model_without_rough_record_is_refused():

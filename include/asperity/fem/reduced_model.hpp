@@ -27,11 +27,14 @@
 // (M, K, Fv, L, Qm, Tm and optionally R: element displacements kron(Qm, I3) L[:3n_nodes]
 // and forces L[:3n_nodes]^T kron(Tm, I3), element areas the column sums of Tm) and from
 // MatrixMarket files (M and K only).
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Dense>
+
+#include "asperity/surface/summit_heights.hpp"
 
 namespace asperity::fem {
 
@@ -51,6 +54,9 @@ struct RoughInterfaceRecord {
   double R = 0.0;      ///< mean asperity radius [m]
   double eta = 0.0;    ///< areal density of asperities [1/m^2]
   bool summit_sigma = false;
+  /// The measured summit-height density summed over (null: Gaussian); written as
+  /// rough_summit_heights [z*, phi*] (standardized, surface::SummitHeightTable).
+  std::shared_ptr<const surface::SummitHeightTable> summit_heights;
   std::string model;         ///< asperity model name ("bke", ...)
   Eigen::VectorXd pressure;  ///< per element [Pa]
   /// Per element: at least one asperity expected in contact, eta A Phi(d) >= 1

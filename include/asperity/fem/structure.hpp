@@ -2,6 +2,7 @@
 // A bolted structure from a case file to a reduced model and its linear modes: the steps
 // of `asperity structure` (beyond the thesis). See docs/structures.md for the case format.
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,8 +37,11 @@ struct RoughContactCase {
   double sigma = 0.0;         ///< combined rms roughness [m] (or of the summits: summit_sigma)
   bool summit_sigma = false;  ///< sigma is the summit heights' standard deviation
   std::string surface_data;   ///< MATLAB file with Re, area_density, z_max, normzinterp, pzinterp
-  double R = 0.0;             ///< mean asperity radius [m]
-  double eta = 0.0;           ///< asperities per unit area [1/m^2]
+  /// Its summit-height density, summed over as such (null: Gaussian of sigma; also with
+  /// summit_distribution = "gaussian").
+  std::shared_ptr<const surface::SummitHeightTable> heights;
+  double R = 0.0;    ///< mean asperity radius [m]
+  double eta = 0.0;  ///< asperities per unit area [1/m^2]
   contact::ModelName model = contact::ModelName::bke;
   std::string gap_map;  ///< MATLAB file with a P x 3 (x, y, gap) grid; empty: no gap
   std::string gap_variable = "mesoscale_xygap";

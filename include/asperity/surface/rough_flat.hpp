@@ -17,6 +17,7 @@
 #include "asperity/hysteresis/backbones.hpp"
 #include "asperity/hysteresis/masing.hpp"
 #include "asperity/hysteresis/tabulated_backbone.hpp"
+#include "asperity/surface/summit_heights.hpp"
 
 namespace asperity::surface {
 
@@ -55,6 +56,9 @@ struct RoughFlatParameters {
   /// no McCool relation (Eq. 4.2's sigma_a/sigma_s = sqrt(1 - 3.717e-4/beta^2) is for sigma_s
   /// the rms of the surface heights).
   bool summit_sigma = false;
+  /// A measured summit-height density to sum over instead of Eq. 4.2's Gaussian (null:
+  /// Gaussian). Needs summit_sigma: lengths are then over the table's standard deviation.
+  std::shared_ptr<const SummitHeightTable> summit_heights;
 
   void validate() const;
 };
@@ -76,7 +80,8 @@ class RoughFlatBackbone;
 /// (0.33-0.35, ch. 5), else empty.
 [[nodiscard]] std::string friction_coefficient_warning(double mu);
 
-/// Sum of the asperity models over Gaussian asperity heights. Every member is const
+/// Sum of the asperity models over Gaussian asperity heights (Eq. 4.2), or over a measured
+/// summit-height table (RoughFlatParameters::summit_heights). Every member is const
 /// and thread-safe; integrals are adaptive quadratures split at the asperity laws'
 /// branch points and at each asperity slip boundary (relative accuracy ~1e-12).
 class RoughFlat {
@@ -96,21 +101,31 @@ class RoughFlat {
   /// sigma_a (SEED_NOTES.md), G*/E*.
   /// With `summit_sigma`, sigma is the standard deviation of the summit heights
   /// (RoughFlatParameters::summit_sigma, as from_summit_heights).
+  /// With `heights` (which needs summit_sigma), the sums run over that table, and sigma must
+  /// be its standard deviation in metres.
   static RoughFlat from_combined(double E_star, double G_star, double H, double nu, double sigma,
                                  double R, double eta, contact::ModelName model,
                                  const contact::FrictionParameters& friction = {},
-                                 bool summit_sigma = false);
+                                 bool summit_sigma = false,
+                                 std::shared_ptr<const SummitHeightTable> heights = nullptr);
 
   /// As from_dimensional, with sigma_summits the standard deviation of the summit heights
   /// (RoughFlatParameters::summit_sigma): the form a measured summit distribution gives.
+  /// With `heights`, the sums run over that table, and sigma_summits must be its standard
+  /// deviation in metres.
   static RoughFlat from_summit_heights(const contact::Material& body1,
                                        const contact::Material& body2, double sigma_summits,
                                        double eta, double R, double A0, contact::ModelName model,
-                                       const contact::FrictionParameters& friction = {});
+                                       const contact::FrictionParameters& friction = {},
+                                       std::shared_ptr<const SummitHeightTable> heights = nullptr);
 
   [[nodiscard]] const RoughFlatParameters& parameters() const { return params_; }
   [[nodiscard]] const std::optional<RoughFlatScales>& scales() const { return scales_; }
   [[nodiscard]] const contact::AsperityLaws& laws() const { return laws_; }
+  /// The measured summit-height table summed over, or null for the Gaussian of Eq. 4.2.
+  [[nodiscard]] const SummitHeightTable* summit_heights() const {
+    return params_.summit_heights.get();
+  }
   /// sigma_a/sigma_s = sqrt(1 - 3.717e-4/beta^2) (below Eq. 4.2).
   [[nodiscard]] double sigma_a_over_sigma() const { return s_a_; }
   /// omega_c/sigma_s = (sigma_a/sigma_s)/psi^2 (Eq. 4.5 on sigma_a).

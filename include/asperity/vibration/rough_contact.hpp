@@ -45,6 +45,9 @@ struct RoughInterfaceParameters {
   /// sigma is the standard deviation of the summit heights (a measured summit distribution,
   /// RoughFlatParameters::summit_sigma), not the surface's rms roughness.
   bool summit_sigma = false;
+  /// A measured summit-height table to sum over instead of the Gaussian (null: Gaussian);
+  /// needs summit_sigma, with sigma its standard deviation [m].
+  std::shared_ptr<const surface::SummitHeightTable> summit_heights;
   void validate() const;
 };
 
