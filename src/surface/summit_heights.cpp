@@ -48,8 +48,8 @@ SummitHeightTable::SummitHeightTable(const std::vector<double>& z,
   sd_ = std::sqrt(var);
   // Runs of zero density at either end are outside the support: one zero node is kept.
   std::size_t k0 = 0, k1 = z.size() - 1;
-  while (k0 + 1 < z.size() && density[k0 + 1] == 0.0) ++k0;
-  while (k1 > 0 && density[k1 - 1] == 0.0) --k1;
+  while (k0 + 1 < z.size() && density[k0] == 0.0 && density[k0 + 1] == 0.0) ++k0;
+  while (k1 > 0 && density[k1] == 0.0 && density[k1 - 1] == 0.0) --k1;
   z_.reserve(k1 - k0 + 1);
   p_.reserve(k1 - k0 + 1);
   for (std::size_t k = k0; k <= k1; ++k) {

@@ -38,6 +38,20 @@ TEST(SummitHeightTable, TriangleHasItsClosedFormMoments) {
   EXPECT_LT(rel(t.survival(z_star), 0.125), 1e-14);
 }
 
+TEST(SummitHeightTable, ZeroRunsAtTheEndsAreDroppedButNotInsideTheSupport) {
+  // Zero runs at either end go (one zero row kept); zeros next to a positive end row stay.
+  const SummitHeightTable ends({0, 1, 2, 3, 4, 5, 6}, {0, 0, 1, 1, 0, 0, 0}, "ends");
+  ASSERT_EQ(ends.z_star().size(), 4u);
+  EXPECT_EQ(ends.density_star().front(), 0.0);
+  EXPECT_EQ(ends.density_star().back(), 0.0);
+  const SummitHeightTable inside({0, 1, 2, 3}, {1, 0, 0, 1}, "inside");
+  ASSERT_EQ(inside.z_star().size(), 4u);
+  // Symmetric: mean 1.5; the density is 0 on [1, 2] and the survival at the mean is 1/2.
+  EXPECT_EQ(inside.density(0.0), 0.0);
+  EXPECT_GT(inside.density(inside.top()), 0.0);
+  EXPECT_LT(rel(inside.survival(0.0), 0.5), 1e-14);
+}
+
 TEST(SummitHeightTable, WhatIsNotADistributionIsRefusedByName) {
   auto message = [](const std::vector<double>& z, const std::vector<double>& p) {
     return asperity::testing::invalid_input_message(
