@@ -35,12 +35,33 @@ inline HeightRange height_range(const SummitHeightTable* table, double d, double
 /// the end rule.
 inline constexpr double kFixedRuleWidth = 0.05;
 
+/// Visits the pieces of [a, b] split at the density's `nodes` (ascending) inside it, left to
+/// right: end(x0, x1) for the two pieces that touch a or b and for their neighbours (a break
+/// may lie just outside those: a root singularity at a distance far below their width),
+/// inner(x0, x1) for the pieces between two nodes farther in.
+template <class End, class Inner>
+void split_at_nodes(double a, double b, const std::vector<double>& nodes, End end, Inner inner) {
+  const auto first = std::upper_bound(nodes.begin(), nodes.end(), a);
+  const auto last = std::lower_bound(nodes.begin(), nodes.end(), b);
+  if (first >= last) {
+    end(a, b);
+    return;
+  }
+  end(a, *first);
+  for (auto it = first; it + 1 < last; ++it) {
+    if (it == first || it + 2 == last) {
+      end(*it, *(it + 1));
+    } else {
+      inner(*it, *(it + 1));
+    }
+  }
+  end(*(last - 1), b);
+}
+
 /// Integral of g over each piece [breaks[i], breaks[i+1]] (breaks ascending), split at the
-/// density's `nodes` (ascending) inside it: the inner pieces between two nodes (~0.01 wide
-/// for a measured table, the integrand smooth on them) take a 10-point Gauss-Legendre rule
-/// (up to kFixedRuleWidth),
-/// the end pieces that touch a break (where the integrand may have a root singularity) and
-/// their neighbours `end_rule(g, a, b)`, e.g. tanh-sinh.
+/// density's `nodes` by split_at_nodes: the inner pieces (~0.01 wide for a measured table,
+/// the integrand smooth on them) take a 10-point Gauss-Legendre rule (up to
+/// kFixedRuleWidth), the others `end_rule(g, a, b)`, e.g. tanh-sinh.
 template <class G, class EndRule>
 double integrate_between_nodes(G g, EndRule end_rule, const std::vector<double>& breaks,
                                const std::vector<double>& nodes) {
@@ -49,22 +70,13 @@ double integrate_between_nodes(G g, EndRule end_rule, const std::vector<double>&
     const double a = breaks[i];
     const double b = breaks[i + 1];
     if (!(b > a)) continue;
-    const auto first = std::upper_bound(nodes.begin(), nodes.end(), a);
-    const auto last = std::lower_bound(nodes.begin(), nodes.end(), b);
-    if (first >= last) {
-      total += end_rule(g, a, b);
-      continue;
-    }
-    total += end_rule(g, a, *first);
-    for (auto it = first; it + 1 < last; ++it) {
-      // The pieces next to the end pieces too take the end rule: a break may lie just
-      // outside them (a root singularity at a distance far below their width).
-      const bool next_to_end = it == first || it + 2 == last;
-      total += !next_to_end && *(it + 1) - *it <= kFixedRuleWidth
-                   ? boost::math::quadrature::gauss<double, 10>::integrate(g, *it, *(it + 1))
-                   : end_rule(g, *it, *(it + 1));
-    }
-    total += end_rule(g, *(last - 1), b);
+    split_at_nodes(
+        a, b, nodes, [&](double x0, double x1) { total += end_rule(g, x0, x1); },
+        [&](double x0, double x1) {
+          total += x1 - x0 <= kFixedRuleWidth
+                       ? boost::math::quadrature::gauss<double, 10>::integrate(g, x0, x1)
+                       : end_rule(g, x0, x1);
+        });
   }
   return total;
 }
