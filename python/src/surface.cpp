@@ -18,6 +18,7 @@
 #include <asperity/surface/profile_io.hpp>
 #include <asperity/surface/roughness.hpp>
 #include <asperity/surface/scan_set.hpp>
+#include <asperity/surface/summits.hpp>
 #include <asperity/surface/texture.hpp>
 #include <cmath>
 #include <string>
@@ -306,6 +307,50 @@ void bind_surface(nb::module_& m) {
       "truncation"_a = 1.0, "end"_a = "discard",
       "The S-L surface of areal_parameters: (z[iy, ix], x of the first column, y of the\n"
       "first row); with end=\"discard\" ct*(lc+ls) is cropped at each edge.");
+  m.def(
+      "find_summits",
+      [](const Array2& z, double dx, double dy, double x0, double y0, std::size_t bins) {
+        auto map = to_map(z, dx, dy);
+        map.x0 = x0;
+        map.y0 = y0;
+        const auto set = find_summits(map);
+        const auto hist = summit_histogram(set, bins);
+        std::vector<double> x, y, h, k;
+        for (const auto& p : set.summits) {
+          x.push_back(p.x);
+          y.push_back(p.y);
+          h.push_back(p.z);
+          k.push_back(p.curvature);
+        }
+        auto table = std::make_unique<double[]>(2 * hist.height.size());
+        for (std::size_t i = 0; i < hist.height.size(); ++i) {
+          table[2 * i] = hist.height[i];
+          table[2 * i + 1] = hist.density[i];
+        }
+        nb::dict d;
+        d["x"] = array_of(x);
+        d["y"] = array_of(y);
+        d["z"] = array_of(h);
+        d["curvature"] = array_of(k);
+        d["area"] = set.area;
+        d["points"] = set.points;
+        d["eta"] = set.density();
+        d["mean_height"] = set.mean_height();
+        d["sigma"] = set.height_standard_deviation();
+        d["R"] = set.radius();
+        d["table"] = detail::make_array(std::move(table), {hist.height.size(), 2});
+        d["bin_width"] = hist.bin_width;
+        return d;
+      },
+      "z"_a, "dx"_a, "dy"_a, "x0"_a = 0.0, "y0"_a = 0.0, "bins"_a = 0,
+      "Summits of a complete map z[iy, ix] (normally an S-L surface from\n"
+      "scale_limited_surface): interior points higher than their 8 neighbours (an equal\n"
+      "neighbour earlier in raster order counts as higher). Returns {x, y, z, curvature\n"
+      "(mean, -(z_xx + z_yy)/2 by central differences) [1/m], area, points, eta [1/m^2],\n"
+      "mean_height, sigma (of the summit heights), R = 1/<curvature>, table, bin_width}:\n"
+      "table (n x 2: height [m], density [1/m]) is the heights' frequency polygon over `bins`\n"
+      "bins (0: Rice's rule), the summit_heights of RoughContactSurface and of a structure\n"
+      "case (docs/roughness.md).");
   m.def(
       "profile_power_spectrum",
       [](const Array1& z, double dx) { return spectrum_dict(power_spectrum(to_profile(z, dx))); },

@@ -12,10 +12,12 @@
 #include <tuple>
 
 #include "asperity/contact/material.hpp"
+#include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/surface/profile_io.hpp"
 #include "asperity/surface/roughness.hpp"
 #include "asperity/surface/scan_set.hpp"
+#include "asperity/surface/summits.hpp"
 #include "asperity/surface/texture.hpp"
 #include "commands.hpp"
 #include "common.hpp"
@@ -44,6 +46,8 @@ struct RoughnessOptions {
   std::optional<std::string> spikes;
   std::size_t spike_window = 2;
   std::optional<std::string> psd, psd_plot;
+  std::optional<std::string> summits;
+  std::size_t summit_bins = 0;
   std::optional<std::string> E, nu, E1, nu1, E2, nu2, H, H1, H2;
   bool json = false;
   std::optional<std::string> plot;
@@ -73,6 +77,7 @@ struct AnalysedSurface {
   std::string areal_parameters_note;
   std::vector<surface::PowerSpectrum> psd;
   std::size_t spikes_removed = 0;
+  std::optional<HeightMap> scale_limited;  // with --summits
 };
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -112,16 +117,17 @@ void check_output_paths(const RoughnessOptions& o) {
   std::vector<std::pair<std::string, std::string>> outputs;
   for (const auto& [flag, path, example] :
        {std::tuple{"--plot", o.plot, "roughness.png"}, std::tuple{"--psd", o.psd, "psd.csv"},
-        std::tuple{"--psd-plot", o.psd_plot, "psd.png"}}) {
+        std::tuple{"--psd-plot", o.psd_plot, "psd.png"},
+        std::tuple{"--summits", o.summits, "summits.csv"}}) {
     if (!path) continue;
-    if (is_standard_output(*path) && std::string_view(flag) != "--psd")
+    const bool table = std::string_view(flag) == "--psd" || std::string_view(flag) == "--summits";
+    if (is_standard_output(*path) && !table)
       throw InvalidInput(
           fmt::format("{} - is not allowed: a PNG goes to a file, give its name", flag));
     if (is_standard_output(*path)) {
       if (o.json)
-        throw InvalidInput(
-            "--psd - and --json both write to standard output: give "
-            "--psd a file name");
+        throw InvalidInput(fmt::format(
+            "{0} - and --json both write to standard output: give {0} a file name", flag));
       continue;
     }
     std::error_code ec;
@@ -137,6 +143,9 @@ void check_output_paths(const RoughnessOptions& o) {
     }
     outputs.emplace_back(flag, *path);
   }
+  if (is_standard_output(o.psd) && is_standard_output(o.summits))
+    throw InvalidInput(
+        "--psd - and --summits - both write to standard output: give one of them a file name");
   if (outputs.empty()) return;
   require_distinct_outputs(outputs);
   for (std::size_t k = 0; k < o.surfaces.size(); ++k) {
@@ -202,6 +211,7 @@ struct Settings {
   surface::SpikeRemoval spikes;
   bool plot = false;
   bool psd = false;
+  bool summits = false;
 };
 
 AnalysedSurface analyse_files(const std::string& list, std::size_t index, const Settings& s) {
@@ -223,7 +233,8 @@ AnalysedSurface analyse_files(const std::string& list, std::size_t index, const 
                                                       .text = s.text,
                                                       .keep_processed = s.plot,
                                                       .spikes = s.spikes,
-                                                      .psd = s.psd});
+                                                      .psd = s.psd,
+                                                      .keep_scale_limited = s.summits});
   } catch (const InvalidInput& e) {
     throw InvalidInput(fmt::format("--surface #{}: {}", index + 1, e.what()));
   }
@@ -236,6 +247,7 @@ AnalysedSurface analyse_files(const std::string& list, std::size_t index, const 
   out.areal_parameters_note = r.areal_parameters_note;
   out.psd = r.psd;
   out.spikes_removed = r.spikes_removed;
+  out.scale_limited = std::move(r.scale_limited);
   if (s.psd && out.psd.empty()) {
     throw InvalidInput(fmt::format("--psd: surface {}: {}", index + 1, out.areal_parameters_note));
   }
@@ -626,6 +638,114 @@ void draw_plot(const std::string& path, const std::vector<AnalysedSurface>& surf
   plot_png(path, hist);
 }
 
+// The summits that --summits tabulates: those of one areal half given alone, or of the sum
+// of two areal halves on one grid (the composite surface whose moments Eq. 5.1 adds).
+struct SummitResult {
+  std::string surface;      // "1" or "1+2"
+  std::string source;       // what the map is, for the CSV's comment
+  SpectralMoments moments;  // of that surface: the spectral estimates beside the counts
+  surface::SummitSet set;
+  surface::SummitHistogram histogram;
+  double table_sigma = 0.0;  // standard deviation of the table (histogram + h^2/6)
+};
+
+SummitResult find_surface_summits(const std::vector<AnalysedSurface>& surfaces,
+                                  const SpectralMoments& combined, std::size_t bins) {
+  const auto what = [](const AnalysedSurface& a) -> std::string {
+    if (!a.from_files) return "given by --params";
+    if (!a.areal) return "profile scans";
+    return "an areal map";
+  };
+  for (std::size_t k = 0; k < surfaces.size(); ++k)
+    if (surfaces[k].areal && !surfaces[k].scale_limited)
+      throw InvalidInput(fmt::format(
+          "--summits: surface {}: {} of the map's {} points are invalid, and its S-L surface "
+          "(the areal filter) and the summits need every point",
+          k + 1, surfaces[k].invalid_points, surfaces[k].areal->nx * surfaces[k].areal->ny));
+  SummitResult r;
+  HeightMap map;
+  if (surfaces.size() == 1 && surfaces[0].scale_limited) {
+    map = *surfaces[0].scale_limited;
+    r.surface = "1";
+    r.source = fmt::format("surface 1 ({})", surfaces[0].files.front());
+    r.moments = surfaces[0].moments;
+  } else if (surfaces.size() == 2 && surfaces[0].scale_limited && surfaces[1].scale_limited) {
+    const HeightMap& a = *surfaces[0].scale_limited;
+    const HeightMap& b = *surfaces[1].scale_limited;
+    if (a.nx != b.nx || a.ny != b.ny || a.dx != b.dx || a.dy != b.dy)
+      throw InvalidInput(fmt::format(
+          "--summits: the sum surface of two halves needs their S-L surfaces on one grid: "
+          "surface 1 has {} x {} points at {:.6g} x {:.6g} um, surface 2 {} x {} at {:.6g} x "
+          "{:.6g} um (give one --surface alone for one half's summits)",
+          a.nx, a.ny, a.dx * 1e6, a.dy * 1e6, b.nx, b.ny, b.dx * 1e6, b.dy * 1e6));
+    map = a;
+    for (std::size_t i = 0; i < map.z.size(); ++i) map.z[i] += b.z[i];
+    map.source = fmt::format("the sum of the S-L surfaces of {} and {}", surfaces[0].files.front(),
+                             surfaces[1].files.front());
+    r.surface = "1+2";
+    r.source = map.source;
+    r.moments = combined;
+  } else {
+    std::string which;
+    for (std::size_t k = 0; k < surfaces.size(); ++k)
+      which += fmt::format("{}surface {} is {}", k ? ", " : "", k + 1, what(surfaces[k]));
+    throw InvalidInput(fmt::format(
+        "--summits: summits are found on the S-L surface of areal maps: one half given as an "
+        "areal file (its summits), or both halves (the summits of their sum surface, whose "
+        "moments Eq. 5.1 adds); here {}",
+        which));
+  }
+  try {
+    r.set = surface::find_summits(map);
+    r.histogram = surface::summit_histogram(r.set, bins);
+    r.table_sigma = surface::summit_height_table(r.histogram, "of --summits").standard_deviation();
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format("--summits: {}", e.what()));
+  }
+  return r;
+}
+
+std::string summits_csv(const SummitResult& r, const Settings& s) {
+  const auto& set = r.set;
+  std::string t = fmt::format(
+      "# summits (points higher than their 8 neighbours) of {}, S-L surface: {} level, lc = {}, "
+      "ls = {}\n",
+      r.source, surface::to_string(s.level),
+      s.filter.lc > 0 ? fmt::format("{:.6g} m", s.filter.lc) : "none",
+      s.filter.ls > 0 ? fmt::format("{:.6g} m", s.filter.ls) : "none");
+  t += fmt::format(
+      "# {} summits in {:.6g} m^2: density {:.6g} m^-2, mean height {:.6g} m, standard deviation "
+      "{:.6g} m, radius 1/<curvature> {:.6g} m\n",
+      set.summits.size(), set.area, set.density(), set.mean_height(),
+      set.height_standard_deviation(), set.radius());
+  t += fmt::format(
+      "# frequency polygon of the heights: {} bins of {:.6g} m, linear between rows (standard "
+      "deviation {:.6g} m); a structure case reads it as [rough_contact] summit_heights\n",
+      r.histogram.height.size() - 2, r.histogram.bin_width, r.table_sigma);
+  t += core::csv_text({"height[m]", "density[1/m]"}, {r.histogram.height, r.histogram.density});
+  return t;
+}
+
+Json summits_json(const SummitResult& r, const std::optional<std::string>& file) {
+  const auto& set = r.set;
+  return Json{{"surface", r.surface},
+              {"count", set.summits.size()},
+              {"points", set.points},
+              {"area", set.area},
+              {"eta", set.density()},
+              {"mean_height", set.mean_height()},
+              {"sigma", set.height_standard_deviation()},
+              {"R", set.radius()},
+              {"bins", r.histogram.height.size() - 2},
+              {"bin_width", r.histogram.bin_width},
+              {"table_sigma", r.table_sigma},
+              {"spectral",
+               {{"eta", r.moments.eta()},
+                {"sigma_a", nullable(try_sigma_a(r.moments))},
+                {"R", r.moments.R()}}},
+              {"file", file && !is_standard_output(*file) ? Json(*file) : Json(nullptr)}};
+}
+
 void run_roughness(const RoughnessOptions& o, std::string& out) {
   Settings s;
   s.level = surface::parse_levelling(lowercase(o.level), "--level");
@@ -650,6 +770,11 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
   const auto pair = material_pair(o);
   s.plot = o.plot.has_value();
   s.psd = o.psd.has_value() || o.psd_plot.has_value();
+  s.summits = o.summits.has_value();
+  if (o.summit_bins > 10000 || (o.summit_bins > 0 && !o.summits))
+    throw InvalidInput(
+        fmt::format("--summit-bins = {}: allowed are 1 to 10000 with --summits (0 = Rice's rule)",
+                    o.summit_bins));
   if (o.spikes && lowercase(*o.spikes) != "off") {
     s.spikes.threshold = core::parse_quantity(*o.spikes, dim::dimensionless, "--spikes");
   }
@@ -690,6 +815,8 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
     combined = surface::combine(combined, surfaces[k].moments);
   const bool any_files =
       std::any_of(surfaces.begin(), surfaces.end(), [](const auto& a) { return a.from_files; });
+  std::optional<SummitResult> summits;
+  if (o.summits) summits = find_surface_summits(surfaces, combined, o.summit_bins);
 
   if (o.json) {
     Json j;
@@ -740,6 +867,7 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
     Json c = moments_json(combined, pair);
     c["filter"] = any_files ? filter_json(s) : Json(nullptr);
     j["combined"] = c;
+    if (summits) j["summits"] = summits_json(*summits, o.summits);
     if (pair) {
       j["material"] = {
           {"E_star", pair->E_star}, {"H", pair->H}, {"nu", pair->nu}, {"K", pair->K()}};
@@ -805,6 +933,19 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
         }
       }
     }
+    if (summits) {
+      const auto& set = summits->set;
+      const auto sa = try_sigma_a(summits->moments);
+      out += fmt::format(
+          "summits of surface {} (8-neighbour maxima of the S-L surface): {} in {:.4g} mm^2; "
+          "eta = {:.4g} um^-2 (spectral {:.4g}), sigma_s = {:.4g} um (spectral sigma_a {}), "
+          "R = {:.4g} um (spectral {:.4g}); table: {} bins of {:.4g} um\n",
+          summits->surface, set.summits.size(), set.area * 1e6, set.density() * 1e-12,
+          summits->moments.eta() * 1e-12, set.height_standard_deviation() * 1e6,
+          sa ? fmt::format("{:.4g}", *sa * 1e6) : "-", set.radius() * 1e6,
+          summits->moments.R() * 1e6, summits->histogram.height.size() - 2,
+          summits->histogram.bin_width * 1e6);
+    }
   }
   std::vector<std::string> written;
   if (o.plot) {
@@ -821,7 +962,12 @@ void run_roughness(const RoughnessOptions& o, std::string& out) {
       written.push_back(*o.psd_plot);
     }
   }
-  report_written(written, o.json || is_standard_output(o.psd), out);
+  if (summits) {
+    write_output(*o.summits, summits_csv(*summits, s), out);
+    if (!is_standard_output(*o.summits)) written.push_back(*o.summits);
+  }
+  report_written(written, o.json || is_standard_output(o.psd) || is_standard_output(o.summits),
+                 out);
 }
 
 }  // namespace
@@ -882,6 +1028,16 @@ void add_roughness_command(CLI::App& app, std::function<int()>& action) {
                   "height) of each filtered scan, or of an areal file's rows and columns, to this "
                   "CSV file (- for standard output)");
   cmd->add_option("--psd-plot", o->psd_plot, "draw the PSDs into this PNG file (log-log)");
+  cmd->add_option(
+      "--summits", o->summits,
+      "find the summits (points higher than their 8 neighbours) of an areal file's S-L surface "
+      "(of the sum of two halves' maps on one grid) and write their height distribution to "
+      "this CSV file (height[m],density[1/m], a frequency polygon; - for standard output), the "
+      "table a structure case reads as [rough_contact] summit_heights; the summit density, "
+      "height spread and radius go to the report beside their spectral estimates");
+  cmd->add_option("--summit-bins", o->summit_bins,
+                  "bins of the --summits table, 1 to 10000 (default: 0 = Rice's rule, ceil(2 "
+                  "n^(1/3)) for n summits)");
   cmd->add_flag("--json", o->json,
                 "print JSON (SI units): surfaces[] and combined, each with sigma, eta, R, beta, "
                 "alpha, m0, m2, m4, sigma_a (psi with a material), filter {lc, ls}; per scan "

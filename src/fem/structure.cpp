@@ -270,11 +270,54 @@ StructureCase read_structure_case(const std::string& path) {
     tc::check_keys(
         *rc, where,
         {"hardness", "sigma", "sigma_summits", "R", "eta", "surface_data", "asperity_model",
-         "gap_map", "gap_variable", "gap_origin", "summit_distribution"});
+         "gap_map", "gap_variable", "gap_origin", "summit_distribution", "summit_heights"});
     RoughContactCase& rough = c.rough;
     rough.given = true;
     rough.hardness = r.quantity(*rc, "hardness", where, core::dim::pressure, 0);
-    if (rc->get("surface_data")) {
+    if (rc->get("surface_data") && rc->get("summit_heights"))
+      r.fail(where,
+             "give `surface_data` (a measured surface file) or `summit_heights` (a summit-height "
+             "table), not both",
+             rc->get("summit_heights"));
+    // Which distribution a measured table is summed as (default: the table itself).
+    const auto table_or_gaussian = [&] {
+      const std::string shape = r.text(*rc, "summit_distribution", where, "table");
+      if (shape == "gaussian") {
+        rough.heights = nullptr;
+      } else if (shape != "table") {
+        r.fail(where,
+               fmt::format("`summit_distribution` = \"{}\": allowed are \"table\" (the measured "
+                           "density, the default) and \"gaussian\" (a Gaussian of its standard "
+                           "deviation)",
+                           shape),
+               rc->get("summit_distribution"));
+      }
+      rough.summit_sigma = true;
+    };
+    if (rc->get("summit_heights")) {
+      // A summit-height table (`asperity roughness --summits` writes one): columns height
+      // (a length unit) and density (or count: any positive factor). Its standard deviation
+      // is the length scale; R and eta are given.
+      for (const char* key : {"sigma", "sigma_summits"})
+        if (rc->get(key))
+          r.fail(where,
+                 fmt::format("give `{}` or `summit_heights` (whose standard deviation is the "
+                             "summits' sigma), not both",
+                             key),
+                 rc->get(key));
+      rough.summit_heights_file =
+          (std::filesystem::path(file.base_dir) / r.text(*rc, "summit_heights", where)).string();
+      try {
+        rough.heights = std::make_shared<const surface::SummitHeightTable>(
+            surface::read_summit_height_table(rough.summit_heights_file));
+      } catch (const InvalidInput& e) {
+        r.fail(where, e.what(), rc->get("summit_heights"));
+      }
+      rough.sigma = rough.heights->standard_deviation();
+      table_or_gaussian();
+      rough.R = r.quantity(*rc, "R", where, core::dim::length, 0);
+      rough.eta = r.quantity(*rc, "eta", where, core::dim::inverse_area, 0);
+    } else if (rc->get("surface_data")) {
       // A measured surface (the published BRB layout): Re [m], area_density [1/m^2] and the
       // summit-height density pzinterp over normzinterp (fractions of z_max): its standard
       // deviation is sigma_a.
@@ -329,21 +372,12 @@ StructureCase read_structure_case(const std::string& path) {
         r.fail(where, e.what(), rc->get("surface_data"));
       }
       rough.sigma = rough.heights->standard_deviation();
-      const std::string shape = r.text(*rc, "summit_distribution", where, "table");
-      if (shape == "gaussian") {
-        rough.heights = nullptr;
-      } else if (shape != "table") {
-        r.fail(where,
-               fmt::format("`summit_distribution` = \"{}\": allowed are \"table\" (the measured "
-                           "density, the default) and \"gaussian\" (a Gaussian of its standard "
-                           "deviation)",
-                           shape),
-               rc->get("summit_distribution"));
-      }
-      rough.summit_sigma = true;
+      table_or_gaussian();
     } else {
       if (rc->get("summit_distribution"))
-        r.fail(where, "`summit_distribution` needs a measured table: give `surface_data`",
+        r.fail(where,
+               "`summit_distribution` needs a measured table: give `surface_data` or "
+               "`summit_heights`",
                rc->get("summit_distribution"));
       if (rc->get("sigma") && rc->get("sigma_summits"))
         r.fail(where, "give `sigma` (surface heights) or `sigma_summits`, not both", rc);

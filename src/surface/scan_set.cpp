@@ -90,12 +90,13 @@ IsotropicSurface equivalent_isotropic_surface(const std::vector<ScanFile>& files
           "points are invalid",
           map.invalid_count(), map.z.size());
     } else {
-      const auto sl = scale_limited_surface(map, s.level, s.filter);
+      auto sl = scale_limited_surface(map, s.level, s.filter);
       out.areal_parameters = areal_parameters(sl);
       if (s.psd) {
         out.psd.push_back(power_spectrum(sl, true));
         out.psd.push_back(power_spectrum(sl, false));
       }
+      if (s.keep_scale_limited) out.scale_limited = std::move(sl);
     }
     out.moments =
         x_is_max ? equivalent_isotropic(d.x, d.y, s.rule) : equivalent_isotropic(d.y, d.x, s.rule);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "asperity/core/csv.hpp"
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
 
@@ -84,6 +85,20 @@ std::vector<double> SummitHeightTable::nodes_between(double lo, double hi) const
   const auto first = std::upper_bound(z_.begin(), z_.end(), lo);
   const auto last = std::lower_bound(z_.begin(), z_.end(), hi);
   return first < last ? std::vector<double>(first, last) : std::vector<double>{};
+}
+
+SummitHeightTable read_summit_height_table(const std::string& path) {
+  const core::CsvTable t = core::read_csv_table(path);
+  const core::CsvColumn* z = t.find("height");
+  const core::CsvColumn* p = t.find("density");
+  if (!p) p = t.find("count");
+  if (!z || !p)
+    throw InvalidInput(fmt::format(
+        "\"{}\": a summit-height table has the columns height[unit] and density (or count), "
+        "e.g. height[m],density[1/m]",
+        path));
+  return SummitHeightTable(t.si_values(*z, core::dim::length), p->values,
+                           fmt::format("\"{}\"", path));
 }
 
 }  // namespace asperity::surface

@@ -20,6 +20,7 @@
 #include "asperity/joint/case.hpp"
 #include "asperity/joint/predict.hpp"
 #include "asperity/surface/rough_flat.hpp"
+#include "asperity/surface/summit_heights.hpp"
 #include "asperity/vibration/contact_elements.hpp"
 #include "asperity/vibration/rough_contact.hpp"
 
@@ -440,19 +441,39 @@ PlacedElement parse_element(const toml::table& t, std::size_t index, Eigen::Inde
   } else if (type == "rough_contact") {
     check_keys(t, w,
                keys({"E_star", "G_star", "H", "nu", "sigma", "R", "eta", "asperity_model", "mu_cfc",
-                     "pressure", "area"}));
+                     "pressure", "area", "summit_heights"}));
     const std::string what = "a rough_contact element";
     if (!t.get("nu")) throw InvalidInput(fmt::format("{}: {} needs nu{}", w, what, at_line(t)));
+    // A measured summit-height table (Eq. 4.4 over it): its standard deviation is sigma.
+    std::shared_ptr<const surface::SummitHeightTable> heights;
+    if (t.get("summit_heights")) {
+      if (t.get("sigma"))
+        throw InvalidInput(
+            fmt::format("{}: give sigma or summit_heights (whose standard deviation is the "
+                        "summits' sigma), not both{}",
+                        w, at_line(t)));
+      const std::string file =
+          (std::filesystem::path(base_dir) / text(t, "summit_heights", w, "")).string();
+      try {
+        heights = std::make_shared<const surface::SummitHeightTable>(
+            surface::read_summit_height_table(file));
+      } catch (const InvalidInput& err) {
+        throw InvalidInput(fmt::format("{}.summit_heights: {}{}", w, err.what(), at_line(t)));
+      }
+    }
     RoughInterfaceParameters rp{.E_star = need_si(t, "E_star", w, dim::pressure, what),
                                 .G_star = need_si(t, "G_star", w, dim::pressure, what),
                                 .H = need_si(t, "H", w, dim::pressure, what),
                                 .nu = number(t, "nu", w, 0.3),
-                                .sigma = need_si(t, "sigma", w, dim::length, what),
+                                .sigma = heights ? heights->standard_deviation()
+                                                 : need_si(t, "sigma", w, dim::length, what),
                                 .R = need_si(t, "R", w, dim::length, what),
                                 .eta = need_si(t, "eta", w, dim::inverse_area, what),
                                 .model = core::toml_case::named_choice(
                                     t, "asperity_model", w, "bke", contact::parse_model_name),
-                                .friction = {}};
+                                .friction = {},
+                                .summit_sigma = heights != nullptr,
+                                .summit_heights = heights};
     if (t.get("mu_cfc")) rp.friction.mu_cfc = number(t, "mu_cfc", w, 0.0);
     const double p0 = need_si(t, "pressure", w, dim::pressure, what);
     const double area = need_si(t, "area", w, dim::area, what);

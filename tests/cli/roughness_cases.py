@@ -327,7 +327,117 @@ def check(exe, src, case, tmp):
             if " 0.0000 " in line + " ":
                 return fail(f"a non-zero value printed as 0: {line!r}")
         return 0
+    if case == "summits_table":
+        return summits_table(exe, src, tmp)
+    if case == "summits_bad_input":
+        x3p = os.path.join(src, "tests", "data", "mountainsmap-650x650.x3p")
+        filt = ["--lc", "26.5um", "--ls", "1.6um"]
+        out = os.path.join(tmp, "s.csv")
+        for argv, fragments in (
+                (["--surface", f"{ex}/pzt_max.csv", "--summits", out],
+                 ["--summits: summits are found on the S-L surface of areal maps",
+                  "here surface 1 is profile scans"]),
+                (["--surface", x3p, "--params", "sigma=1um,eta=1e-3um^-2,R=10um", "--summits",
+                  out] + filt,
+                 ["surface 1 is an areal map, surface 2 is given by --params"]),
+                (["--surface", x3p, "--summit-bins", "4"] + filt,
+                 ["--summit-bins = 4: allowed are 1 to 10000 with --summits"]),
+                (["--surface", x3p, "--summits", out, "--summit-bins", "10001"] + filt,
+                 ["--summit-bins = 10001: allowed are 1 to 10000"]),
+                (["--surface", x3p, "--summits", "-", "--json"] + filt,
+                 ["--summits - and --json both write to standard output"]),
+                (["--surface", x3p, "--summits", "-", "--psd", "-"] + filt,
+                 ["--psd - and --summits - both write to standard output"]),
+                (["--surface", x3p, "--summits", x3p] + filt, ["would overwrite an input file"]),
+                (["--surface", x3p, "--summits", tmp] + filt, ["is a directory"])):
+            if bad(exe, argv, fragments):
+                return 1
+            if os.path.exists(out):
+                return fail(f"{argv}: {out} written on bad input")
+        return 0
     return fail(f"unknown case {case}")
+
+
+def read_summit_csv(path):
+    """(comment lines, header, heights, densities) of a --summits table."""
+    comments, rows = [], []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#"):
+                comments.append(line)
+            else:
+                rows.append(line.strip())
+    return comments, rows[0], [float(r.split(",")[0]) for r in rows[1:]], \
+        [float(r.split(",")[1]) for r in rows[1:]]
+
+
+def linear_moments(z, p):
+    """Integral, mean and variance of a density linear between its points (exact)."""
+    I = m1 = m2 = 0.0
+    for a, b, pa, pb in zip(z, z[1:], p, p[1:]):
+        h = b - a
+        I += 0.5 * h * (pa + pb)
+        m1 += h / 6 * (pa * (2 * a + b) + pb * (a + 2 * b))
+        m2 += h / 12 * (pa * (3 * a * a + 2 * a * b + b * b) + pb * (a * a + 2 * a * b + 3 * b * b))
+    return I, m1 / I, m2 / I - (m1 / I) ** 2
+
+
+def summits_table(exe, src, tmp):
+    """--summits on the MountainsMap scan: the report's statistics are those of the table
+    written (the CSV's 12 significant digits allow 1e-10), the table is a frequency polygon
+    (zero rows at both ends, equal bins, Rice's ceil(2 n^(1/3)) of them, unit integral), and
+    the sum surface of the scan with itself is the scan doubled: the same summits, heights and
+    spread twice, the radius halved (closed forms, 1e-12)."""
+    import math
+    x3p = os.path.join(src, "tests", "data", "mountainsmap-650x650.x3p")
+    filt = ["--lc", "26.5um", "--ls", "1.6um"]
+    one, two = os.path.join(tmp, "one.csv"), os.path.join(tmp, "two.csv")
+    r = run(exe, ["--surface", x3p, "--summits", one, "--json"] + filt)
+    if r.returncode != 0:
+        return fail(r.stderr)
+    s = json.loads(r.stdout)["summits"]
+    if s["surface"] != "1" or s["file"] != one or s["count"] < 100:
+        return fail(f"summits {s}")
+    if abs(s["eta"] / (s["count"] / s["area"]) - 1) > 1e-14:
+        return fail(f"eta {s['eta']} is not count/area")
+    comments, header, z, p = read_summit_csv(one)
+    if header != "height[m],density[1/m]" or len(comments) != 3:
+        return fail(f"header {header!r}, comments {comments}")
+    if len(z) != s["bins"] + 2 or s["bins"] != math.ceil(2 * s["count"] ** (1 / 3)):
+        return fail(f"{len(z)} rows for {s['bins']} bins of {s['count']} summits")
+    if p[0] != 0 or p[-1] != 0 or min(p) < 0:
+        return fail(f"densities {p}")
+    for a, b in zip(z, z[1:]):
+        if abs((b - a) / s["bin_width"] - 1) > 1e-9:
+            return fail(f"bin {a}..{b}, width {s['bin_width']}")
+    I, mean, var = linear_moments(z, p)
+    if abs(I - 1) > 1e-10 or abs(math.sqrt(var) / s["table_sigma"] - 1) > 1e-10:
+        return fail(f"table: integral {I}, sd {math.sqrt(var)} vs {s['table_sigma']}")
+    # Wider than the summits' own spread by the bins (h^2/6 and the binning): within 5 %.
+    if not s["sigma"] < s["table_sigma"] < 1.05 * s["sigma"]:
+        return fail(f"table sd {s['table_sigma']}, summits {s['sigma']}")
+    for key in ("eta", "sigma_a", "R"):
+        if not s["spectral"][key] > 0:
+            return fail(f"spectral {s['spectral']}")
+    r = run(exe, ["--surface", x3p, "--surface", x3p, "--summits", two, "--json"] + filt)
+    if r.returncode != 0:
+        return fail(r.stderr)
+    d = json.loads(r.stdout)
+    s2 = d["summits"]
+    if s2["surface"] != "1+2" or s2["count"] != s["count"] or s2["bins"] != s["bins"]:
+        return fail(f"sum surface {s2}")
+    for key, factor in (("sigma", 2), ("mean_height", 2), ("R", 0.5), ("eta", 1),
+                        ("table_sigma", 2)):
+        if abs(s2[key] / (factor * s[key]) - 1) > 1e-12:
+            return fail(f"{key}: {s2[key]} for the doubled scan, {s[key]} for the scan")
+    if abs(s2["spectral"]["eta"] / d["combined"]["eta"] - 1) > 1e-14:
+        return fail("the sum surface's spectral eta is not the combined surfaces'")
+    r = run(exe, ["--surface", x3p, "--summits", "-", "--summit-bins", "20"] + filt)
+    if r.returncode != 0 or "\nheight[m],density[1/m]\n" not in r.stdout:
+        return fail(f"--summits -: {r.returncode} {r.stderr}")
+    if len([l for l in r.stdout.split("height[m],density[1/m]\n")[1].splitlines() if l]) != 22:
+        return fail("--summit-bins 20 gives 22 rows")
+    return 0
 
 
 if __name__ == "__main__":

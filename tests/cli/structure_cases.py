@@ -421,6 +421,29 @@ def case_measured_summit_table(exe, tmp):
     a_g = gauss["rough_prestress"]["real_contact_area_m2"]
     if not abs(a_t / a_g - 1) > 5e-3:
         return fail(f"real contact area {a_t} over the table, {a_g} over the Gaussian: the same")
+    # The same table as a CSV file (summit_heights, the format `asperity roughness --summits`
+    # writes; heights and densities as the .mat holds them, repr: the same doubles) with the
+    # file's R and eta: the same model, to round-off (1e-12).
+    z_m = d["normzinterp"].ravel() * d["z_max"].item()
+    write(tmp, "table.csv", "# the BRB summit table\nheight[m],density\n" +
+          "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(z_m, d["pzinterp"].ravel())))
+    text = open(surface_case(tmp)).read().replace(
+        'surface_data = "surface.mat"\n',
+        f'summit_heights = "table.csv"\nR = "{float(d["Re"].item())!r} m"\neta = "{float(d["area_density"].item())!r} m^-2"\n')
+    p = run(exe, ["structure", write(tmp, "csv.toml", text), "--json"])
+    if p.returncode != 0:
+        return fail(f"summit_heights: exit {p.returncode}: {p.stderr}")
+    csv = json.loads(p.stdout)
+    for key in ("real_contact_area_m2", "max_pressure_Pa", "sigma_m"):
+        if abs(csv["rough_prestress"][key] / table["rough_prestress"][key] - 1) > 1e-12:
+            return fail(f"{key}: {csv['rough_prestress'][key]} from the CSV, "
+                        f"{table['rough_prestress'][key]} from surface_data")
+    if csv["rough_prestress"]["summit_heights"] != table["rough_prestress"]["summit_heights"]:
+        return fail(f"CSV table: {csv['rough_prestress']['summit_heights']}")
+    for a, b in zip(csv["linear_modes"]["rough"]["frequency_hz"],
+                    table["linear_modes"]["rough"]["frequency_hz"]):
+        if abs(a / b - 1) > 1e-12:
+            return fail(f"rough mode {a} Hz from the CSV, {b} Hz from surface_data")
     case = rough_on_every_element(tmp, os.path.join(out, "reduced_model.mat"))
     p = run(exe, ["vibration", case, "--json"])
     if p.returncode != 0:
@@ -450,6 +473,32 @@ def case_bad_input_summit_distribution_without_table(exe, tmp):
     return bad(exe, tmp, TWO_BLOCKS.replace('asperity_model = "bke"',
                                             'asperity_model = "bke"\nsummit_distribution = "table"'),
                "`summit_distribution` needs a measured table")
+
+
+def table_case(tmp, csv_text, extra=""):
+    write(tmp, "t.csv", csv_text)
+    return TWO_BLOCKS.replace('sigma = "2.7 um"\n', f'summit_heights = "t.csv"\n{extra}')
+
+
+def case_bad_input_summit_heights_and_sigma(exe, tmp):
+    return bad(exe, tmp, table_case(tmp, "height[um],count\n0,0\n1,2\n2,0\n", 'sigma = "2 um"\n'),
+               "give `sigma` or `summit_heights` (whose standard deviation is the summits' sigma)")
+
+
+def case_bad_input_summit_heights_columns(exe, tmp):
+    return bad(exe, tmp, table_case(tmp, "z[um],density\n0,0\n1,2\n2,0\n"),
+               "t.csv\": a summit-height table has the columns height[unit] and density (or count)")
+
+
+def case_bad_input_summit_heights_not_increasing(exe, tmp):
+    return bad(exe, tmp, table_case(tmp, "height[um],density\n0,0\n1,2\n1,1\n2,0\n"),
+               "height 1e-06 at point 3 does not exceed the one before")
+
+
+def case_bad_input_summit_heights_with_surface_data(exe, tmp):
+    text = open(surface_case(tmp)).read().replace(
+        'surface_data = "surface.mat"\n', 'surface_data = "surface.mat"\nsummit_heights = "t.csv"\n')
+    return bad(exe, tmp, text, "give `surface_data` (a measured surface file) or `summit_heights`")
 
 
 def case_bad_input_model_not_symmetric(exe, tmp):

@@ -772,7 +772,20 @@ def plots_of_controlled_analyses(exe):
     return 0
 
 
+def rough_contact_case(old, new):
+    with open(os.path.join(EXAMPLES, "rough_contact_3d.toml")) as f:
+        text = f.read()
+    assert old in text
+    return text.replace(old, new)
+
+
 BAD = {
+    "rough_contact_summit_heights_and_sigma": (
+        rough_contact_case('sigma = "2.7 um"\n', 'sigma = "2.7 um"\nsummit_heights = "s.csv"\n'),
+        ["element[1]: give sigma or summit_heights", "(line 14)"]),
+    "rough_contact_summit_heights_missing": (
+        rough_contact_case('sigma = "2.7 um"\n', 'summit_heights = "missing.csv"\n'),
+        ["element[1].summit_heights", "missing.csv"]),
     "singular_mass": (JENKINS.replace("mass = [[1.0]]", "mass = [[0.0]]") + EPMC, "mass"),
     "singular_mass_2dof": (
         JENKINS.replace("mass = [[1.0]]", "mass = [[1.0, 1.0], [1.0, 1.0]]").replace(

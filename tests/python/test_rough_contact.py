@@ -14,6 +14,10 @@ References:
 """
 from __future__ import annotations
 
+import json
+import pathlib
+import subprocess
+
 import numpy as np
 import pytest
 import scipy.io
@@ -21,6 +25,7 @@ import scipy.io
 import asperity
 import asperity.fem as fem
 import asperity.vibration as vib
+from test_docs import asperity_command
 
 PRESSURE = 20e6  # [Pa], a bolted joint's mean pressure
 AREA = 4e-6      # [m^2], a 2 x 2 mm interface patch
@@ -377,3 +382,82 @@ def test_rough_prestress_balances_the_bolt(element, tmp_path):
     assert gapped["pressure"][0] > PRESSURE > gapped["pressure"][3]
     with pytest.raises(asperity.InvalidInput, match="gap"):
         fem.rough_prestress(*args, gap=[0.0, 1e-6])
+
+
+MOUNTAINSMAP = pathlib.Path(__file__).resolve().parents[1] / "data" / "mountainsmap-650x650.x3p"
+SL_FILTER = {"lc": 26.5e-6, "ls": 1.6e-6}  # the scan's cut-off pair (docs/roughness.md)
+
+
+def roughness_cli(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([str(asperity_command()), "roughness", *args], capture_output=True,
+                          text=True, timeout=120)
+
+
+def summit_csv(path) -> np.ndarray:
+    rows = [l for l in pathlib.Path(path).read_text().splitlines() if not l.startswith("#")]
+    assert rows[0] == "height[m],density[1/m]"
+    return np.array([[float(v) for v in r.split(",")] for r in rows[1:]])
+
+
+def test_summits_of_an_areal_scan_reach_a_case_element(tmp_path):
+    # From a measured areal scan to a contact element: the summits of the S-L surface
+    # (asperity.find_summits) give the table, R and eta; `asperity roughness --summits`
+    # finds the same summits and writes the same table (12 significant digits), which a case
+    # file's rough_contact element reads (summit_heights). The two elements sum over the same
+    # table: their forces agree within the tangential tables' verified bound, 1e-9. The table
+    # is what they sum over: the forces differ from the Gaussian's of the same sigma.
+    x = asperity.read_x3p(str(MOUNTAINSMAP))
+    sl, x0, y0 = asperity.scale_limited_surface(x["z"], x["dx"], x["dy"], **SL_FILTER)
+    s = asperity.find_summits(sl, x["dx"], x["dy"], x0, y0)
+    csv = tmp_path / "summits.csv"
+    r = roughness_cli("--surface", str(MOUNTAINSMAP), "--lc", "26.5um", "--ls", "1.6um",
+                      "--summits", str(csv), "--json")
+    assert r.returncode == 0, r.stderr
+    said = json.loads(r.stdout)["summits"]
+    assert said["count"] == len(s["z"]) > 100
+    for key in ("eta", "R", "sigma", "mean_height", "area"):
+        assert said[key] == pytest.approx(s[key], rel=1e-14, abs=0)
+    table = summit_csv(csv)
+    assert np.allclose(table, s["table"], rtol=1e-11, atol=0)  # the CSV's 12 digits
+    p = {"E_star": 106e9, "G_star": 22.9e9, "H": 5.8e9, "nu": 0.3, "R": s["R"], "eta": s["eta"],
+         "model": "bke"}
+    mine = vib.RoughContact(**p, sigma=None, summit_heights=s["table"], pressure=PRESSURE,
+                            area=AREA, T=np.eye(3))
+    text = case_text({**p, "sigma": 0.0}, PRESSURE, AREA).replace(
+        "sigma = 0.0\n", f'summit_heights = "{csv.name}"\n')
+    (tmp_path / "case.toml").write_text(text)
+    (ref,) = vib.HarmonicBalance.from_case(tmp_path / "case.toml").elements
+    sigma = mine.surface.parameters["sigma"]
+    u = period(32, [0.3 * sigma, 0.2 * sigma, 0.1 * sigma], seed=3)
+    fa = mine.core.periodic_response(u, tangent=False)["f"]
+    fb = ref.core.periodic_response(u, tangent=False)["f"]
+    assert np.abs(fa - fb).max() <= 1e-9 * np.abs(fb).max()
+    gauss = vib.RoughContact(**p, sigma=sigma, summit_sigma=True, pressure=PRESSURE, area=AREA,
+                             T=np.eye(3))
+    fg = gauss.core.periodic_response(u, tangent=False)["f"]
+    assert np.abs(fa - fg).max() > 1e-2 * np.abs(fg).max()
+
+
+def test_summits_need_complete_maps_on_one_grid(tmp_path):
+    # --summits of two halves sums their S-L surfaces point by point: two maps of different
+    # grids are refused naming both; a map with an invalid point has no S-L surface.
+    rng = np.random.default_rng(5)
+    z = rng.normal(0.0, 1e-6, (40, 50))
+    a, b, holes = tmp_path / "a.x3p", tmp_path / "b.x3p", tmp_path / "holes.x3p"
+    asperity.write_x3p(str(a), z, 1e-6, 1e-6)
+    asperity.write_x3p(str(b), z[:, :45], 1e-6, 1e-6)
+    z[3, 4] = np.nan
+    asperity.write_x3p(str(holes), z, 1e-6, 1e-6)
+    out = tmp_path / "s.csv"
+    for files, message in (
+            ((a, b), "needs their S-L surfaces on one grid: surface 1 has 50 x 40 points at 1 x "
+                     "1 um, surface 2 45 x 40"),
+            ((holes,), "surface 1: 1 of the map's 2000 points are invalid")):
+        args = [v for f in files for v in ("--surface", str(f))]
+        r = roughness_cli(*args, "--filter", "none", "--summits", str(out))
+        assert r.returncode == 2 and message in r.stderr, r.stderr
+        assert not out.exists()
+    r = roughness_cli("--surface", str(a), "--surface", str(a), "--filter", "none", "--summits",
+                      str(out), "--json")
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["summits"]["surface"] == "1+2"

@@ -37,6 +37,7 @@ struct RoughContactCase {
   double sigma = 0.0;         ///< combined rms roughness [m] (or of the summits: summit_sigma)
   bool summit_sigma = false;  ///< sigma is the summit heights' standard deviation
   std::string surface_data;   ///< MATLAB file with Re, area_density, z_max, normzinterp, pzinterp
+  std::string summit_heights_file;  ///< CSV summit-height table (height, density)
   /// Its summit-height density, summed over as such (null: Gaussian of sigma; also with
   /// summit_distribution = "gaussian").
   std::shared_ptr<const surface::SummitHeightTable> heights;

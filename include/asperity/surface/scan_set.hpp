@@ -39,6 +39,8 @@ struct ScanSettings {
   /// Compute the PSD of each line scan's filtered profile, or of the rows and columns of an
   /// areal file's S-L surface.
   bool psd = false;
+  /// Keep an areal file's S-L surface (for its summits: summits.hpp).
+  bool keep_scale_limited = false;
 };
 
 /// One scan's (or, for an areal file, one axis's) moments.
@@ -70,6 +72,9 @@ struct IsotropicSurface {
   std::string areal_parameters_note;  ///< why there are none (for an areal file)
   std::vector<PowerSpectrum> psd;     ///< with settings.psd: per line scan, or x and y
   std::size_t spikes_removed = 0;     ///< points replaced by the spike removal
+  /// With settings.keep_scale_limited: an areal file's S-L surface (none when the map has
+  /// invalid points; areal_parameters_note says why).
+  std::optional<HeightMap> scale_limited;
 };
 
 /// The equivalent isotropic surface of `scans`:

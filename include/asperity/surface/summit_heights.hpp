@@ -44,4 +44,10 @@ class SummitHeightTable {
   double mean_ = 0.0, sd_ = 0.0;
 };
 
+/// A summit-height table from a CSV file (core/csv.hpp's format; `asperity roughness
+/// --summits` writes one): the columns height (with a length unit in the header, e.g.
+/// "height[m]") and density, or count (any positive factor: normalized). Throws InvalidInput
+/// naming the file for a missing column and for a table that is not a distribution.
+[[nodiscard]] SummitHeightTable read_summit_height_table(const std::string& path);
+
 }  // namespace asperity::surface
