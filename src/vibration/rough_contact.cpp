@@ -81,6 +81,13 @@ struct Reversal {
   Deriv D;    // d f / d(samples)
   double p;   // pressure* at the reversal
   double dp;  // its dp*/du_n*
+  // Masing's value of the stack up to here on the backbone at p (with its derivative in p
+  // and, for the Jacobian, in the samples, weight -1): fixed while this reversal is in the
+  // stack, so computed once.
+  bool memory_known = false;
+  double memory = 0.0;
+  double memory_dp = 0.0;
+  Deriv memory_D;
 };
 
 // Lagrange basis on nodes 0..3 at tau, and its derivative.
@@ -240,46 +247,69 @@ RoughContactElement::Stencil RoughContactElement::stencil(double p_star) const {
   return s;
 }
 
-RoughContactElement::Tangential RoughContactElement::tangential_star(double x, double p) const {
-  if (!(p > 0.0)) return {};
-  const Stencil s = stencil(p);
-  const double R0 = table0_->evaluate_non_negative(x) / p0_star_;
-  const double R0x = table0_->slope_non_negative(x) / p0_star_;
-  double I = 0.0, Ix = 0.0, IL = 0.0;
-  for (int m = 0; m < 4; ++m) {
-    if (s.w[m] != 0.0 || s.dw[m] != 0.0) {
-      const std::size_t k = s.k0 + static_cast<std::size_t>(m);
-      const double pk = surface_->table_pressure_star(k);
-      const double S = surface_->table(k).evaluate_non_negative(x) / pk;
-      const double Sx = surface_->table(k).slope_non_negative(x) / pk;
-      I += s.w[m] * S;
-      Ix += s.w[m] * Sx;
-      IL += s.dw[m] * S;
+RoughContactElement::Blend RoughContactElement::blend(double p) const {
+  const Stencil st = stencil(p);
+  Blend out;
+  const auto add = [&](std::size_t k, double a, double b) {
+    for (std::size_t j = 0; j < out.n; ++j) {
+      if (out.k[j] == k) {
+        out.a[j] += a;
+        out.b[j] += b;
+        return;
+      }
     }
-    if (stencil0_.w[m] != 0.0) {
-      const std::size_t k = stencil0_.k0 + static_cast<std::size_t>(m);
+    out.k[out.n] = k;
+    out.a[out.n] = a;
+    out.b[out.n] = b;
+    ++out.n;
+  };
+  for (int m = 0; m < 4; ++m) {
+    if (st.w[m] != 0.0 || st.dw[m] != 0.0) {
+      const std::size_t k = st.k0 + static_cast<std::size_t>(m);
       const double pk = surface_->table_pressure_star(k);
-      I -= stencil0_.w[m] * surface_->table(k).evaluate_non_negative(x) / pk;
-      Ix -= stencil0_.w[m] * surface_->table(k).slope_non_negative(x) / pk;
+      add(k, st.w[m] / pk, st.dw[m] / pk);
     }
   }
-  const double F = R0 + I;
-  return {p * F, p * (R0x + Ix), F + IL};  // d(p F(ln p))/dp = F + F'
+  for (int m = 0; m < 4; ++m) {
+    if (stencil0_.w[m] != 0.0) {
+      const std::size_t k = stencil0_.k0 + static_cast<std::size_t>(m);
+      add(k, -stencil0_.w[m] / surface_->table_pressure_star(k), 0.0);
+    }
+  }
+  return out;
+}
+
+RoughContactElement::Tangential RoughContactElement::tangential_at(double x, double p,
+                                                                   const Blend& b) const {
+  const auto v0 = table0_->value_and_slope_non_negative(x);
+  double F = v0.Q / p0_star_, Fx = v0.dQ / p0_star_, FL = 0.0;
+  for (std::size_t j = 0; j < b.n; ++j) {
+    const auto v = surface_->table(b.k[j]).value_and_slope_non_negative(x);
+    F += b.a[j] * v.Q;
+    Fx += b.a[j] * v.dQ;
+    FL += b.b[j] * v.Q;
+  }
+  return {p * F, p * Fx, F + FL};  // d(p F(ln p))/dp = F + dF/d ln p
+}
+
+RoughContactElement::Tangential RoughContactElement::tangential_star(double x, double p) const {
+  if (!(p > 0.0)) return {};
+  return tangential_at(x, p, blend(p));
+}
+
+RoughContactElement::Tangential RoughContactElement::limit_at(double p, const Blend& b) const {
+  double F = table0_->limit() / p0_star_, FL = 0.0;
+  for (std::size_t j = 0; j < b.n; ++j) {
+    const double l = surface_->table(b.k[j]).limit();
+    F += b.a[j] * l;
+    FL += b.b[j] * l;
+  }
+  return {p * F, 0.0, F + FL};
 }
 
 RoughContactElement::Tangential RoughContactElement::limit_star(double p) const {
   if (!(p > 0.0)) return {};
-  const Stencil s = stencil(p);
-  double F = table0_->limit() / p0_star_, FL = 0.0;
-  for (int m = 0; m < 4; ++m) {
-    const std::size_t k = s.k0 + static_cast<std::size_t>(m);
-    const double lk = surface_->table(k).limit() / surface_->table_pressure_star(k);
-    F += s.w[m] * lk;
-    FL += s.dw[m] * lk;
-    const std::size_t k0 = stencil0_.k0 + static_cast<std::size_t>(m);
-    F -= stencil0_.w[m] * surface_->table(k0).limit() / surface_->table_pressure_star(k0);
-  }
-  return {p * F, 0.0, F + FL};
+  return limit_at(p, blend(p));
 }
 
 RoughContactElement::Pressure RoughContactElement::pressure(double u_n) const {
@@ -332,17 +362,41 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
   };
   Direction dirs[2];
   Deriv g_D[2];
+  // The state a period starts from, as it matters for the next (the memory caches follow
+  // from it): equal states give equal periods, bit for bit.
+  const auto same_terms = [](const Deriv& a, const Deriv& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](auto& x, auto& y) {
+             return x.j == y.j && x.c == y.c && x.v == y.v;
+           });
+  };
+  const auto same_state = [&](const Direction& a, const Direction& b) {
+    if (a.stack.size() != b.stack.size() || a.x_prev != b.x_prev || a.f_prev != b.f_prev ||
+        a.dir_prev != b.dir_prev || a.origin != b.origin || a.origin_sample != b.origin_sample ||
+        a.origin_has_sample != b.origin_has_sample || a.s_prev != b.s_prev ||
+        a.prev_has_sample != b.prev_has_sample || a.p_at_prev != b.p_at_prev ||
+        a.dp_at_prev != b.dp_at_prev || !same_terms(a.D_prev, b.D_prev))
+      return false;
+    for (std::size_t k = 0; k < a.stack.size(); ++k) {
+      const Reversal& x = a.stack[k];
+      const Reversal& y = b.stack[k];
+      if (x.x != y.x || x.f != y.f || x.direction != y.direction || x.closes_at != y.closes_at ||
+          x.sample != y.sample || x.p != y.p || x.dp != y.dp || !same_terms(x.D, y.D))
+        return false;
+    }
+    return true;
+  };
+  Direction started[2];
   // Masing's value at the top reversal of a stack built from the virgin curve centred at
   // `origin`, on the backbone at pressure* q: M_0 = sign Q_l(|x_0 - origin|), then
   // M_j = M_{j-1} + 2 d_{j-1} Q_l(|x_j - x_{j-1}|/2) (Eq. 4.11-4.13). dq: dM/dq; into D
   // (when given) its x-derivatives times `weight`.
   const auto memory_value = [&](const std::vector<Reversal>& stack, double origin, double q,
-                                double& dq, Deriv* D, double weight, int c,
-                                std::optional<std::uint32_t> origin_sample) {
+                                const Blend& B, double& dq, Deriv* D, double weight, int c,
+                                const std::uint32_t* origin_sample) {
     const auto cc = static_cast<std::uint16_t>(c);
     const double rel0 = stack.front().x - origin;
     const double sgn0 = rel0 < 0.0 ? -1.0 : 1.0;
-    const Tangential t0 = tangential_star(std::abs(rel0), q);
+    const Tangential t0 = tangential_at(std::abs(rel0), q, B);
     double M = rel0 == 0.0 ? 0.0 : sgn0 * t0.Q;
     dq = rel0 == 0.0 ? 0.0 : sgn0 * t0.Qp;
     if (D) {
@@ -352,7 +406,7 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
     for (std::size_t j = 1; j < stack.size(); ++j) {
       const Reversal& a = stack[j - 1];
       const Reversal& b = stack[j];
-      const Tangential t = tangential_star(0.5 * std::abs(b.x - a.x), q);
+      const Tangential t = tangential_at(0.5 * std::abs(b.x - a.x), q, B);
       M += a.direction * 2.0 * t.Q;
       dq += a.direction * 2.0 * t.Qp;
       if (D) {
@@ -362,6 +416,14 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
     }
     return M;
   };
+  // The normal law and the tables' blend at each sample's pressure: the same in every period.
+  std::vector<Pressure> pressures(n);
+  std::vector<Blend> blends(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    pressures[k] = pressure(u(static_cast<Eigen::Index>(k), 2));
+    if (pressures[k].p > 0.0) blends[k] = blend(pressures[k].p);
+  }
+  Deriv D_f[2];
   // Periods are repeated until one repeats the previous (the steady response): one repeat
   // under Masing's rules in one direction at constant load, a few more where the traction
   // limit returns a 2-D trial force or the load varies (shakedown of the reversal forces).
@@ -369,6 +431,13 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
   for (std::size_t step = 0;; ++step) {
     const auto i = static_cast<std::uint32_t>(step % n);
     if (i == 0 && step >= n) {
+      // The second period started where the first left off: the third would repeat it.
+      if (step == 2 * n && same_state(dirs[0], started[0]) && same_state(dirs[1], started[1]))
+        break;
+      if (step == n) {
+        started[0] = dirs[0];
+        started[1] = dirs[1];
+      }
       if (step >= 2 * n) {
         const double diff = (out.f - previous).cwiseAbs().maxCoeff();
         if (diff <= kPeriodicTolerance * force_scale * table0_->limit()) break;
@@ -384,8 +453,9 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
       if (tangent) out.du.setZero();
     }
     const auto ii = static_cast<Eigen::Index>(i);
-    const Pressure pr = pressure(u(ii, 2));
+    const Pressure& pr = pressures[i];
     const double p = pr.p;
+    const Blend& B = blends[i];
     double g[2];
     for (int c = 0; c < 2; ++c) {
       Direction& s = dirs[c];
@@ -427,7 +497,7 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
       }
       if (s.stack.empty()) {
         const double rel = x - s.origin;
-        const Tangential t = tangential_star(std::abs(rel), p);
+        const Tangential t = tangential_at(std::abs(rel), p, B);
         const double sgn = rel < 0.0 ? -1.0 : 1.0;
         g[c] = rel == 0.0 ? 0.0 : sgn * t.Q;
         if (tangent) {
@@ -437,8 +507,8 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
           D.push_back({i, 2, sgn * t.Qp * pr.dp});
         }
       } else {
-        const Reversal& r = s.stack.back();
-        const Tangential t = tangential_star(0.5 * std::abs(x - r.x), p);
+        Reversal& r = s.stack.back();
+        const Tangential t = tangential_at(0.5 * std::abs(x - r.x), p, B);
         g[c] = r.f + r.direction * 2.0 * t.Q;
         if (tangent) {
           D = r.D;
@@ -451,22 +521,29 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
         // construction on the backbone at p(t), and a branch meets the one it left at the
         // latter's reversal with the same force (docs/rough_contact.md, "Normal-load
         // variation").
-        double dM_now = 0.0, dM_rev = 0.0;
-        g[c] += memory_value(s.stack, s.origin, p, dM_now, tangent ? &D : nullptr, 1.0, c,
-                             s.origin_has_sample ? std::optional(s.origin_sample) : std::nullopt) -
-                memory_value(s.stack, s.origin, r.p, dM_rev, tangent ? &D : nullptr, -1.0, c,
-                             s.origin_has_sample ? std::optional(s.origin_sample) : std::nullopt);
+        const std::uint32_t* origin_sample = s.origin_has_sample ? &s.origin_sample : nullptr;
+        if (!r.memory_known) {
+          r.memory = memory_value(s.stack, s.origin, r.p, blend(r.p), r.memory_dp,
+                                  tangent ? &r.memory_D : nullptr, -1.0, c, origin_sample);
+          r.memory_known = true;
+        }
+        double dM_now = 0.0;
+        g[c] += memory_value(s.stack, s.origin, p, B, dM_now, tangent ? &D : nullptr, 1.0, c,
+                             origin_sample) -
+                r.memory;
         if (tangent) {
+          D.insert(D.end(), r.memory_D.begin(), r.memory_D.end());
           D.push_back({i, 2, dM_now * pr.dp});
-          D.push_back({r.sample, 2, -dM_rev * r.dp});
+          D.push_back({r.sample, 2, -r.memory_dp * r.dp});
         }
       }
     }
     // The rough flat's static friction bounds the traction vector (Eq. 4.7).
     double f[2] = {g[0], g[1]};
-    Deriv D_f[2];
+    D_f[0].clear();
+    D_f[1].clear();
     const double mag = std::hypot(g[0], g[1]);
-    const Tangential lim = limit_star(p);
+    const Tangential lim = p > 0.0 ? limit_at(p, B) : Tangential{};
     const bool capped = mag > lim.Q;
     if (capped) {
       if (mag > 0.0) {

@@ -86,6 +86,27 @@ class TabulatedBackbone : public Backbone {
             u2 * ((3.0 * p.c[3] + 4.0 * p.c[4] * u) + 5.0 * p.c[5] * u2)) *
            p.inv_w;
   }
+  /// evaluate_non_negative(x) and slope_non_negative(x) from one look-up, equal to the two
+  /// calls bit for bit.
+  struct ValueSlope {
+    double Q = 0.0;
+    double dQ = 0.0;
+  };
+  [[nodiscard]] ValueSlope value_and_slope_non_negative(double x) const noexcept {
+    const std::uint64_t i = (std::bit_cast<std::uint64_t>(x) >> shift_) - base_;
+    if (i >= fast_.size() || fast_[i].fallback) [[unlikely]]
+      return {evaluate_non_negative(x), slope_non_negative(x)};
+    const FastCell& c = fast_[i];
+    const FastPiece& p = c.piece[x >= c.split ? 1 : 0];
+    const double u = (x - p.x0) * p.inv_w;
+    const double u2 = u * u;
+    const double Q =
+        (p.c[0] + p.c[1] * u) + u2 * ((p.c[2] + p.c[3] * u) + u2 * (p.c[4] + p.c[5] * u));
+    if (!(Q < limit_)) return {limit_, 0.0};
+    return {Q, ((p.c[1] + 2.0 * p.c[2] * u) +
+                u2 * ((3.0 * p.c[3] + 4.0 * p.c[4] * u) + 5.0 * p.c[5] * u2)) *
+                   p.inv_w};
+  }
   /// dQ_l/dx of the reference interpolant: Q = x G(s), dQ/dx = G + s G'(s)/2.
   [[nodiscard]] double slope_reference(double x) const noexcept {
     if (x >= x_end_) return 0.0;

@@ -141,6 +141,17 @@ class RoughContactElement final : public Element {
     double dw[4] = {0, 0, 0, 0};  // d w / d ln p
   };
   [[nodiscard]] Stencil stencil(double p_star) const;
+  // The tables one pressure combines, the prestress stencil's subtracted: at p*,
+  // F(x) = T0(x)/p0* + sum_j a_j T_k(j)(x) and dF/d ln p = sum_j b_j T_k(j)(x).
+  struct Blend {
+    std::size_t n = 0;
+    std::size_t k[8] = {};
+    double a[8] = {};
+    double b[8] = {};
+  };
+  [[nodiscard]] Blend blend(double p_star) const;
+  [[nodiscard]] Tangential tangential_at(double x_star, double p_star, const Blend& b) const;
+  [[nodiscard]] Tangential limit_at(double p_star, const Blend& b) const;
 
   std::shared_ptr<const RoughContactSurface> surface_;
   double area_;
