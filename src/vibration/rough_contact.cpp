@@ -665,6 +665,9 @@ dynamics::SummaryObject RoughContactElement::describe() const {
           {"G_star_Pa", c.G_star},
           {"H_Pa", c.H},
           {"sigma_m", c.sigma},
+          {"summit_heights", c.summit_heights ? fmt::format("measured table ({} points)",
+                                                            c.summit_heights->z_star().size())
+                                              : std::string("gaussian")},
           {"R_m", c.R},
           {"eta_per_m2", c.eta}};
 }

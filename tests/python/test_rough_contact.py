@@ -436,6 +436,9 @@ def test_summits_of_an_areal_scan_reach_a_case_element(tmp_path):
                              T=np.eye(3))
     fg = gauss.core.periodic_response(u, tangent=False)["f"]
     assert np.abs(fa - fg).max() > 1e-2 * np.abs(fg).max()
+    # The summaries say what each sums over: the table's rows, or the Gaussian.
+    assert ref.describe()["summit_heights"] == f"measured table ({len(table)} points)"
+    assert gauss.describe()["summit_heights"] == "gaussian"
 
 
 def test_summits_need_complete_maps_on_one_grid(tmp_path):
