@@ -1041,7 +1041,8 @@ void add_roughness_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_flag("--json", o->json,
                 "print JSON (SI units): surfaces[] and combined, each with sigma, eta, R, beta, "
                 "alpha, m0, m2, m4, sigma_a (psi with a material), filter {lc, ls}; per scan "
-                "the ISO 21920-2 parameters, per areal file the ISO 25178-2 parameters");
+                "the ISO 21920-2 parameters, per areal file the ISO 25178-2 parameters; with "
+                "--summits, summits {count, eta, sigma, R, ...} beside their spectral estimates");
   cmd->add_option("--plot", o->plot,
                   "draw into this PNG file four panels: the raw, levelled and filtered profile "
                   "(first scan of each half, each panel with its own height scale) and the "
