@@ -14,6 +14,8 @@ import subprocess
 import sys
 import tempfile
 
+from summit_table import linear_moments
+
 
 def run(exe, argv):
     return subprocess.run([exe, "roughness"] + argv, capture_output=True, text=True, timeout=120)
@@ -369,17 +371,6 @@ def read_summit_csv(path):
                 rows.append(line.strip())
     return comments, rows[0], [float(r.split(",")[0]) for r in rows[1:]], \
         [float(r.split(",")[1]) for r in rows[1:]]
-
-
-def linear_moments(z, p):
-    """Integral, mean and variance of a density linear between its points (exact)."""
-    I = m1 = m2 = 0.0
-    for a, b, pa, pb in zip(z, z[1:], p, p[1:]):
-        h = b - a
-        I += 0.5 * h * (pa + pb)
-        m1 += h / 6 * (pa * (2 * a + b) + pb * (a + 2 * b))
-        m2 += h / 12 * (pa * (3 * a * a + 2 * a * b + b * b) + pb * (a * a + 2 * a * b + 3 * b * b))
-    return I, m1 / I, m2 / I - (m1 / I) ** 2
 
 
 def summits_table(exe, src, tmp):

@@ -18,6 +18,8 @@ import jsonschema
 import numpy as np
 import scipy.io
 
+from summit_table import linear_moments
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 EXAMPLE = os.path.join(HERE, "..", "..", "examples", "structures", "two_blocks.toml")
 with open(EXAMPLE) as f:
@@ -362,16 +364,6 @@ def surface_case(tmp, extra="", pz=None):
                         "size = 10\ninterface_size = 5\nhole_size = 3\n")
     assert "surface_data" in text and "size = 10\n" in text
     return write(tmp, "surface.toml", text)
-
-
-def linear_moments(z, p):
-    """Integral, mean and variance of the density linear between nodes (exact)."""
-    a, b, pa, pb = z[:-1], z[1:], p[:-1], p[1:]
-    h = b - a
-    I = np.sum(0.5 * h * (pa + pb))
-    m1 = np.sum(h / 6 * (pa * (2 * a + b) + pb * (a + 2 * b))) / I
-    m2 = np.sum(h / 12 * (pa * (3 * a * a + 2 * a * b + b * b) + pb * (a * a + 2 * a * b + 3 * b * b))) / I
-    return I, m1, m2 - m1 * m1
 
 
 def case_measured_summit_table(exe, tmp):
