@@ -24,7 +24,31 @@ stage "C++ under ASan + UBSan (debug preset): GoogleTest suite and the C++ examp
 # suite, and the Python drivers under ASan would only add time.
 cmake --preset debug -DPython3_EXECUTABLE="$py" -DASPERITY_BUILD_PYTHON=ON
 cmake --build --preset debug -j 2 --target asperity_tests sphere_example rough_flat_hysteresis
-ctest --preset debug -j 2 -L 'unit|example'
+# Left out here: the tests that took more than 15 s each under the sanitizers on a 2-core
+# machine (2026-11-27; 1902 of the stage's 2295 test-seconds, up to 425 s for one test that
+# takes 12 s in Release): convergence studies and whole-model checks (continuation through
+# every resonance peak, the full-model modes of a reduction, mesh refinement, the thesis's
+# validation report, long simulations) whose code paths the other 497 tests run on small
+# cases. They run in Release in scripts/test.sh.
+slow_under_sanitizers=(
+  'VibrationHardeningContact\.CompletesThroughEveryPeakAtNt256'
+  'VibrationHardeningContact\.PeakAgreesWithFinerSampling'
+  'FemReduction\.ReducedModesMatchTheFullModelInTheRetainedRange'
+  'FemReduction\.BoltPretensionIsInEquilibriumWithTheInterfacePressure'
+  'FemReduction\.RoughPrestressCarriesTheBoltLoad'
+  'FemReduction\.MoreRigidBodyModesThanFreeFreeIsRefused'
+  'FemCantilever\.'
+  'FemPatchTest\.Tet10CurvedDistorted'
+  'TableBackbone\.InterpolatesMonotoneWithExactIntegralAndInverse'
+  'ProfileText\.FileReadInPiecesEqualsTheWholeText'
+  'ValidateReport\.EveryReproductionAgreesOrIsDocumented'
+  'FilterFft\.EqualsDirectOnShippedProfilesBothEndEffects'
+  'DynamicsSystemTest\.DankowiczStateStaysWithinDeltaToTheTolerance'
+  'DynamicsSystemTest\.EnergyBalanceCloses'
+  'FemAssembly\.SymmetricMassIsRhoVAndRigidMotionsCostNoEnergy'
+)
+ctest --preset debug -j 2 -L 'unit|example' \
+  -E "^($(IFS='|'; echo "${slow_under_sanitizers[*]}"))"
 
 stage "Python bindings under ASan + UBSan: the pytest suite against the debug preset's module"
 # The bindings' own code (numpy arrays read and written in place, the method forwarders)
