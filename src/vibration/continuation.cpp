@@ -170,6 +170,9 @@ NewtonResult newton_square(const SystemFunction& g, Eigen::VectorXd y, const Eig
   return finished(std::move(res), y, R);
 }
 
+// Reduction of max |R| from the guess that a failed chord corrector's Newton steps must have
+// achieved for full Newton to go on from its last iterate (continue_curve's corrector).
+constexpr double kFallbackProgress = 0.1;
 // Reduction of |R| a chord step must achieve for the factorisation to be kept.
 constexpr double kChordContraction = 0.5;
 // Chord iterations stop when the estimated error is below this fraction of the step
@@ -385,14 +388,37 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
                            : newton_square(g, guess, scale, pb.residual_scale, opt.newton);
     if (chord && !r.converged) {
       // Where chord iterations fail (a kink between the last point and the predictor, a
-      // strongly curved branch), full Newton from the same guess before the step is halved:
-      // chord Newton never does worse than full Newton would.
-      out.newton_iterations += static_cast<std::size_t>(r.iterations);
+      // strongly curved branch), full Newton may still converge. Chord Newton's steps on
+      // fresh Jacobians from the guess are full Newton's own iterates (the same line search),
+      // so full Newton goes on from the chord's last iterate, within the same budget of
+      // max_iterations Jacobians, and only while those steps were converging (|R| down by
+      // kFallbackProgress from the guess). Otherwise (Newton cycling where the residual is not
+      // smooth: on the BRB's mode 2 at log10 a = -4.31, where one element's response jumps,
+      // |R| 5.8e3 -> 1.4e3 -> 5.9e3 -> ...) the step is halved at once: restarting full Newton
+      // there repeated the chord's iterates and cycled for 20 dense factorisations per halving.
       const int chord_factorizations = r.factorizations;
+      const int left = opt.newton.max_iterations - chord_factorizations;
       std::string failure = r.failure;
-      r = newton_square(g, guess, scale, pb.residual_scale, opt.newton);
-      r.factorizations += chord_factorizations;
-      if (r.failure.empty()) r.failure = failure;
+      bool go_on = chord_factorizations == 0;
+      if (!go_on && left > 0 && std::isfinite(r.residual_norm)) {
+        Eigen::VectorXd R_guess;
+        std::string ignored;
+        evaluate(g, guess, R_guess, nullptr, ignored);
+        go_on = R_guess.allFinite() &&
+                r.residual_norm <= kFallbackProgress * R_guess.cwiseAbs().maxCoeff();
+      }
+      if (go_on) {
+        out.newton_iterations += static_cast<std::size_t>(r.iterations);
+        if (chord_factorizations == 0) {
+          r = newton_square(g, guess, scale, pb.residual_scale, opt.newton);
+        } else {
+          NewtonOptions rest = opt.newton;
+          rest.max_iterations = left;
+          r = newton_square(g, r.y, scale, pb.residual_scale, rest);
+        }
+        r.factorizations += chord_factorizations;
+        if (r.failure.empty()) r.failure = failure;
+      }
     }
     out.newton_iterations += static_cast<std::size_t>(r.iterations);
     if (!r.failure.empty()) last_failure = r.failure;
