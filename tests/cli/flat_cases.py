@@ -4,10 +4,12 @@ bad input (exit 2, a message naming what to change, nothing on stdout, no output
 
 Usage: flat_cases.py ASPERITY_EXE CASE. Standard library only. Exit 0 = pass, 1 = fail.
 """
+import atexit
 import csv
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -62,7 +64,8 @@ def bad(exe, argv, must_contain, tmp=None):
 
 def main():
     exe, case = sys.argv[1], sys.argv[2]
-    tmp = tempfile.mkdtemp()
+    tmp = tempfile.mkdtemp(prefix="asperity-flat-")
+    atexit.register(shutil.rmtree, tmp, ignore_errors=True)  # no directory left per run
     norm_keys = ["beta", "psi", "sigma_a_over_sigma", "omega_c_star", "separation_star", "P_star",
                  "Q_max_star", "mu", "stiffness_star"]
     amp_keys = ["delta_max_star", "Q_at_delta_max_star", "energy_star"]

@@ -3,15 +3,18 @@
 one error prefix, one style of defaults in --help, "-" for standard output, one "wrote"
 line. Usage: interface_cases.py ASPERITY SOURCE_DIR CASE. Exit 0 on success.
 """
+import atexit
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
 
 exe, src, case = sys.argv[1], sys.argv[2], sys.argv[3]
 tmp = tempfile.mkdtemp(prefix="asperity-cli-")
+atexit.register(shutil.rmtree, tmp, ignore_errors=True)  # no directory left per run
 COMMANDS = ["sphere", "flat", "roughness", "dynamics", "predict", "analyze", "synthesize", "validate"]
 CASE = "examples/joints/steel420_two_bolts.toml"
 SPHERE = ["sphere", "--E1", "207GPa", "--nu1", "0.3", "--E2", "207GPa", "--nu2", "0.3", "--H", "6.83GPa",

@@ -6,8 +6,10 @@ Usage: schema_cases.py ASPERITY SOURCE_DIR COMMAND. Exit 0 on success. Needs the
 Adding a command: its schema under docs/schema/ (CMake makes the test from the file name)
 and one line in INVOCATIONS below.
 """
+import atexit
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -49,6 +51,7 @@ if command not in INVOCATIONS:
     sys.exit(f"{schema_path} has no invocations: add a line for {command!r} to INVOCATIONS in {__file__}")
 
 tmp = tempfile.mkdtemp(prefix="asperity-schema-")
+atexit.register(shutil.rmtree, tmp, ignore_errors=True)  # no directory left per run
 checked = 0
 for args in INVOCATIONS[command]:
     args = [a.replace("{tmp}", tmp) for a in args]

@@ -2,9 +2,11 @@
 
 Usage: cli_joint_cases.py ASPERITY CASE SOURCE_DIR. Exit 0 on success.
 """
+import atexit
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -12,6 +14,7 @@ import tempfile
 exe, case, src = sys.argv[1], sys.argv[2], sys.argv[3]
 ex = os.path.join(src, "examples", "joints")
 tmp = tempfile.mkdtemp(prefix="asperity-joint-")
+atexit.register(shutil.rmtree, tmp, ignore_errors=True)  # no directory left per run
 
 
 def run(*args, code=0):
@@ -515,7 +518,9 @@ elif case.startswith("bad.interface_"):
         bad_case(bolted.replace("patches = [17, 10]", "patches = [170, 100]"),
                  "holds fewer than 100 asperities")
     elif case == "bad.interface_map_not_covering":
-        m = os.path.join(tempfile.mkdtemp(prefix="asperity-map-"), "map.csv")  # apart from tmp
+        m_dir = tempfile.mkdtemp(prefix="asperity-map-")  # apart from tmp
+        atexit.register(shutil.rmtree, m_dir, ignore_errors=True)
+        m = os.path.join(m_dir, "map.csv")
         with open(m, "w") as f:
             f.write("x[mm],y[mm],p[MPa]\n0,0,1\n12,0,1\n0,10,1\n12,10,1\n")
         text = BASE + f'\n[interface]\npressure = "map"\nsize = ["17 mm", "10 mm"]\npatches = [4, 2]\nmap = "{m}"\n'
