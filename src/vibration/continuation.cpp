@@ -183,6 +183,11 @@ constexpr double kChordStepTolerance = 1e-2;
 // A scaled step this small is rounding (unknowns of the order of their scale).
 constexpr double kRoundoffStep = 1e-13;
 
+// Fresh Jacobians a chord corrector may factorise before it gives up.
+int chord_max_factorizations(const NewtonOptions& opt) {
+  return std::max(2, opt.max_iterations / 4);
+}
+
 // Solves J dy = rhs with a factorisation made earlier (chord iterations).
 using ChordSolve = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
 
@@ -219,8 +224,8 @@ NewtonResult newton_chord(const SystemFunction& g, Eigen::VectorXd y, const Eige
   }
   const double tol = opt.residual_tolerance * residual_scale;
   // A corrector that needs many fresh Jacobians is not a chord iteration any more: it
-  // gives up early and full Newton (newton_square) takes over from the guess.
-  const int max_factorizations = std::max(2, opt.max_iterations / 4);
+  // gives up early (continue_curve decides whether full Newton goes on).
+  const int max_factorizations = chord_max_factorizations(opt);
   double previous_step = 0.0;  // of the last chord step (0: none since the last Newton step)
   for (int it = 1; it <= 4 * opt.max_iterations; ++it) {
     res.iterations = it;
@@ -390,14 +395,17 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
       // Where chord iterations fail (a kink between the last point and the predictor, a
       // strongly curved branch), full Newton may still converge. Chord Newton's steps on
       // fresh Jacobians from the guess are full Newton's own iterates (the same line search),
-      // so full Newton goes on from the chord's last iterate, within the same budget of
-      // max_iterations Jacobians, and only while those steps were converging (|R| down by
-      // kFallbackProgress from the guess). Otherwise (Newton cycling where the residual is not
-      // smooth: on the BRB's mode 2 at log10 a = -4.31, where one element's response jumps,
-      // |R| 5.8e3 -> 1.4e3 -> 5.9e3 -> ...) the step is halved at once: restarting full Newton
-      // there repeated the chord's iterates and cycled for 20 dense factorisations per halving.
+      // so full Newton goes on from the chord's last iterate, for as many more Jacobians as
+      // the chord corrector had (a Newton iteration that has converged that far finishes in a
+      // few; on the BRB's mode 2 none of 15 more ever did), and only while those steps were
+      // converging (|R| down by kFallbackProgress from the guess). Otherwise (Newton cycling where
+      // the residual is not smooth: on the BRB's mode 2 at log10 a = -4.31, where one element's
+      // response jumps, |R| 5.8e3 -> 1.4e3 -> 5.9e3 -> ...) the step is halved at once: restarting
+      // full Newton there repeated the chord's iterates and cycled for 20 dense factorisations per
+      // halving.
       const int chord_factorizations = r.factorizations;
-      const int left = opt.newton.max_iterations - chord_factorizations;
+      const int left = std::min(opt.newton.max_iterations - chord_factorizations,
+                                chord_max_factorizations(opt.newton));
       std::string failure = r.failure;
       bool go_on = chord_factorizations == 0;
       if (!go_on && left > 0 && std::isfinite(r.residual_norm)) {
