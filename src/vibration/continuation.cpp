@@ -429,6 +429,7 @@ ContinuationResult continue_curve(const ContinuationProblem& pb, const Eigen::Ve
       }
     }
     out.newton_iterations += static_cast<std::size_t>(r.iterations);
+    out.factorizations += static_cast<std::size_t>(r.factorizations);
     if (!r.failure.empty()) last_failure = r.failure;
     return r;
   };

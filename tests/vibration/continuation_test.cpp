@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -174,6 +175,43 @@ TEST_P(VibrationContinuationCorrector, AnElementErrorAtTrialPointsStopsTheCurveW
   EXPECT_GT(r.points.back()(1), 1.49);
   EXPECT_LE(r.points.back()(1), 1.5);
   for (const auto& y : r.points) EXPECT_NEAR(y(0), y(1) * y(1), 1e-8);
+}
+
+// A residual with a jump: x - lambda + D [x > 1], D = 1. Along x = lambda the curve ends at
+// x = 1 (for 1 < lambda < 2 neither piece has a solution), so every step past it is rejected
+// and the continuation stalls there, as the BRB's mode 2 does where one element's response
+// jumps (docs/brb.md). Newton cannot converge onto a jump: a rejected step is to cost the
+// corrector's budget, at most 2 max(2, max_iterations / 4) factorisations (the chord
+// corrector's, then as many for full Newton from its last iterate where |R| fell tenfold);
+// before, full Newton restarted from the predictor with max_iterations more (25 per rejected
+// step with the defaults).
+TEST(VibrationContinuation, AStepRejectedAtAJumpCostsTheCorrectorsBudgetOfFactorisations) {
+  constexpr double kJump = 1.0;
+  ContinuationProblem pb;
+  pb.f = [](const Eigen::VectorXd& y, Eigen::VectorXd& R, Eigen::MatrixXd* J) {
+    R = Eigen::VectorXd::Constant(1, y(0) - y(1) + (y(0) > 1.0 ? kJump : 0.0));
+    if (J) *J = Eigen::RowVector2d(1.0, -1.0);
+  };
+  pb.parameter = 1;
+  pb.scale = Eigen::Vector2d(1.0, 1.0);
+  pb.parameter_end = 3.0;
+  ContinuationOptions opt;
+  opt.step = 0.05;
+  opt.max_step = 0.1;
+  opt.min_step = 1e-6;
+  opt.chord_unknowns = 1;
+  const ContinuationResult r = continue_curve(pb, Eigen::Vector2d(0.0, 0.0), opt);
+  EXPECT_FALSE(r.complete);
+  EXPECT_EQ(r.cause, StopCause::stalled);
+  ASSERT_GE(r.points.size(), 2U);
+  EXPECT_GT(r.points.back()(1), 1.0 - 1e-4);  // stalled at the jump, not before it
+  EXPECT_LE(r.points.back()(0), 1.0);
+  EXPECT_GE(r.rejected_steps, 15U);  // 0.1 halved below 1e-6: the stall is reached by halving
+  // Each point on a linear piece takes at most one (the start's; the others converge on the
+  // factorisation made at the last point). Measured: 236 for 24 rejected steps and 22 points.
+  const auto budget = static_cast<std::size_t>(2 * std::max(2, opt.newton.max_iterations / 4));
+  EXPECT_LE(r.factorizations, budget * r.rejected_steps + r.points.size())
+      << r.rejected_steps << " rejected steps, " << r.points.size() << " points";
 }
 
 }  // namespace

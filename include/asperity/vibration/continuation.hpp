@@ -88,6 +88,8 @@ enum class StopCause {
 struct ContinuationResult {
   std::vector<Eigen::VectorXd> points;  ///< converged solutions in order along the curve
   std::size_t newton_iterations = 0;
+  /// Jacobians factorised by the correctors (the cost that dominates on large systems).
+  std::size_t factorizations = 0;
   std::size_t rejected_steps = 0;
   std::size_t turning_points = 0;  ///< sign changes of d parameter / d s
   /// Points reached along the tangent of the next piece of a piecewise-smooth residual
