@@ -129,6 +129,35 @@ def test_constant_load_along_t1_is_todays_rough_flat(element):
         assert np.abs(f3[:, 1:]).max() == 0.0  # no t2 motion; the prestress is the reference
 
 
+def _phase_shifted(element, a1: float, a2: float, phi: float, n: int = 128) -> np.ndarray:
+    """Forces of the steady period for u1 = a1 cos(th), u2 = a2 cos(th - phi)."""
+    th = 2 * np.pi * np.arange(n) / n
+    u = np.column_stack([a1 * np.cos(th), a2 * np.cos(th - phi), np.zeros(n)])
+    return element.core.periodic_response(u, tangent=False)["f"]
+
+
+def test_below_the_slip_limit_the_response_is_continuous_where_an_extremum_changes_sample(
+        element):
+    # At phi = pi/N the t2 path's samples 0 and 1 tie for its maximum: across it the reversal
+    # of t2's Masing memory moves from one sample to the next. Below the traction limit the
+    # force at the reversal is the branch's own, continuous in the path, so the steady
+    # period's forces change in proportion to the change of phi (centred differences over
+    # h = 1e-6 and 1e-8 in the ratio 100, to 1 %; a jump would give ratio 1). With the limit
+    # acting the recorded reversal force is the 2-D capped one and the period jumps
+    # (docs/rough_contact.md, "Limits"): that case is not asserted here.
+    s = table_7_2()["sigma"]
+    a1, a2 = 0.2 * s, 1e-3 * s
+    phi = np.pi / 128
+    f = _phase_shifted(element, a1, a2, phi)
+    # Partial slip, and the limit never reached (else this is the capped case).
+    assert np.hypot(f[:, 0], f[:, 1]).max() < 0.99 * element.core.slip_force
+    assert np.abs(f[:, 0]).max() > 0.5 * element.core.slip_force
+    change = [np.abs(_phase_shifted(element, a1, a2, phi + h)
+                     - _phase_shifted(element, a1, a2, phi - h))[:, 1].max() for h in (1e-6, 1e-8)]
+    assert change[0] > 0
+    assert change[0] / change[1] == pytest.approx(100.0, rel=1e-2)
+
+
 def test_a_shared_surface_gives_the_same_element(element):
     # The element's own surface (tables from pressure/8 to 8 pressure) shared with others.
     surface = element.surface
