@@ -165,8 +165,8 @@ def test_every_random_path_reaches_a_steady_period(pressure):
     inner loops, the 2-D limit acting) the element's response reaches a steady period, and
     three periods of the path end on the one-period answer. A law whose period map has a
     cycle of several periods fails here: of the two "slip anchor" laws of
-    docs/rough_contact.md ("Limits"), the one keeping the anchor's force failed on 2 of the
-    300 paths at 2 MPa (a 3-cycle moving the force by 1.88 N of the 2.97 N slip force, a
+    docs/rough_contact.md ("Continuous 2-D memory: laws tried"), the one keeping the
+    anchor's force failed on 2 of the 300 paths at 2 MPa (a 3-cycle moving the force by 1.88 N of the 2.97 N slip force, a
     2-cycle by 0.022 N), the one scaling it with the limit on 4 (2-cycles by 0.22 and 0.33 N,
     a 4-cycle by up to 1.24 N, one path converging too slowly) and on paths at 0.2 and
     20 MPa."""
