@@ -12,9 +12,12 @@
 #include <cstdio>
 #include <numbers>
 
+#include <Eigen/SparseCholesky>
+
 #include "asperity/core/error.hpp"
 #include "asperity/fem/bolt.hpp"
 #include "asperity/fem/elasticity.hpp"
+#include "asperity/fem/fixture.hpp"
 #include "asperity/fem/gap_map.hpp"
 #include "asperity/fem/interface.hpp"
 #include "asperity/fem/modes.hpp"
@@ -400,6 +403,116 @@ namespace {
 // of them NaN (bolt holes), gaps 0 to 109 um. At a grid point the element's gap is the map's
 // value (bilinear weights 1, 0, 0, 0: round-off only); midway between four it is their mean;
 // outside the map the element is named.
+// The gripped joint (fixture.hpp) against closed forms: with nu = 0 a uniform traction on a
+// face is carried by uniaxial stress, which quadratic elements represent exactly. Lower
+// box held on its bottom face, upper box driven along z by its top face through k; one
+// patch. A unit pair across the interface compresses both boxes and the spring:
+// F(g_n, g_n) = 2 h / (E A) + 1/k; a unit force on z moves the upper box rigidly:
+// F(z, z) = F(g_n, z) = 1/k.
+TEST(FemFixture, GrippedColumnFlexibilityIsTheClosedForm) {
+  const double lx = 0.04, ly = 0.02, h = 0.01, E = 200e9, k = 5e8;
+  const Mesh mesh = stacked_boxes(ElementType::hex20, {4, 2, 2}, lx, ly, h);
+  const auto faces = boundary_faces(mesh);
+  const IsotropicMaterial m0{E, 0.0, 7800};
+  const std::vector<IsotropicMaterial> mats{m0, m0};
+  const auto km = assemble(mesh, mats);
+  const Interface itf = build_interface(mesh, faces, lap_spec(1));
+  const Fixture fx{.held = {"lower", {0, 0, 0}, {0, 0, 1}},
+                   .driven = {"upper", {0, 0, 2 * h}, {0, 0, 1}},
+                   .direction = {0, 0, 1},
+                   .drive_stiffness = k};
+  const GrippedJoint j = condense_gripped(mesh, km.K, {itf}, {}, fx);
+  ASSERT_EQ(j.model.dofs(), 4);  // g (3), z
+  EXPECT_EQ(j.drive_dof, 3);
+  // The bottom face's quad8 nodes over 4 x 2 cells: 5 x 3 corners, 4 x 3 and 5 x 2 mid-edges.
+  EXPECT_EQ(j.held_nodes, 37u);
+  EXPECT_EQ(j.driven_nodes, 37u);
+  ASSERT_LT((itf.patches.front().frame.row(2) - Eigen::RowVector3d(0, 0, 1)).norm(), 1e-12);
+  const Eigen::MatrixXd F = j.model.K.inverse();
+  const double A = lx * ly;
+  EXPECT_LT(std::abs(F(2, 2) / (2 * h / (E * A) + 1 / k) - 1), 1e-9);
+  EXPECT_LT(std::abs(F(3, 3) * k - 1), 1e-9);
+  EXPECT_LT(std::abs(F(2, 3) * k - 1), 1e-9);
+  EXPECT_THAT(
+      [&] {
+        Fixture bad = fx;
+        bad.driven.point.z() = 0.5 * h;
+        (void)condense_gripped(mesh, km.K, {itf}, {}, bad);
+      },
+      ::testing::ThrowsMessage<InvalidInput>(
+          HasSubstr("driven: no boundary face of body \"upper\"")));
+  EXPECT_THAT(
+      [&] {
+        Fixture bad = fx;
+        bad.held.body = "middle";
+        (void)condense_gripped(mesh, km.K, {itf}, {}, bad);
+      },
+      ::testing::ThrowsMessage<InvalidInput>(HasSubstr("held.body = \"middle\"")));
+  EXPECT_THAT(
+      [&] {
+        Fixture bad = fx;
+        bad.drive_stiffness = 0.0;
+        (void)condense_gripped(mesh, km.K, {itf}, {}, bad);
+      },
+      ::testing::ThrowsMessage<InvalidInput>(HasSubstr("drive_stiffness")));
+}
+
+// The bolt as a pre-tension section in the condensed coordinates equals one in the full
+// model: a lap (lower box held at x = 0, upper driven along x at x = lx, as the thesis's
+// apparatus holds its joint), the bolt tightened with the interface open. The condensed
+// model's K - k_b e e^T loaded by the preload on e gives the patches' relative displacement
+// of the full model's (K - k_b h h^T) u = -P h^T with the same grips.
+TEST(FemFixture, CondensedPretensionEqualsTheFullModels) {
+  const Assembled a = assemble_stack({8, 4, 2}, 8, 1500.0);
+  const double lx = 0.04, k = 38e6;
+  const Fixture fx{.held = {"lower", {0, 0, 0}, {1, 0, 0}},
+                   .driven = {"upper", {lx, 0, 0}, {1, 0, 0}},
+                   .direction = {1, 0, 0},
+                   .drive_stiffness = k};
+  const GrippedJoint j = condense_gripped(a.mesh, a.K, {a.itf}, {a.bolt}, fx);
+  const auto& m = j.model;
+  ASSERT_EQ(m.dofs(), 24 + 1 + 1);
+  Eigen::MatrixXd K0 = m.K;
+  K0 -= m.bolt_axial_stiffness[0] * m.bolt_elongation.row(0).transpose() * m.bolt_elongation.row(0);
+  const Eigen::VectorXd x = K0.ldlt().solve(m.bolt_preload[0] * m.bolt_load.col(0));
+
+  // The full model with the same grips, by a transformation P (n x n_red).
+  const auto faces = boundary_faces(a.mesh);
+  const auto held = grip_nodes(a.mesh, faces, fx.held, "held");
+  const auto driven = grip_nodes(a.mesh, faces, fx.driven, "driven");
+  const Eigen::Index n = 3 * a.mesh.node_count();
+  std::vector<Eigen::Index> col(static_cast<std::size_t>(n), 0);
+  for (const auto i : held)
+    for (int c = 0; c < 3; ++c) col[static_cast<std::size_t>(3 * i + c)] = -1;
+  for (const auto i : driven)
+    for (int c = 0; c < 3; ++c) col[static_cast<std::size_t>(3 * i + c)] = c == 0 ? -2 : -1;
+  Eigen::Index nr = 0;
+  for (auto& c : col)
+    if (c == 0) c = nr++;
+  std::vector<Eigen::Triplet<double>> t;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto c = col[static_cast<std::size_t>(i)];
+    if (c >= 0) t.emplace_back(i, c, 1.0);
+    if (c == -2) t.emplace_back(i, nr, 1.0);
+  }
+  SparseMatrix P(n, nr + 1);
+  P.setFromTriplets(t.begin(), t.end());
+  const Eigen::SparseVector<double> hv = a.bolt.elongation;
+  const SparseMatrix hs = SparseMatrix(hv);  // n x 1
+  SparseMatrix Kp = a.K - a.bolt.axial_stiffness * (hs * hs.transpose());
+  SparseMatrix KD = P.transpose() * Kp * P;
+  KD.coeffRef(nr, nr) += k;
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt(KD);
+  ASSERT_EQ(ldlt.info(), Eigen::Success);
+  const Eigen::VectorXd f = P.transpose() * (-1500.0 * Eigen::VectorXd(hs));
+  const Eigen::VectorXd u = P * ldlt.solve(f);
+  const Eigen::VectorXd g = a.itf.local_operator(n) * u;
+  EXPECT_LT((x.head(24) - g).cwiseAbs().maxCoeff(), 1e-9 * g.cwiseAbs().maxCoeff());
+  EXPECT_LT(std::abs(x[24] - u[3 * driven.front()]), 1e-9 * g.cwiseAbs().maxCoeff());
+  // Tightening pulls the faces together (g_n < 0 under the bolt).
+  EXPECT_LT(g.minCoeff(), 0.0);
+}
+
 TEST(FemGapMap, PublishedBrbMap) {
   const std::string path =
       std::string(ASPERITY_TEST_DATA_DIR) + "/../../examples/brb/brb_surface_data.mat";
