@@ -599,67 +599,29 @@ std::vector<PlacedElement> parse_interface_rough_contact(const toml::table& t, s
           "\"t2\", \"-n\"] (the default: tangential, then the closure){}",
           w, at_line(T)));
   }
+  contact::FrictionParameters friction{};
+  if (t.get("mu_cfc")) friction.mu_cfc = number(t, "mu_cfc", w, 0.0);
   const fem::RoughInterfaceRecord& r = *model->rough;
-  RoughInterfaceParameters rp{.E_star = r.E_star,
-                              .G_star = r.G_star,
-                              .H = r.H,
-                              .nu = r.nu,
-                              .sigma = r.sigma,
-                              .R = r.R,
-                              .eta = r.eta,
-                              .model = core::toml_case::named_choice(
-                                  t, "asperity_model", w, r.model, contact::parse_model_name),
-                              .friction = {},
-                              .summit_sigma = r.summit_sigma,
-                              .summit_heights = r.summit_heights};
-  if (t.get("mu_cfc")) rp.friction.mu_cfc = number(t, "mu_cfc", w, 0.0);
-  // The elements in contact by the prestress's rule (at least one asperity expected in
-  // contact, eta A Phi(d) >= 1): those its linearised modes stiffen.
-  std::vector<Eigen::Index> touching;
-  for (Eigen::Index e = 0; e < r.pressure.size(); ++e)
-    if (r.in_contact[static_cast<std::size_t>(e)] && r.pressure[e] > 0.0) touching.push_back(e);
-  if (touching.empty()) {
-    throw InvalidInput(fmt::format(
-        "{}: no interface element of {} is in contact at the rough prestress", w, model->source));
-  }
-  if (touching.size() < static_cast<std::size_t>(r.pressure.size())) {
+  auto placed = interface_rough_contact(
+      *model,
+      core::toml_case::named_choice(t, "asperity_model", w, r.model, contact::parse_model_name),
+      friction, text(t, "name", w, "interface element"), w);
+  if (placed.elements.size() < static_cast<std::size_t>(r.pressure.size())) {
     warnings.push_back(fmt::format(
         "{}: {} of the {} interface elements are out of contact at the rough prestress (less "
         "than one asperity expected in contact) and are left out",
-        w, static_cast<std::size_t>(r.pressure.size()) - touching.size(), r.pressure.size()));
+        w, static_cast<std::size_t>(r.pressure.size()) - placed.elements.size(),
+        r.pressure.size()));
   }
-  double p_min = r.pressure[touching.front()], p_max = p_min;
-  for (const Eigen::Index e : touching) {
-    p_min = std::min(p_min, r.pressure[e]);
-    p_max = std::max(p_max, r.pressure[e]);
-  }
-  // One surface for the interface: tables from p_min/8 to 8 p_max (as a single element's,
-  // docs/rough_contact.md), below the largest load the rough flat represents.
-  const double p_flat_max =
-      surface::RoughFlat::from_combined(rp.E_star, rp.G_star, rp.H, rp.nu, rp.sigma, rp.R, rp.eta,
-                                        rp.model, rp.friction, rp.summit_sigma, rp.summit_heights)
-          .max_load_star() *
-      contact::hardness_factor(rp.nu) * rp.H;
-  const auto surface = std::make_shared<const RoughContactSurface>(
-      rp, p_min / 8.0, std::min(8.0 * p_max, 0.999 * p_flat_max));
-  const std::string name = text(t, "name", w, "interface element");
-  std::vector<PlacedElement> out;
-  out.reserve(touching.size());
-  for (const Eigen::Index e : touching) {
-    PlacedElement pe;
-    pe.name = fmt::format("{} {}", name, e);
-    pe.element = std::make_shared<RoughContactElement>(
-        surface, model->elements[static_cast<std::size_t>(e)].area, r.pressure[e],
-        fmt::format("{} (interface element {})", w, e));
-    pe.T.resize(3, dofs);
-    pe.T.row(0) = model->Q.row(3 * e);
-    pe.T.row(1) = model->Q.row(3 * e + 1);
-    pe.T.row(2) = -model->Q.row(3 * e + 2);
-    out.push_back(std::move(pe));
+  for (const Eigen::Index e : placed.interface_elements) {
     const fem::InterfaceElement& ie = model->elements[static_cast<std::size_t>(e)];
     sites.push_back({.interface_element = e, .centroid = ie.centroid, .area = ie.area});
   }
-  return out;
+  if (model->dofs() != dofs) {
+    throw InvalidInput(fmt::format("{}: the reduced model has {} DOFs, the structure {}{}", w,
+                                   model->dofs(), dofs, at_line(t)));
+  }
+  return std::move(placed.elements);
 }
 
 }  // namespace asperity::vibration::detail

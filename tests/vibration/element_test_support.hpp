@@ -2,7 +2,9 @@
 // Helpers shared by the vibration elements' tests.
 #include <Eigen/Dense>
 
+#include "asperity/dynamics/epb.hpp"
 #include "asperity/vibration/elements.hpp"
+#include "asperity/vibration/rough_contact.hpp"
 
 namespace asperity::vibration::test_support {
 
@@ -20,6 +22,20 @@ inline Eigen::MatrixXd dense_tangent(const PeriodicResponse& r, Eigen::Index N, 
         t.value;
   }
   return D;
+}
+
+/// Table 7.2's rough surfaces (the thesis's chapter 7 contact) as an interface, BKE.
+inline RoughInterfaceParameters table_7_2() {
+  const dynamics::EpbContact c = dynamics::table_7_2_rough();
+  return {.E_star = c.E_star,
+          .G_star = c.G_star,
+          .H = c.H,
+          .nu = c.nu,
+          .sigma = c.sigma,
+          .R = c.R,
+          .eta = c.eta,
+          .model = contact::ModelName::bke,
+          .friction = {}};
 }
 
 }  // namespace asperity::vibration::test_support

@@ -20,19 +20,7 @@ namespace {
 
 using testing::rel;
 
-// Table 7.2's rough surfaces (the thesis's chapter 7 contact), BKE.
-RoughInterfaceParameters table_7_2() {
-  const dynamics::EpbContact c = dynamics::table_7_2_rough();
-  return {.E_star = c.E_star,
-          .G_star = c.G_star,
-          .H = c.H,
-          .nu = c.nu,
-          .sigma = c.sigma,
-          .R = c.R,
-          .eta = c.eta,
-          .model = contact::ModelName::bke,
-          .friction = {}};
-}
+using test_support::table_7_2;
 
 constexpr double kPressure = 20e6;  // [Pa], a bolted joint's mean pressure
 constexpr double kArea = 4e-6;      // [m^2], one interface patch of 2 x 2 mm

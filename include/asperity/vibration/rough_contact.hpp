@@ -26,6 +26,7 @@
 #include <boost/math/interpolators/cardinal_cubic_b_spline.hpp>
 
 #include "asperity/contact/asperity_model.hpp"
+#include "asperity/fem/reduced_model.hpp"
 #include "asperity/surface/rough_flat.hpp"
 #include "asperity/vibration/elements.hpp"
 
@@ -167,5 +168,22 @@ class RoughContactElement final : public Element {
   double d_lo_ = 0.0, d_hi_ = 0.0;
   double p_ref_star_ = 0.0;  // the sum at d0 (differs from p0* by separation_star's tolerance)
 };
+
+/// The rough interface of a reduced model (its [rough_contact] record) as rough-contact
+/// elements: one per interface element in contact at the rough prestress (at least one
+/// asperity expected in contact and a pressure > 0), directions t1, t2, -n (T from the rows
+/// of Q: tangential, then the closure), all on one surface with tables from p_min/8 to
+/// 8 p_max (at most 0.999 of the largest load the rough flat represents).
+struct InterfaceRoughContact {
+  std::vector<PlacedElement> elements;
+  std::vector<Eigen::Index> interface_elements;  ///< the model's element of each, ascending
+};
+
+/// `name` names the placed elements ("NAME E"), `what` the elements' messages ("WHAT
+/// (interface element E)"). Throws InvalidInput when the model has no [rough_contact]
+/// record or none of its elements is in contact.
+[[nodiscard]] InterfaceRoughContact interface_rough_contact(
+    const fem::ReducedModel& model, contact::ModelName asperity_model,
+    const contact::FrictionParameters& friction, const std::string& name, const std::string& what);
 
 }  // namespace asperity::vibration
