@@ -13,6 +13,7 @@
 #include "asperity/fem/mesh_io.hpp"
 #include "asperity/fem/structure.hpp"
 #include "asperity/joint/output_dir.hpp"
+#include "asperity/vibration/quasi_static_fretting.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 
@@ -26,6 +27,7 @@ struct StructureOptionsCli {
   std::optional<std::string> out_dir;
   bool json = false;
   bool no_plots = false;
+  bool fretting = false;
   std::string gmsh = "gmsh";
 };
 
@@ -320,6 +322,173 @@ void write_files(const StructureCase& c, const StructureResult& r, joint::Staged
   }
 }
 
+// --fretting: the case's [fretting] apparatus (quasi-static cycles, no reduction).
+Json fretting_summary(const StructureCase& c, const vibration::StructureFretting& r) {
+  const auto& f = c.fretting;
+  Json j;
+  j["case"] = c.path;
+  j["name"] = c.name;
+  j["mesh"] = {{"nodes", r.mesh_nodes}, {"dofs", r.mesh_dofs}, {"mass_kg", r.total_mass}};
+  j["apparatus"] = {
+      {"model",
+       "held grip: every DOF of its face held (the load cell); driven grip: its face moves by z "
+       "along `direction`, other components held, a spring k from the actuator's tip to z (Fig. "
+       "5.7); delta = z (the laser sensor), Q = k (Delta - z) (the load cell); the bodies "
+       "condensed exactly onto the interface, drive and bolt coordinates (docs/structures.md)"},
+      {"held", {{"body", f.fixture.held.body}, {"nodes", r.held_nodes}}},
+      {"driven", {{"body", f.fixture.driven.body}, {"nodes", r.driven_nodes}}},
+      {"drive_stiffness_N_per_m", f.fixture.drive_stiffness},
+      {"interface_elements", r.interface_elements},
+      {"harmonics", f.harmonics},
+      {"time_points", f.time_points}};
+  Json runs = Json::array();
+  for (const auto& run : r.runs) {
+    Json cycles = Json::array();
+    const auto& cy = run.fretting.cycles;
+    for (std::size_t i = 0; i < cy.size(); ++i) {
+      Json e = {{"tip_amplitude_m", cy[i].tip_amplitude},
+                {"force_amplitude_N", cy[i].force_amplitude},
+                {"displacement_amplitude_m", cy[i].displacement_amplitude},
+                {"energy_J", cy[i].energy},
+                {"newton_iterations", cy[i].iterations},
+                {"relative_residual", cy[i].residual}};
+      const bool have = i > 0 && std::isfinite(run.exponents[i - 1]);
+      e["energy_force_exponent"] = have ? Json(run.exponents[i - 1]) : Json(nullptr);
+      cycles.push_back(e);
+    }
+    const auto& q = run.prestress;
+    runs.push_back({{"total_preload_N", run.total_preload},
+                    {"interface_normal_force_N", q.interface_load},
+                    {"preload_through_grips_N", run.total_preload - q.interface_load},
+                    {"contact_area_m2", q.contact_area},
+                    {"real_contact_area_m2", q.real_contact_area},
+                    {"max_pressure_Pa", q.pressure.maxCoeff()},
+                    {"elements_in_contact", run.elements_in_contact},
+                    {"stiffness_N_per_m", run.fretting.stiffness},
+                    {"cycles", cycles}});
+  }
+  j["fretting"] = runs;
+  Json costs = Json::array();
+  for (const auto& s : r.costs) costs.push_back({{"step", s.step}, {"seconds", s.seconds}});
+  j["costs"] = costs;
+  return j;
+}
+
+std::string fretting_text(const StructureCase& c, const vibration::StructureFretting& r) {
+  std::string out = fmt::format(
+      "{}: {} nodes, in the apparatus: {} held and {} driven grip nodes, drive {:.4g} N/um, {} "
+      "interface elements\n",
+      c.path, r.mesh_nodes, r.held_nodes, r.driven_nodes, c.fretting.fixture.drive_stiffness * 1e-6,
+      r.interface_elements);
+  for (const auto& run : r.runs) {
+    out += fmt::format(
+        "bolts {:.6g} N ({:.4g} N of it through the grips): {} elements in contact, real contact "
+        "area {:.4g} mm^2, stuck joint stiffness {:.4g} N/um\n",
+        run.total_preload, run.total_preload - run.prestress.interface_load,
+        run.elements_in_contact, run.prestress.real_contact_area * 1e6,
+        run.fretting.stiffness * 1e-6);
+    out += "  Delta_0 [um]   Q_0 [N]   delta_0 [um]   W [uJ]    n\n";
+    const auto& cy = run.fretting.cycles;
+    for (std::size_t i = 0; i < cy.size(); ++i)
+      out += fmt::format(
+          "  {:10.4g} {:9.4g} {:12.4g} {:10.4g} {:>6}\n", cy[i].tip_amplitude * 1e6,
+          cy[i].force_amplitude, cy[i].displacement_amplitude * 1e6, cy[i].energy * 1e6,
+          i > 0 && std::isfinite(run.exponents[i - 1]) ? fmt::format("{:.3f}", run.exponents[i - 1])
+                                                       : std::string("-"));
+  }
+  for (const auto& s : r.costs) out += fmt::format("  {:<28} {:7.2f} s\n", s.step, s.seconds);
+  return out;
+}
+
+void write_fretting_files(const StructureCase& c, const vibration::StructureFretting& r,
+                          joint::StagedDirectory& dir, bool plots,
+                          std::vector<std::string>& written) {
+  write_file_atomically(dir.file("summary.json"), json_output(fretting_summary(c, r)));
+  written.push_back("summary.json");
+  std::string cyc =
+      "total_preload_N,tip_amplitude_m,force_amplitude_N,displacement_amplitude_m,energy_J,"
+      "stiffness_N_per_m\n";
+  std::string loops = "total_preload_N,tip_amplitude_m,sample,delta_m,force_N\n";
+  for (const auto& run : r.runs)
+    for (const auto& cy : run.fretting.cycles) {
+      cyc += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", run.total_preload,
+                         cy.tip_amplitude, cy.force_amplitude, cy.displacement_amplitude, cy.energy,
+                         run.fretting.stiffness);
+      for (Eigen::Index i = 0; i < cy.delta.size(); ++i)
+        loops += fmt::format("{:.17g},{:.17g},{},{:.17g},{:.17g}\n", run.total_preload,
+                             cy.tip_amplitude, i, cy.delta[i], cy.force[i]);
+    }
+  write_file_atomically(dir.file("fretting_cycles.csv"), cyc);
+  write_file_atomically(dir.file("fretting_loops.csv"), loops);
+  written.push_back("fretting_cycles.csv");
+  written.push_back("fretting_loops.csv");
+  if (!plots) return;
+  static const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+  PlotSpec lp{.title = fmt::format("{}: fretting loops in the apparatus (largest tip amplitude "
+                                   "{:.3g} um)",
+                                   c.name, c.fretting.tip_amplitudes.back() * 1e6),
+              .xlabel = "joint displacement delta [um]",
+              .ylabel = "friction force Q [N]",
+              .extra = "set key outside right"};
+  PlotSpec ep{.title = fmt::format("{}: energy per cycle against force amplitude", c.name),
+              .xlabel = "force amplitude Q_0 [N]",
+              .ylabel = "energy per cycle W [J]",
+              .logx = true,
+              .logy = true,
+              .extra = "set key top left"};
+  for (std::size_t k = 0; k < r.runs.size(); ++k) {
+    const auto& run = r.runs[k];
+    const char* colour = colours[k % 6];
+    Series e{.title = fmt::format("{:.0f} N", run.total_preload),
+             .style = fmt::format("linespoints pt 7 lc rgb '{}'", colour)};
+    for (std::size_t i = 0; i < run.fretting.cycles.size(); ++i) {
+      const auto& cy = run.fretting.cycles[i];
+      if (cy.energy > 0.0) {
+        e.x.push_back(cy.force_amplitude);
+        e.y.push_back(cy.energy);
+      }
+      Series l{.title = i + 1 == run.fretting.cycles.size()
+                            ? fmt::format("{:.0f} N", run.total_preload)
+                            : std::string(),
+               .style = fmt::format("lines lc rgb '{}'", colour)};
+      for (Eigen::Index s = 0; s <= cy.delta.size(); ++s) {
+        const Eigen::Index w = s % cy.delta.size();
+        l.x.push_back(cy.delta[w] * 1e6);
+        l.y.push_back(cy.force[w]);
+      }
+      lp.series.push_back(std::move(l));
+    }
+    ep.series.push_back(std::move(e));
+  }
+  plot_png(dir.file("fretting_loops.png"), lp);
+  plot_png(dir.file("fretting_energy.png"), ep);
+  written.push_back("fretting_loops.png");
+  written.push_back("fretting_energy.png");
+}
+
+void run_fretting_cli(const StructureOptionsCli& o, const StructureCase& c,
+                      const StructureOptions& options, std::string& out) {
+  if (!c.fretting.given) {
+    throw InvalidInput(fmt::format(
+        "{}: --fretting needs a [fretting] table (the apparatus: held and driven grips, "
+        "drive_stiffness, tip_amplitudes; docs/structures.md)",
+        c.path));
+  }
+  const auto r = vibration::structure_fretting(c, options);
+  std::vector<std::string> written;
+  if (o.out_dir) {
+    joint::StagedDirectory dir(*o.out_dir, "asperity structure");
+    write_fretting_files(c, r, dir, !o.no_plots, written);
+    dir.commit();
+  }
+  out = o.json ? json_output(fretting_summary(c, r)) : fretting_text(c, r);
+  if (!o.json && o.out_dir) {
+    std::string list;
+    for (const auto& f : written) list += (list.empty() ? "" : ", ") + f;
+    out += fmt::format("wrote {}/ ({})\n", *o.out_dir, list);
+  }
+}
+
 void run_structure_cli(const StructureOptionsCli& o, std::string& out) {
   if (o.out_dir) require_case_output_directory(*o.out_dir, o.case_file);
   const StructureCase c = read_structure_case(o.case_file);
@@ -329,6 +498,10 @@ void run_structure_cli(const StructureOptionsCli& o, std::string& out) {
     fmt::print(stderr, "asperity structure: {}\n", step);
     std::fflush(stderr);
   };
+  if (o.fretting) {
+    run_fretting_cli(o, c, options, out);
+    return;
+  }
   const StructureResult r = run_structure(c, options);
   std::vector<std::string> written;
   if (o.out_dir) {
@@ -361,6 +534,12 @@ void add_structure_command(CLI::App& app, std::function<int()>& action) {
                   "asperity wrote it); without it only the summary is printed");
   cmd->add_flag("--json", o->json, "print summary.json instead of the text summary");
   cmd->add_flag("--no-plots", o->no_plots, "skip the PNG pictures (no gnuplot needed)");
+  cmd->add_flag(
+      "--fretting", o->fretting,
+      "instead of the reduction and modes: the case's [fretting] apparatus (thesis ch. "
+      "5: one end held, the other driven through the actuator's compliance), quasi-static "
+      "fretting cycles at each tip amplitude and bolt preload with the rough interface; "
+      "writes summary.json, fretting_cycles.csv, fretting_loops.csv and PNG pictures");
   cmd->add_option("--gmsh", o->gmsh, "the gmsh program (a separate program: GPL) (default: gmsh)");
   cmd->callback([o, &action] {
     action = [o] { return run_guarded([o](std::string& out) { run_structure_cli(*o, out); }); };

@@ -1,13 +1,17 @@
 // asperity validate [--out DIR]: the thesis's numbers recomputed, as a Markdown report.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 
 #include "asperity/core/error.hpp"
+#include "asperity/fem/structure.hpp"
 #include "asperity/joint/output_dir.hpp"
 #include "asperity/joint/predict.hpp"
 #include "asperity/joint/validation.hpp"
+#include "asperity/vibration/quasi_static_fretting.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 
@@ -17,6 +21,7 @@ namespace {
 
 struct ValidateOptions {
   std::optional<std::string> out;
+  std::optional<std::string> fem;
   bool json = false;
   bool no_plots = false;
 };
@@ -104,6 +109,89 @@ std::vector<std::string> write_variant_plots(const std::vector<joint::VariantPoi
   return written;
 }
 
+// --fem CASE: the chapter 5 joint with its bodies in the apparatus (a structure case with
+// [fretting] at Table 5.6's four preloads and 6.75 um tip), model against measurement.
+constexpr double kTable55Preloads[] = {234.0, 331.0, 526.0, 721.0};
+
+// The case, checked for Table 5.6's setting before any work.
+fem::StructureCase read_fem_case(const std::string& path) {
+  fem::StructureCase c = fem::read_structure_case(path);
+  const double* P = kTable55Preloads;
+  const auto& f = c.fretting;
+  bool preloads = f.given && f.total_preloads.size() == 4;
+  for (std::size_t i = 0; preloads && i < 4; ++i)
+    preloads = std::abs(f.total_preloads[i] - P[i]) <= 0.5;
+  const auto tip = std::find_if(f.tip_amplitudes.begin(), f.tip_amplitudes.end(),
+                                [](double a) { return std::abs(a - 6.75e-6) <= 1e-12; });
+  if (!preloads || tip == f.tip_amplitudes.end() || tip - f.tip_amplitudes.begin() < 2) {
+    throw InvalidInput(fmt::format(
+        "--fem {}: give a structure case of the chapter 5 joint with [fretting] total_preloads = "
+        "[\"234 N\", \"331 N\", \"526 N\", \"721 N\"] (Table 5.5) and tip_amplitudes with "
+        "\"6.75 um\" (Table 5.6) after at least two smaller ones (the energy-force exponent), as "
+        "examples/lap_joint_ch5/lap_joint_ch5.toml",
+        path));
+  }
+  return c;
+}
+
+std::vector<joint::ValidationRow> fem_rows(const fem::StructureCase& c) {
+  const std::string& path = c.path;
+  const double* P = kTable55Preloads;
+  const double dmax[] = {4.26, 2.69, 1.32, 0.79};  // Table 5.6 [um]
+  const auto& f = c.fretting;
+  const auto k6 = static_cast<std::size_t>(
+      std::find_if(f.tip_amplitudes.begin(), f.tip_amplitudes.end(),
+                   [](double a) { return std::abs(a - 6.75e-6) <= 1e-12; }) -
+      f.tip_amplitudes.begin());
+  fem::StructureOptions options;
+  options.progress = [](const std::string& step) {
+    fmt::print(stderr, "asperity validate --fem: {}\n", step);
+    std::fflush(stderr);
+  };
+  const auto r = vibration::structure_fretting(c, options);
+  const std::string note = fmt::format(
+      "finite elements of {} in the apparatus (bodies, bolts, {} rough-contact interface "
+      "elements; geometry ASSUMED, docs/structures.md); bolts tightened in the grips; "
+      "drive {:.4g} N/um from the PZT tip, load cell rigid",
+      path, r.interface_elements, f.fixture.drive_stiffness * 1e-6);
+  std::vector<joint::ValidationRow> rows;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto& run = r.runs[i];
+    rows.push_back(joint::experiment_range_row(
+        "Ch. 5 stiffness with the bodies (section 5.2: 10-300 N/um)",
+        fmt::format("k at {:.0f} N [N/um], finite elements", P[i]), 10.0, 300.0,
+        run.fretting.stiffness * 1e-6,
+        note + "; stiffness of the stuck joint between its gripped ends"));
+  }
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto& cy = r.runs[i].fretting.cycles[k6];
+    rows.push_back(joint::experiment_row(
+        "Table 5.6 with the bodies",
+        fmt::format("delta_max at {:.0f} N [um] (PZT 6.75 um), finite "
+                    "elements",
+                    P[i]),
+        dmax[i], cy.displacement_amplitude * 1e6,
+        note + "; delta: the driven end's displacement amplitude (the laser sensor's)"));
+  }
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto& cy = r.runs[i].fretting.cycles;
+    if (!std::isfinite(r.runs[i].exponents[0])) {
+      throw NumericalError(fmt::format(
+          "--fem: the two smallest cycles at {:.0f} N give no energy-force exponent (W = {} and "
+          "{} J): give tip amplitudes where the joint slips partially",
+          P[i], cy[0].energy, cy[1].energy));
+    }
+    rows.push_back(joint::experiment_range_row(
+        "Energy-force exponent with the bodies (section 5.2: 2-3)",
+        fmt::format("n at {:.0f} N, tip {:.3g}-{:.3g} um (Q/Q_6.75 = {:.2f}), finite elements",
+                    P[i], cy[0].tip_amplitude * 1e6, cy[1].tip_amplitude * 1e6,
+                    cy[1].force_amplitude / cy[k6].force_amplitude),
+        2.0, 3.0, r.runs[i].exponents[0],
+        note + "; d ln W / d ln Q_0 between the two smallest tip amplitudes"));
+  }
+  return rows;
+}
+
 Json rows_json(const std::vector<joint::ValidationRow>& rows, int failures) {
   Json a = Json::array();
   for (const auto& r : rows) {
@@ -143,6 +231,11 @@ void add_validate_command(CLI::App& app, std::function<int()>& action) {
                 "tolerance, verdict, note) instead of Markdown");
   cmd->add_flag("--no-plots", o->no_plots,
                 "do not draw the chapter 5 figures into --out DIR (no gnuplot needed)");
+  cmd->add_option("--fem", o->fem,
+                  "also the chapter 5 joint with its bodies in the fretting apparatus: a structure "
+                  "case with [fretting] (examples/lap_joint_ch5/lap_joint_ch5.toml; gmsh, several "
+                  "minutes): stiffness, Table 5.6's delta_max and the energy-force exponent "
+                  "against the measurements, as model-vs-experiment rows");
   cmd->callback([o, &action] {
     action = [o] {
       int failures = 0;
@@ -152,8 +245,12 @@ void add_validate_command(CLI::App& app, std::function<int()>& action) {
           throw InvalidInput("--json and --out - both print on standard output: give one of them");
         // Refuse a foreign --out directory before the work.
         if (kind == OutKind::directory) joint::require_replaceable_output(*o->out, *o->out);
+        std::optional<fem::StructureCase> fem_case;
+        if (o->fem) fem_case = read_fem_case(*o->fem);
         std::vector<joint::VariantPoint> points;
-        const auto rows = joint::validation_rows(&points);
+        auto rows = joint::validation_rows(&points);
+        if (fem_case)
+          for (auto& r : fem_rows(*fem_case)) rows.push_back(std::move(r));
         for (const auto& r : rows) failures += r.verdict == "FAIL";
         const auto md = joint::validation_markdown(rows);
         // The Markdown report is the document on stdout; "wrote" goes to stderr.

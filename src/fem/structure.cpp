@@ -12,6 +12,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/file_io.hpp"
 #include "asperity/core/units.hpp"
+#include "asperity/core/validate.hpp"
 #include "asperity/fem/gap_map.hpp"
 #include "asperity/fem/mesh_io.hpp"
 
@@ -138,6 +139,26 @@ double peak_rss_mib() {
   return static_cast<double>(u.ru_maxrss) / 1024.0;
 }
 
+// The steps of a run: announced to options.progress, timed (wall) with the peak memory after.
+class StepLog {
+ public:
+  StepLog(std::vector<StepCost>& costs, const StructureOptions& options)
+      : costs_(costs), options_(options) {}
+  void starting(const std::string& what) const {
+    if (options_.progress) options_.progress(what);
+  }
+  void done(const char* name) {
+    const auto now = std::chrono::steady_clock::now();
+    costs_.push_back({name, std::chrono::duration<double>(now - clock_).count(), peak_rss_mib()});
+    clock_ = now;
+  }
+
+ private:
+  std::vector<StepCost>& costs_;
+  const StructureOptions& options_;
+  std::chrono::steady_clock::time_point clock_ = std::chrono::steady_clock::now();
+};
+
 }  // namespace
 
 StructureCase read_structure_case(const std::string& path) {
@@ -148,7 +169,7 @@ StructureCase read_structure_case(const std::string& path) {
   c.path = path;
   tc::check_keys(doc, "",
                  {"name", "geometry", "mesh", "material", "body", "interface", "bolt", "output",
-                  "reduction", "rough_contact"});
+                  "reduction", "rough_contact", "fretting"});
   c.name = r.text(doc, "name", "top level", std::filesystem::path(path).stem().string());
   const auto* geo = tc::subtable(doc, "geometry", "top level");
   const auto* mesh = tc::subtable(doc, "mesh", "top level");
@@ -455,6 +476,84 @@ StructureCase read_structure_case(const std::string& path) {
       r.fail("[reduction]", e.what(), red);
     }
   }
+  if (const auto* fr = tc::subtable(doc, "fretting", "top level")) {
+    const std::string where = "[fretting]";
+    tc::check_keys(*fr, where,
+                   {"held", "driven", "direction", "drive_stiffness", "tip_amplitudes",
+                    "total_preloads", "harmonics", "time_points"});
+    auto& f = c.fretting;
+    f.given = true;
+    const auto grip = [&](const char* key) {
+      const auto* g = tc::subtable(*fr, key, where);
+      if (!g) r.fail(where, fmt::format("`{}` is missing: {{ body, point, normal }}", key), fr);
+      const std::string w = fmt::format("[fretting].{}", key);
+      tc::check_keys(*g, w, {"body", "point", "normal"});
+      Grip out{r.text(*g, "body", w), r.point(*g, "point", w), r.point(*g, "normal", w)};
+      return out;
+    };
+    f.fixture.held = grip("held");
+    f.fixture.driven = grip("driven");
+    if (fr->get("direction")) f.fixture.direction = r.point(*fr, "direction", where);
+    f.fixture.drive_stiffness = r.quantity(*fr, "drive_stiffness", where, core::dim::stiffness, 0);
+    try {
+      f.fixture.validate();
+    } catch (const InvalidInput& e) {
+      r.fail(where, e.what(), fr);
+    }
+    const auto quantities = [&](const char* key, core::Dimension dim, bool required) {
+      std::vector<double> v;
+      const auto* n = fr->get(key);
+      if (!n) {
+        if (required) r.fail(where, fmt::format("`{}` is missing", key), fr);
+        return v;
+      }
+      const auto* a = n->as_array();
+      if (!a || a->empty() || a->size() > 200)
+        r.fail(where, fmt::format("`{}` must be an array of 1 to 200 quantities with units", key),
+               n);
+      for (std::size_t i = 0; i < a->size(); ++i) {
+        const auto t = (*a)[i].value<std::string>();
+        if (!t) r.fail(where, fmt::format("`{}`[{}] must be a quantity with units", key, i + 1), n);
+        double x = 0.0;
+        try {
+          x = core::parse_quantity(*t, dim, key);
+        } catch (const InvalidInput& e) {
+          r.fail(where, e.what(), n);
+        }
+        if (!(x > 0.0) || (!v.empty() && !(x > v.back())))
+          r.fail(
+              where,
+              fmt::format("`{}`[{}] = \"{}\": give values > 0 in ascending order", key, i + 1, *t),
+              n);
+        v.push_back(x);
+      }
+      return v;
+    };
+    f.tip_amplitudes = quantities("tip_amplitudes", core::dim::length, true);
+    if (f.tip_amplitudes.back() >= 1e-3)
+      r.fail(where,
+             fmt::format("`tip_amplitudes` up to {} m: fretting amplitudes are below 1 mm",
+                         core::format_value(f.tip_amplitudes.back())),
+             fr->get("tip_amplitudes"));
+    f.total_preloads = quantities("total_preloads", core::dim::force, false);
+    f.harmonics = r.integer(*fr, "harmonics", where, f.harmonics);
+    if (f.harmonics < 1 || f.harmonics > 64)
+      r.fail(where, fmt::format("`harmonics` = {}: give 1 to 64", f.harmonics),
+             fr->get("harmonics"));
+    const int nt = r.integer(*fr, "time_points", where, static_cast<int>(f.time_points));
+    if (nt < 2 * f.harmonics + 2 || nt % 2 != 0 || nt > 65536)
+      r.fail(where,
+             fmt::format("`time_points` = {}: give an even number from 2 harmonics + 2 = {} to "
+                         "65536",
+                         nt, 2 * f.harmonics + 2),
+             fr->get("time_points"));
+    f.time_points = static_cast<std::size_t>(nt);
+    if (!c.rough.given)
+      r.fail(where,
+             "the fretting apparatus needs the rough interface: add [rough_contact] (the thesis's "
+             "physics is the contact law of every interface element)",
+             fr);
+  }
   if (geo) {
     try {
       c.geometry.validate();
@@ -465,17 +564,11 @@ StructureCase read_structure_case(const std::string& path) {
   return c;
 }
 
-StructureResult run_structure(const StructureCase& c, const StructureOptions& options) {
-  StructureResult res;
-  auto clock = std::chrono::steady_clock::now();
-  auto starting = [&](const std::string& what) {
-    if (options.progress) options.progress(what);
-  };
-  auto step = [&](const char* name) {
-    const auto now = std::chrono::steady_clock::now();
-    res.costs.push_back({name, std::chrono::duration<double>(now - clock).count(), peak_rss_mib()});
-    clock = now;
-  };
+AssembledStructure assemble_structure(const StructureCase& c, const StructureOptions& options) {
+  AssembledStructure res;
+  StepLog log(res.costs, options);
+  const auto starting = [&](const std::string& what) { log.starting(what); };
+  const auto step = [&](const char* name) { log.done(name); };
   starting(c.mesh_file.empty() ? "meshing with gmsh" : "reading " + c.mesh_file);
   if (c.mesh_file.empty()) {
     res.mesh = mesh_geometry(c.geometry, options.meshing);
@@ -518,6 +611,66 @@ StructureResult run_structure(const StructureCase& c, const StructureOptions& op
   for (const auto& si : c.interfaces)
     res.interfaces.push_back(build_interface(res.mesh, faces, si.spec));
   step("bolts and interfaces");
+  res.K = std::move(km.K);
+  res.M = std::move(km.M);
+  return res;
+}
+
+RoughPrestress apply_rough_contact(const StructureCase& c, ReducedModel& m,
+                                   const Eigen::VectorXd& gap) {
+  if (!c.rough.given || c.interfaces.empty())
+    throw InvalidInput(
+        fmt::format("{}: the rough interface needs [rough_contact] and an "
+                    "[[interface]]",
+                    c.path));
+  // The first interface's bodies give E*, G* and nu (one rough surface for all).
+  const auto material_of = [&](const std::string& body) {
+    const auto it = std::find(c.body_names.begin(), c.body_names.end(), body);
+    const IsotropicMaterial& mat =
+        c.body_materials[static_cast<std::size_t>(it - c.body_names.begin())];
+    return contact::Material{.E = mat.E, .nu = mat.nu, .G = 0.0, .H = c.rough.hardness};
+  };
+  const auto ma = material_of(c.interfaces.front().spec.body_a);
+  const auto mb = material_of(c.interfaces.front().spec.body_b);
+  const auto flat =
+      c.rough.summit_sigma
+          ? surface::RoughFlat::from_summit_heights(ma, mb, c.rough.sigma, c.rough.eta, c.rough.R,
+                                                    1.0, c.rough.model, {}, c.rough.heights)
+          : surface::RoughFlat::from_dimensional(ma, mb, c.rough.sigma, c.rough.eta, c.rough.R, 1.0,
+                                                 c.rough.model);
+  const RoughSurfaceScales scales{
+      .sigma = c.rough.sigma, .pressure_scale = flat.scales()->force, .eta = c.rough.eta};
+  RoughPrestress rough = rough_prestress(m, flat, scales, gap);
+  const auto& pair = flat.scales()->pair;
+  m.rough = RoughInterfaceRecord{.E_star = pair.E_star,
+                                 .G_star = pair.G_star,
+                                 .H = pair.H,
+                                 .nu = pair.nu,
+                                 .sigma = c.rough.sigma,
+                                 .R = c.rough.R,
+                                 .eta = c.rough.eta,
+                                 .summit_sigma = c.rough.summit_sigma,
+                                 .summit_heights = c.rough.heights,
+                                 .model = std::string(contact::to_string(c.rough.model)),
+                                 .pressure = rough.pressure,
+                                 .in_contact = rough.in_contact};
+  return rough;
+}
+
+StructureResult run_structure(const StructureCase& c, const StructureOptions& options) {
+  StructureResult res;
+  AssembledStructure km = assemble_structure(c, options);
+  res.mesh = std::move(km.mesh);
+  res.shared_nodes_split = km.shared_nodes_split;
+  res.interfaces = std::move(km.interfaces);
+  res.bolts = std::move(km.bolts);
+  res.bolt_load_total = km.bolt_load_total;
+  res.total_mass = km.total_mass;
+  res.costs = std::move(km.costs);
+  StepLog log(res.costs, options);
+  const auto starting = [&](const std::string& what) { log.starting(what); };
+  const auto step = [&](const char* name) { log.done(name); };
+  const Eigen::Index dofs = 3 * res.mesh.node_count();
   starting(fmt::format(
       "reducing ({} DOFs to {} interface DOFs and {} tied modes)", dofs,
       3 * std::accumulate(res.interfaces.begin(), res.interfaces.end(), std::size_t{0},
@@ -602,38 +755,8 @@ StructureResult run_structure(const StructureCase& c, const StructureOptions& op
   step("prestress and linear modes");
   if (c.rough.given && !c.interfaces.empty()) {
     starting("rough prestress and linear modes");
-    // The first interface's bodies give E*, G* and nu (one rough surface for all).
-    const auto material_of = [&](const std::string& body) {
-      const auto it = std::find(c.body_names.begin(), c.body_names.end(), body);
-      const IsotropicMaterial& mat =
-          c.body_materials[static_cast<std::size_t>(it - c.body_names.begin())];
-      return contact::Material{.E = mat.E, .nu = mat.nu, .G = 0.0, .H = c.rough.hardness};
-    };
-    const auto ma = material_of(c.interfaces.front().spec.body_a);
-    const auto mb = material_of(c.interfaces.front().spec.body_b);
-    const auto flat =
-        c.rough.summit_sigma
-            ? surface::RoughFlat::from_summit_heights(ma, mb, c.rough.sigma, c.rough.eta, c.rough.R,
-                                                      1.0, c.rough.model, {}, c.rough.heights)
-            : surface::RoughFlat::from_dimensional(ma, mb, c.rough.sigma, c.rough.eta, c.rough.R,
-                                                   1.0, c.rough.model);
-    const RoughSurfaceScales scales{
-        .sigma = c.rough.sigma, .pressure_scale = flat.scales()->force, .eta = c.rough.eta};
     if (c.rough.gap) res.gap = gap_at_elements(*c.rough.gap, m, c.rough.gap_origin);
-    res.rough = rough_prestress(m, flat, scales, res.gap);
-    const auto& pair = flat.scales()->pair;
-    m.rough = RoughInterfaceRecord{.E_star = pair.E_star,
-                                   .G_star = pair.G_star,
-                                   .H = pair.H,
-                                   .nu = pair.nu,
-                                   .sigma = c.rough.sigma,
-                                   .R = c.rough.R,
-                                   .eta = c.rough.eta,
-                                   .summit_sigma = c.rough.summit_sigma,
-                                   .summit_heights = c.rough.heights,
-                                   .model = std::string(contact::to_string(c.rough.model)),
-                                   .pressure = res.rough->pressure,
-                                   .in_contact = res.rough->in_contact};
+    res.rough = apply_rough_contact(c, m, res.gap);
     Eigen::VectorXd k = Eigen::VectorXd::Zero(ng);
     for (Eigen::Index e = 0; e < static_cast<Eigen::Index>(m.elements.size()); ++e)
       if (res.rough->in_contact[static_cast<std::size_t>(e)]) {

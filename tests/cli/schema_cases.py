@@ -39,7 +39,7 @@ INVOCATIONS = {
     "validate": [["--json"]],
     "dynamics": [[f"examples/dynamics/{n}.toml", "--json"] for n in ["impulse_dankowicz", "ramp_dankowicz_soft", "harmonic_mindlin", "impulse_joint_steel420", "impulse_none"]],
     "vibration": [[f"examples/vibration/{n}.toml", "--json"] for n in ["jenkins_sdof", "steel420_sdof", "steel420_2dof", "duffing_force_sweep", "duffing_phase_resonance", "duffing_superharmonic", "rough_contact_3d", "jenkins_backbone_rom"]] + [["examples/vibration/steel420_2dof.toml", "--json", "--stability"]],
-    "structure": [["examples/structures/two_blocks.toml", "--json"]],
+    "structure": [["examples/structures/two_blocks.toml", "--json"], ["examples/structures/two_blocks.toml", "--fretting", "--json"]],
 }
 
 schema_path = os.path.join(src, "docs", "schema", f"{command}.schema.json")

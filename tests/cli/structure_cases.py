@@ -283,10 +283,10 @@ points = 5
     return 0
 
 
-def bad(exe, tmp, text, needle, name="case.toml"):
+def bad(exe, tmp, text, needle, name="case.toml", extra=()):
     path = write(tmp, name, text)
     out = os.path.join(tmp, "bad_out")
-    p = run(exe, ["structure", path, "--out", out])
+    p = run(exe, ["structure", path, "--out", out, *extra])
     if p.returncode != 2:
         return fail(f"exit {p.returncode}, expected 2: {p.stderr}")
     if needle not in p.stderr:
@@ -553,6 +553,157 @@ def case_bad_input_rough_gap_map_missing(exe, tmp):
 def case_bad_input_rough_hardness(exe, tmp):
     return bad(exe, tmp, TWO_BLOCKS.replace('hardness = "5.8 GPa"', 'hardness = "-5.8 GPa"'),
                "[rough_contact]: `hardness` = -5800000000: give a value > 0")
+
+def case_fretting_cycles(exe, tmp):
+    """--fretting on the two-block example: the apparatus's cycles obey what every loop must
+    (positive energy, closed, forces and amplitudes growing with the tip amplitude, secant
+    stiffness below the stuck one: a Masing backbone is concave), the rough prestress carries
+    the bolt load, and the files agree with the summary."""
+    out = os.path.join(tmp, "fr")
+    p = run(exe, ["structure", EXAMPLE, "--fretting", "--out", out, "--json"])
+    if p.returncode != 0:
+        return fail(f"exit {p.returncode}: {p.stderr}")
+    j = json.loads(p.stdout)
+    schema = json.load(open(os.path.join(HERE, "..", "..", "docs", "schema",
+                                         "structure.schema.json")))
+    jsonschema.validate(j, schema)
+    if sorted(f for f in os.listdir(out) if not f.startswith(".")) != sorted(["summary.json", "fretting_cycles.csv", "fretting_loops.csv",
+                                          "fretting_loops.png", "fretting_energy.png"]):
+        return fail(f"files: {sorted(os.listdir(out))}")
+    app = j["apparatus"]
+    if app["held"]["nodes"] < 10 or app["driven"]["nodes"] < 10:
+        return fail(f"grips hold too few nodes: {app}")
+    (run_,) = j["fretting"]
+    # The bolts are tightened in the grips: the interface and the grips share the preload
+    # (equilibrium of one block along the bolt).
+    share = run_["interface_normal_force_N"] + run_["preload_through_grips_N"]
+    if abs(share - run_["total_preload_N"]) > 1e-9 * run_["total_preload_N"] or not (
+            0 < run_["interface_normal_force_N"] <= run_["total_preload_N"] * (1 + 1e-9)):
+        return fail(f"the interface and grips do not carry the bolt load: {run_}")
+    k = run_["stiffness_N_per_m"]
+    cycles = run_["cycles"]
+    tips = [c["tip_amplitude_m"] for c in cycles]
+    if tips != sorted(tips) or len(tips) < 3:
+        return fail(f"tip amplitudes {tips}")
+    prev = None
+    for c in cycles:
+        if not (c["energy_J"] > 0 and c["relative_residual"] <= 1e-5):
+            return fail(f"cycle {c}")
+        secant = c["force_amplitude_N"] / c["displacement_amplitude_m"]
+        if secant > k * (1 + 1e-6):
+            return fail(f"secant stiffness {secant} above the stuck joint's {k}: {c}")
+        if prev and not (c["force_amplitude_N"] > prev["force_amplitude_N"]
+                         and c["displacement_amplitude_m"] > prev["displacement_amplitude_m"]
+                         and c["energy_J"] > prev["energy_J"]):
+            return fail(f"not growing with the tip amplitude: {prev} -> {c}")
+        prev = c
+    # The loops of the CSV: one period of N_t samples each, the apparatus's force balance
+    # Q = k_drive (Delta - delta), and the loop's area (trapezoids over the closed samples)
+    # within 1e-3 of the summary's W (from the first harmonic: exact for the series; the
+    # trapezoids of 128 samples of a degree-7 trig series are exact too, so 1e-3 is generous).
+    data = np.genfromtxt(os.path.join(out, "fretting_loops.csv"), delimiter=",", names=True)
+    kd = app["drive_stiffness_N_per_m"]
+    for c in cycles:
+        sel = data[np.isclose(data["tip_amplitude_m"], c["tip_amplitude_m"], rtol=1e-12)]
+        if len(sel) != app["time_points"]:
+            return fail(f"{len(sel)} samples for {c['tip_amplitude_m']}")
+        theta = 2 * np.pi * np.arange(len(sel)) / len(sel)
+        balance = kd * (c["tip_amplitude_m"] * np.sin(theta) - sel["delta_m"]) - sel["force_N"]
+        if np.abs(balance).max() > 1e-9 * kd * c["tip_amplitude_m"]:
+            return fail(f"Q != k (Delta - delta): {np.abs(balance).max()}")
+        d = np.append(sel["delta_m"], sel["delta_m"][0])
+        q = np.append(sel["force_N"], sel["force_N"][0])
+        area = float(np.sum(0.5 * (q[1:] + q[:-1]) * np.diff(d)))
+        if abs(area - c["energy_J"]) > 1e-3 * c["energy_J"]:
+            return fail(f"loop area {area} against W {c['energy_J']}")
+    return 0
+
+
+FRETTING = TWO_BLOCKS[TWO_BLOCKS.index("\n[fretting]\n") + 1:]
+
+
+def case_bad_input_fretting_without_table(exe, tmp):
+    return bad(exe, tmp, TWO_BLOCKS.replace(FRETTING, ""), "--fretting needs a [fretting] table",
+               extra=["--fretting"])
+
+
+def case_bad_input_fretting_grip_off_the_body(exe, tmp):
+    return bad(exe, tmp, TWO_BLOCKS.replace("point = [60, 10, 15]", "point = [55, 10, 15]"),
+               "[fretting].driven: no boundary face of body \"upper\" lies in the plane",
+               extra=["--fretting"])
+
+
+def case_bad_input_fretting_tip_amplitudes(exe, tmp):
+    return bad(exe, tmp, TWO_BLOCKS.replace('tip_amplitudes = ["3 um", "10 um"',
+                                            'tip_amplitudes = ["10 um", "3 um"'),
+               "`tip_amplitudes`[2] = \"3 um\": give values > 0 in ascending order",
+               extra=["--fretting"])
+
+
+def case_bad_input_fretting_without_rough_contact(exe, tmp):
+    text = TWO_BLOCKS[:TWO_BLOCKS.index("[rough_contact]")] + FRETTING
+    return bad(exe, tmp, text, "the fretting apparatus needs the rough interface")
+
+
+
+LAP = os.path.join(HERE, "..", "..", "examples", "lap_joint_ch5", "lap_joint_ch5.toml")
+
+
+def coarse_lap(tmp, tips='["0.25 um", "0.5 um", "6.75 um"]'):
+    """The chapter 5 lap joint of examples/ on a coarse mesh (12 interface elements), its
+    [fretting] at Table 5.5's preloads with Table 5.6's 6.75 um tip."""
+    with open(LAP) as f:
+        text = f.read()
+    for old, new in [("size = 1.6", "size = 3.2"), ("interface_size = 0.9", "interface_size = 1.8"),
+                     ("hole_size = 0.6", "hole_size = 1.2"), ("patches = 40", "patches = 12")]:
+        if old not in text:
+            raise AssertionError(f"{old!r} not in {LAP}")
+        text = text.replace(old, new)
+    start = text.index("tip_amplitudes = ")
+    end = text.index("\n", start)
+    text = text[:start] + "tip_amplitudes = " + tips + text[end:]
+    return write(tmp, "lap.toml", text)
+
+
+def case_validate_fem_rows(exe, tmp):
+    """`asperity validate --fem`: twelve model-vs-experiment rows (stiffness, Table 5.6's
+    delta_max, the energy-force exponent at each of the four preloads), never failures, and
+    the same numbers as `asperity structure --fretting` of the case."""
+    case = coarse_lap(tmp)
+    p = run(exe, ["validate", "--fem", case, "--json"])
+    if p.returncode != 0:
+        return fail(f"exit {p.returncode}: {p.stderr}")
+    j = json.loads(p.stdout)
+    rows = [r for r in j["rows"] if r["quantity"].endswith("finite elements")]
+    if len(rows) != 12 or any(r["kind"] != "model vs experiment" for r in rows):
+        return fail(f"rows: {rows}")
+    if j["failures"] != 0 or any(r["verdict"] == "FAIL" for r in rows):
+        return fail("a model-vs-experiment row failed")
+    q = run(exe, ["structure", case, "--fretting", "--json"])
+    if q.returncode != 0:
+        return fail(f"structure --fretting: {q.stderr}")
+    runs = json.loads(q.stdout)["fretting"]
+    k = [r["ours"] for r in rows if r["quantity"].startswith("k at")]
+    d = [r["ours"] for r in rows if r["quantity"].startswith("delta_max")]
+    for i, run_ in enumerate(runs):
+        if abs(k[i] - run_["stiffness_N_per_m"] * 1e-6) > 1e-12 * k[i]:
+            return fail(f"stiffness {k[i]} against {run_['stiffness_N_per_m']}")
+        last = run_["cycles"][-1]
+        if abs(d[i] - last["displacement_amplitude_m"] * 1e6) > 1e-12 * d[i]:
+            return fail(f"delta_max {d[i]} against {last}")
+    # Stiffer with preload (the rough interface stiffens, Eq. 4.12), and every delta_max
+    # below the 6.75 um the tip imposes.
+    if k != sorted(k) or not all(0 < x < 6.75 for x in d):
+        return fail(f"k {k}, delta_max {d}")
+    return 0
+
+
+def case_bad_input_validate_fem_without_table_5_6(exe, tmp):
+    case = coarse_lap(tmp, tips='["0.25 um", "0.5 um", "6 um"]')
+    p = run(exe, ["validate", "--fem", case])
+    if p.returncode != 2 or "tip_amplitudes with \"6.75 um\"" not in p.stderr or p.stdout:
+        return fail(f"exit {p.returncode}: {p.stderr}")
+    return 0
 
 
 CASES = {name[len("case_"):]: fn for name, fn in globals().items() if name.startswith("case_")}

@@ -11,6 +11,7 @@
 
 #include "asperity/fem/bolt.hpp"
 #include "asperity/fem/elasticity.hpp"
+#include "asperity/fem/fixture.hpp"
 #include "asperity/fem/gap_map.hpp"
 #include "asperity/fem/geometry.hpp"
 #include "asperity/fem/interface.hpp"
@@ -50,6 +51,20 @@ struct RoughContactCase {
   Eigen::Vector3d gap_origin = Eigen::Vector3d::Zero();  ///< where the map's (0, 0) lies [m]
 };
 
+/// The thesis's fretting apparatus around the structure's joint ([fretting]: section 5.2,
+/// Fig. 5.7; docs/structures.md): grips, the actuator's compliance, the imposed tip
+/// amplitudes and the bolt preloads to run them at. Needs [rough_contact].
+struct FrettingCase {
+  bool given = false;
+  Fixture fixture;
+  std::vector<double> tip_amplitudes;  ///< Delta_0 at the actuator's tip [m], ascending, > 0
+  /// Sums of the bolt preloads to run at [N], each shared among the bolts in proportion to
+  /// their [[bolt]] preloads; empty: the [[bolt]] preloads as given.
+  std::vector<double> total_preloads;
+  int harmonics = 15;             ///< harmonic balance at omega = 0: harmonics 0..H
+  std::size_t time_points = 256;  ///< N_t
+};
+
 struct OutputPoint {
   std::string name;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< [m]
@@ -70,6 +85,7 @@ struct StructureCase {
   std::vector<OutputPoint> outputs;
   ReductionOptions reduction;
   RoughContactCase rough;
+  FrettingCase fretting;
   int modes = 10;  ///< elastic modes reported per linear analysis
 };
 
@@ -108,6 +124,29 @@ struct StructureOptions {
   /// Called with the name of each step as it starts (the CLI prints them on stderr).
   std::function<void(const std::string&)> progress;
 };
+
+/// The structure before reduction: meshed, assembled (K and M with the bolts' shanks), bolts
+/// and interfaces placed.
+struct AssembledStructure {
+  Mesh mesh;  ///< nodes split per body
+  std::size_t shared_nodes_split = 0;
+  Eigen::SparseMatrix<double> K, M;
+  std::vector<Interface> interfaces;
+  std::vector<Bolt> bolts;
+  double bolt_load_total = 0.0;  ///< sum of preloads [N]
+  double total_mass = 0.0;       ///< [kg] bodies (elements) only
+  std::vector<StepCost> costs;   ///< mesh, assembly, bolts and interfaces
+};
+
+/// Mesh (or read the mesh), assemble, place the bolts and interfaces.
+[[nodiscard]] AssembledStructure assemble_structure(const StructureCase& c,
+                                                    const StructureOptions& options = {});
+
+/// The case's rough surfaces ([rough_contact]) as the normal law of the model's interface
+/// under its bolt preloads (rough_prestress), recorded in model.rough with each element's
+/// prestress pressure. `gap`: per element [m] or empty.
+RoughPrestress apply_rough_contact(const StructureCase& c, ReducedModel& model,
+                                   const Eigen::VectorXd& gap);
 
 /// Mesh, assemble, place bolts and interfaces, reduce, prestress and linear modes.
 [[nodiscard]] StructureResult run_structure(const StructureCase& c,

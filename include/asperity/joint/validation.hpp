@@ -67,6 +67,16 @@ struct VariantPoint {
 [[nodiscard]] std::vector<ValidationRow> validation_rows(
     std::vector<VariantPoint>* points = nullptr);
 
+/// A model-versus-measurement row made elsewhere (the finite-element rows of `asperity
+/// validate --fem`): `measured` the measurement, verdict "agrees (model vs experiment)"
+/// within 10 %, else "differs (model vs experiment)"; never a failure.
+[[nodiscard]] ValidationRow experiment_row(std::string source, std::string quantity,
+                                           double measured, double ours, std::string note);
+/// The same against a measured range [lo, hi] (agrees only inside it).
+[[nodiscard]] ValidationRow experiment_range_row(std::string source, std::string quantity,
+                                                 double lo, double hi, double ours,
+                                                 std::string note);
+
 /// Markdown report: a table per source with ours, the thesis's, the relative
 /// difference and the verdict, and a summary count.
 [[nodiscard]] std::string validation_markdown(const std::vector<ValidationRow>& rows);
