@@ -9,6 +9,10 @@ The Python face of the C++ layer ``fem/`` (docs/structures.md); SI units through
 * :func:`run_structure` - a structure case file of ``asperity structure`` (the same C++
   run): the mesh, the reduced model, the linear modes (open, frictionless, stuck) and the
   prestress, as a dict of numpy arrays.
+* :func:`structure_fretting` - the case's ``[fretting]`` apparatus (``asperity structure
+  --fretting``, chapter 5's grips and drive around the finite-element joint): per total
+  bolt preload the rough prestress and the quasi-static fretting cycles (loops, energy
+  per cycle, tangential stiffness, energy-force exponents).
 * :func:`read_reduced_model` - a reduced model (.mat: asperity's, or the published
   Brake-Reuss beam layout M, K, Fv, L, Qm, Tm) as a dict (with its rough record);
   :func:`rough_prestress` - the bolt preloads on the rough flat's normal law;
@@ -24,8 +28,8 @@ from . import _core
 
 _f = _core._fem
 
-__all__ = ["assemble", "run_structure", "read_reduced_model", "rough_prestress", "read_mesh",
-           "reduced_linear_modes"]
+__all__ = ["assemble", "run_structure", "structure_fretting", "read_reduced_model",
+           "rough_prestress", "read_mesh", "reduced_linear_modes"]
 
 
 def assemble(nodes, connectivity, E: float, nu: float, rho: float):
@@ -53,6 +57,27 @@ def run_structure(path: str, gmsh: str = "gmsh") -> dict:
     per interface element, ``contact_area`` [m^2], ``bolt_load`` [N], ``mass`` [kg] and
     ``costs`` (step, seconds, peak memory MiB)."""
     return _core.fem_run_structure(str(path), gmsh)
+
+
+def structure_fretting(path: str, gmsh: str = "gmsh") -> dict:
+    """Runs a structure case file's ``[fretting]`` apparatus, the same C++ run as
+    ``asperity structure CASE --fretting`` (docs/structures.md, "In the fretting
+    apparatus"): the bodies condensed in the grips, then per total bolt preload the rough
+    prestress and the steady cycle at each tip amplitude Delta_0 (harmonic balance at
+    omega = 0). Returns ``mesh_nodes``, ``mesh_dofs``, ``interface_elements``,
+    ``held_nodes``, ``driven_nodes``, ``drive_stiffness`` [N/m], ``mass`` [kg], ``costs``
+    (step, seconds, peak memory MiB) and ``runs``, one dict per total preload:
+    ``total_preload``, ``interface_load``, ``preload_through_grips`` [N] (the bolts are
+    tightened in the grips), ``contact_area``, ``real_contact_area`` [m^2], ``pressure``
+    [Pa] per interface element, ``elements_in_contact``, ``stiffness`` [N/m] (the stuck
+    joint's dQ/d delta), ``exponents`` (d ln W / d ln Q_0 between successive cycles, NaN
+    where undefined) and ``cycles``, one dict per tip amplitude: ``tip_amplitude`` [m],
+    ``force_amplitude`` [N], ``displacement_amplitude`` [m], ``energy`` [J] (the loop's
+    area), ``delta`` [m] and ``force`` [N] sampled at theta_i = 2 pi i / N_t (the loop),
+    ``iterations``, ``residual`` (relative to k Delta_0). Raises
+    :class:`asperity.InvalidInput` naming the key for a bad case (no ``[fretting]`` or
+    ``[rough_contact]`` table among them)."""
+    return _core.fem_structure_fretting(str(path), gmsh)
 
 
 def read_reduced_model(path: str) -> dict:

@@ -15,6 +15,7 @@
 #include "asperity/fem/rough_prestress.hpp"
 #include "asperity/fem/structure.hpp"
 #include "asperity/surface/rough_flat.hpp"
+#include "asperity/vibration/quasi_static_fretting.hpp"
 #include "bindings.hpp"
 #include "summit_table.hpp"
 
@@ -143,11 +144,68 @@ nb::dict run(const std::string& path, const std::string& gmsh) {
   return d;
 }
 
+// --fretting's run (vibration::structure_fretting) with the C++ result's names; each cycle
+// with its loop (delta, force samples).
+nb::dict fretting(const std::string& path, const std::string& gmsh) {
+  const StructureCase c = read_structure_case(path);
+  StructureOptions o;
+  o.meshing.gmsh = gmsh;
+  const vibration::StructureFretting r = [&] {
+    nb::gil_scoped_release release;
+    return vibration::structure_fretting(c, o);
+  }();
+  nb::dict d;
+  d["mesh_nodes"] = r.mesh_nodes;
+  d["mesh_dofs"] = r.mesh_dofs;
+  d["interface_elements"] = r.interface_elements;
+  d["held_nodes"] = r.held_nodes;
+  d["driven_nodes"] = r.driven_nodes;
+  d["drive_stiffness"] = c.fretting.fixture.drive_stiffness;
+  d["mass"] = r.total_mass;
+  nb::list runs;
+  for (const auto& run : r.runs) {
+    nb::dict rd;
+    rd["total_preload"] = run.total_preload;
+    rd["interface_load"] = run.prestress.interface_load;
+    rd["preload_through_grips"] = run.total_preload - run.prestress.interface_load;
+    rd["contact_area"] = run.prestress.contact_area;
+    rd["real_contact_area"] = run.prestress.real_contact_area;
+    rd["pressure"] = array(run.prestress.pressure);
+    rd["elements_in_contact"] = run.elements_in_contact;
+    rd["stiffness"] = run.fretting.stiffness;
+    nb::list cycles;
+    for (const auto& cy : run.fretting.cycles) {
+      nb::dict cd;
+      cd["tip_amplitude"] = cy.tip_amplitude;
+      cd["force_amplitude"] = cy.force_amplitude;
+      cd["displacement_amplitude"] = cy.displacement_amplitude;
+      cd["energy"] = cy.energy;
+      cd["delta"] = array(cy.delta);
+      cd["force"] = array(cy.force);
+      cd["iterations"] = cy.iterations;
+      cd["residual"] = cy.residual;
+      cycles.append(cd);
+    }
+    rd["cycles"] = cycles;
+    rd["exponents"] = array(Eigen::Map<const Eigen::VectorXd>(
+        run.exponents.data(), static_cast<Eigen::Index>(run.exponents.size())));
+    runs.append(rd);
+  }
+  d["runs"] = runs;
+  nb::list costs;
+  for (const auto& s : r.costs) costs.append(nb::make_tuple(s.step, s.seconds, s.peak_rss_mib));
+  d["costs"] = costs;
+  return d;
+}
+
 }  // namespace
 
 void bind_fem_structure(nb::module_& m) {
   m.def("fem_run_structure", &run, "path"_a, "gmsh"_a = "gmsh",
         "Runs a structure case file (asperity structure): mesh, reduced model, linear modes.");
+  m.def("fem_structure_fretting", &fretting, "path"_a, "gmsh"_a = "gmsh",
+        "Runs a structure case file's [fretting] apparatus (asperity structure --fretting): "
+        "quasi-static cycles per total bolt preload.");
   m.def(
       "fem_read_reduced_model",
       [](const std::string& path) { return model_dict(read_reduced_model(path)); }, "path"_a,

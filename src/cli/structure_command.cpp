@@ -3,6 +3,7 @@
 // elements and its linear modes at the bolt preload (format: docs/structures.md).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -369,7 +370,8 @@ Json fretting_summary(const StructureCase& c, const vibration::StructureFretting
   }
   j["fretting"] = runs;
   Json costs = Json::array();
-  for (const auto& s : r.costs) costs.push_back({{"step", s.step}, {"seconds", s.seconds}});
+  for (const auto& s : r.costs)
+    costs.push_back({{"step", s.step}, {"seconds", s.seconds}, {"peak_rss_MiB", s.peak_rss_mib}});
   j["costs"] = costs;
   return j;
 }
@@ -396,7 +398,9 @@ std::string fretting_text(const StructureCase& c, const vibration::StructureFret
           i > 0 && std::isfinite(run.exponents[i - 1]) ? fmt::format("{:.3f}", run.exponents[i - 1])
                                                        : std::string("-"));
   }
-  for (const auto& s : r.costs) out += fmt::format("  {:<28} {:7.2f} s\n", s.step, s.seconds);
+  for (const auto& s : r.costs)
+    out += fmt::format("  {:<28} {:7.2f} s, peak memory {:.0f} MiB\n", s.step, s.seconds,
+                       s.peak_rss_mib);
   return out;
 }
 
@@ -432,10 +436,11 @@ void write_fretting_files(const StructureCase& c, const vibration::StructureFret
               .extra = "set key outside right"};
   PlotSpec ep{.title = fmt::format("{}: energy per cycle against force amplitude", c.name),
               .xlabel = "force amplitude Q_0 [N]",
-              .ylabel = "energy per cycle W [J]",
+              .ylabel = "energy per cycle W [µJ]",
               .logx = true,
               .logy = true,
-              .extra = "set key top left"};
+              .extra = "set key inside left top box opaque\n"};
+  double qmin = 1e300, qmax = 0.0, emin = 1e300, emax = 0.0;
   for (std::size_t k = 0; k < r.runs.size(); ++k) {
     const auto& run = r.runs[k];
     const char* colour = colours[k % 6];
@@ -445,7 +450,11 @@ void write_fretting_files(const StructureCase& c, const vibration::StructureFret
       const auto& cy = run.fretting.cycles[i];
       if (cy.energy > 0.0) {
         e.x.push_back(cy.force_amplitude);
-        e.y.push_back(cy.energy);
+        e.y.push_back(cy.energy * 1e6);
+        qmin = std::min(qmin, cy.force_amplitude);
+        qmax = std::max(qmax, cy.force_amplitude);
+        emin = std::min(emin, cy.energy * 1e6);
+        emax = std::max(emax, cy.energy * 1e6);
       }
       Series l{.title = i + 1 == run.fretting.cycles.size()
                             ? fmt::format("{:.0f} N", run.total_preload)
@@ -459,6 +468,11 @@ void write_fretting_files(const StructureCase& c, const vibration::StructureFret
       lp.series.push_back(std::move(l));
     }
     ep.series.push_back(std::move(e));
+  }
+  // Slope-2 and slope-3 guides (Fig. 6.12-6.14) through the first preload's smallest cycle.
+  if (!ep.series.front().x.empty()) {
+    add_power_guides(ep, ep.series.front().x.front(), ep.series.front().y.front(), qmin, qmax);
+    set_energy_force_ranges(ep, qmin, qmax, emin, emax);
   }
   plot_png(dir.file("fretting_loops.png"), lp);
   plot_png(dir.file("fretting_energy.png"), ep);

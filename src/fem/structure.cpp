@@ -133,12 +133,6 @@ struct Reader {
   }
 };
 
-double peak_rss_mib() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_maxrss) / 1024.0;
-}
-
 // The steps of a run: announced to options.progress, timed (wall) with the peak memory after.
 class StepLog {
  public:
@@ -149,7 +143,8 @@ class StepLog {
   }
   void done(const char* name) {
     const auto now = std::chrono::steady_clock::now();
-    costs_.push_back({name, std::chrono::duration<double>(now - clock_).count(), peak_rss_mib()});
+    costs_.push_back(
+        {name, std::chrono::duration<double>(now - clock_).count(), peak_resident_memory_mib()});
     clock_ = now;
   }
 
@@ -160,6 +155,12 @@ class StepLog {
 };
 
 }  // namespace
+
+double peak_resident_memory_mib() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;
+}
 
 StructureCase read_structure_case(const std::string& path) {
   const auto file = core::read_case_file_text(path);

@@ -217,7 +217,8 @@ StructureFretting structure_fretting(const fem::StructureCase& c,
   auto clock = std::chrono::steady_clock::now();
   const auto step = [&](std::string name) {
     const auto now = std::chrono::steady_clock::now();
-    out.costs.push_back({std::move(name), std::chrono::duration<double>(now - clock).count(), 0.0});
+    out.costs.push_back({std::move(name), std::chrono::duration<double>(now - clock).count(),
+                         fem::peak_resident_memory_mib()});
     clock = now;
   };
   if (options.progress)

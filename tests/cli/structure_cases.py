@@ -570,6 +570,9 @@ def case_fretting_cycles(exe, tmp):
     if sorted(f for f in os.listdir(out) if not f.startswith(".")) != sorted(["summary.json", "fretting_cycles.csv", "fretting_loops.csv",
                                           "fretting_loops.png", "fretting_energy.png"]):
         return fail(f"files: {sorted(os.listdir(out))}")
+    # Every step's cost carries the peak memory after it (a run of meshes takes megabytes).
+    if not all(c["peak_rss_MiB"] > 1 for c in j["costs"]):
+        return fail(f"peak memory not recorded: {j['costs']}")
     app = j["apparatus"]
     if app["held"]["nodes"] < 10 or app["driven"]["nodes"] < 10:
         return fail(f"grips hold too few nodes: {app}")

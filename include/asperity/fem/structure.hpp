@@ -98,6 +98,10 @@ struct StepCost {
   double peak_rss_mib = 0.0;  ///< the process's peak resident memory after the step
 };
 
+/// The process's peak resident memory so far [MiB] (getrusage's ru_maxrss): what a
+/// StepCost records after its step.
+[[nodiscard]] double peak_resident_memory_mib();
+
 struct LinearAnalysis {
   std::string name;  ///< "open", "frictionless", "stuck"
   LinearModesResult modes;
