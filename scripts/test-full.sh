@@ -6,8 +6,9 @@
 # compiled module of that build) again under AddressSanitizer and UndefinedBehaviorSanitizer
 # (the `debug` preset), a short libFuzzer smoke run of the profile readers, and the wheel built
 # once by pip and installed into a virtual environment made from the system's Python with
-# Debian's numpy present, where the whole pytest suite (the code blocks of README.md and
-# docs/*.md and the packaging tests among it) runs against the installed package and its
+# Debian's numpy present, where scripts/check-wheel-alone.sh uses it with the system's copies
+# of its bundled libraries hidden and the whole pytest suite (the code blocks of README.md
+# and docs/*.md and the packaging tests among it) runs against the installed package and its
 # `asperity` command.
 set -euo pipefail
 source "$(dirname "$0")/test-common.sh"
@@ -89,5 +90,7 @@ system_venv="$(mktemp -d)/venv"
 trap 'rm -rf "$(dirname "$system_venv")"' EXIT
 /usr/bin/python3 -m venv "$system_venv"
 "$system_venv/bin/python" -m pip install --quiet --disable-pip-version-check ".[test]"
+# Self-contained: with the system's copies of the libraries it bundles hidden, it still runs.
+scripts/check-wheel-alone.sh "$system_venv"
 MPLBACKEND=Agg "$system_venv/bin/python" -m pytest -q -p no:cacheprovider tests/python
 stage "all tests passed"

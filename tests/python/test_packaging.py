@@ -223,6 +223,52 @@ def test_the_command_comes_with_the_package():
                                 f"{info['build_type']})")
 
 
+# The C and C++ runtimes a wheel takes from the system (glibc's libraries, libstdc++,
+# libgcc_s: manylinux's list); everything else the module and the command load comes with
+# the wheel (python/CMakeLists.txt, "A self-contained wheel").
+SYSTEM_RUNTIME = re.compile(r"^(linux-vdso|ld-linux|libc\.so|libm\.so|libmvec\.so|"
+                            r"libpthread\.so|libdl\.so|librt\.so|libresolv\.so|libutil\.so|"
+                            r"libstdc\+\+\.so|libgcc_s\.so)")
+
+
+def _loaded_libraries(path):
+    """{soname: resolved path or None} of every library the loader maps for `path` (ldd)."""
+    r = subprocess.run(["ldd", str(path)], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    found = {}
+    for line in r.stdout.splitlines():
+        m = re.match(r"\s*(\S+)\s+=>\s+(not found|\S+)", line)
+        if m:
+            found[m.group(1)] = None if m.group(2) == "not found" else pathlib.Path(m.group(2))
+    return found
+
+
+def test_the_wheel_carries_its_libraries():
+    """Installed (site-packages): the module and the `asperity` command load every library but
+    the C and C++ runtimes from the wheel's asperity.libs, so the package runs on a machine
+    without fmt, libzip, pugixml, toml++ or matio. From a build tree: every library the module
+    and the command need is found."""
+    module = pathlib.Path(_core.__file__)
+    if "site-packages" in PACKAGE.parts:
+        command = pathlib.Path(sys.executable).parent / "asperity"
+        bundle = PACKAGE.parent / "asperity.libs"
+        assert bundle.is_dir(), f"the wheel has no {bundle}"
+        shipped = {p.name for p in bundle.iterdir()}
+        for name in ["libfmt.so.9", "libzip.so.4", "libpugixml.so.1", "libmatio.so.11"]:
+            assert name in shipped, f"{name} not in {sorted(shipped)}"
+    else:
+        assert os.environ.get("ASPERITY_CLI"), "ASPERITY_CLI is not set for a build-tree run"
+        command, bundle = pathlib.Path(os.environ["ASPERITY_CLI"]), None
+    for binary in (module, command):
+        libraries = _loaded_libraries(binary)
+        assert "libfmt.so.9" in libraries, f"{binary}: {libraries}"
+        for name, where in libraries.items():
+            assert where is not None, f"{binary}: {name} not found"
+            if bundle is not None and not SYSTEM_RUNTIME.match(name):
+                assert where.resolve().parent == bundle.resolve(), (
+                    f"{binary}: {name} from {where}, not {bundle}")
+
+
 def test_wrapped_callables_pickle_copy_and_show_as_python_functions_do():
     import copy
     import pickle
