@@ -251,18 +251,90 @@ Eigen::VectorXd force_vector(const HarmonicBasis& basis, Eigen::Index dofs,
   return F;
 }
 
+// A force at an output point of a reduced model, { point = "tip", direction = [0, 0, 1],
+// force = [0, "2 N"] }: rows the harmonics in harmonic_balance's order (as a matrix's rows),
+// each the force [N] along `direction` (normalised). Its generalised forces are
+// f d^T R_p, R_p the point's 3 recovery rows (x, y, z): the virtual work of the force on
+// the model's displacement at the point, exact for the rows the model recovers it with.
+Eigen::MatrixXd point_force(const toml::table& pt, const std::string& field,
+                            const std::vector<OutputPoint>& points, Eigen::Index n) {
+  check_keys(pt, field, {"point", "direction", "force"});
+  if (points.empty()) {
+    throw InvalidInput(fmt::format(
+        "{}: a force at a point needs a reduced model with output points ([structure] model = "
+        "FILE, from the structure case's [[output]] points); otherwise give rows of DOFs{}",
+        field, at_line(pt)));
+  }
+  const std::string name = detail::text(pt, "point", field, "");
+  const auto at = std::find_if(points.begin(), points.end(),
+                               [&](const OutputPoint& p) { return p.name == name; });
+  if (at == points.end()) {
+    std::string names;
+    for (const auto& p : points) names += (names.empty() ? "\"" : ", \"") + p.name + "\"";
+    throw InvalidInput(fmt::format("{}.point = \"{}\": the model's output points are {}{}", field,
+                                   name, names, at_line(pt)));
+  }
+  const auto* dn = pt.get("direction");
+  const auto* da = dn ? dn->as_array() : nullptr;
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; da && da->size() == 3 && k < 3; ++k) {
+    const auto x = detail::plain_number(*da->get(k));
+    if (!x || !std::isfinite(*x)) {
+      da = nullptr;
+      break;
+    }
+    d(static_cast<Eigen::Index>(k)) = *x;
+  }
+  if (!da || da->size() != 3 || !(d.norm() > 0.0)) {
+    throw InvalidInput(fmt::format(
+        "{}.direction must be 3 finite numbers, not all zero (the force's direction, x y z){}",
+        field, at_line(dn ? *dn : static_cast<const toml::node&>(pt))));
+  }
+  d.normalize();
+  const auto* fn = pt.get("force");
+  const auto* fa = fn ? fn->as_array() : nullptr;
+  if (!fa || fa->empty()) {
+    throw InvalidInput(
+        fmt::format("{}.force must be a non-empty list, one force [N] per harmonic in the order of "
+                    "harmonic_balance.harmonics, e.g. [0, \"2 N\"]{}",
+                    field, at_line(fn ? *fn : static_cast<const toml::node&>(pt))));
+  }
+  const Eigen::RowVectorXd unit = d.transpose() * at->rows;
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(fa->size()), n);
+  for (std::size_t r = 0; r < fa->size(); ++r) {
+    const toml::node& e = *fa->get(r);
+    const std::string entry = fmt::format("{}.force[{}]", field, r + 1);
+    double f = 0.0;
+    if (const auto x = detail::plain_number(e); x && std::isfinite(*x)) {
+      f = *x;
+    } else if (const auto q = e.value<std::string>()) {
+      f = core::parse_quantity(*q, core::dim::force, entry);
+    } else {
+      throw InvalidInput(
+          fmt::format("{} must be a finite number [N] or a force with units, e.g. \"2 N\"{}", entry,
+                      at_line(e)));
+    }
+    m.row(static_cast<Eigen::Index>(r)) = f * unit;
+  }
+  return m;
+}
+
 // One (cos, sin) pair of coefficient tables `prefix`_cos, `prefix`_sin of a forced
-// response table: rows harmonics, columns DOFs; the coefficients in the unknowns' layout.
+// response table: rows harmonics, columns DOFs, or a force at an output point
+// (point_force); the coefficients in the unknowns' layout.
 Eigen::VectorXd force_pair(const toml::table& t, const std::string& w, const std::string& prefix,
                            const HarmonicBasis& basis, Eigen::Index n, std::size_t nh,
-                           Eigen::MatrixXd& cos_part, Eigen::MatrixXd& sin_part) {
+                           Eigen::MatrixXd& cos_part, Eigen::MatrixXd& sin_part,
+                           const std::vector<OutputPoint>& points) {
   cos_part = Eigen::MatrixXd::Zero(0, n);
   sin_part = Eigen::MatrixXd::Zero(0, n);
   for (const std::string kind : {"_cos", "_sin"}) {
     const std::string key = prefix + kind;
     const auto* fnode = t.get(key);
     if (!fnode) continue;
-    Eigen::MatrixXd m = matrix(*fnode, w + "." + key, false);
+    Eigen::MatrixXd m = fnode->is_table()
+                            ? point_force(*fnode->as_table(), w + "." + key, points, n)
+                            : matrix(*fnode, w + "." + key, false);
     if (m.cols() != n) {
       throw InvalidInput(
           fmt::format("{}.{} has {} column(s) but the structure has {} DOFs: one column per DOF{}",
@@ -522,7 +594,7 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
       FrequencyResponseCase fr;
       auto pair = [&](const std::string& prefix, Eigen::MatrixXd& cos_part,
                       Eigen::MatrixXd& sin_part) {
-        return force_pair(t, w, prefix, basis, n, nh, cos_part, sin_part);
+        return force_pair(t, w, prefix, basis, n, nh, cos_part, sin_part, c.output_points);
       };
       FrequencyResponseOptions& o = fr.options;
       o.force = pair("force", fr.force_cos, fr.force_sin);
@@ -591,12 +663,15 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
             fmt::format("{} needs force_cos and/or force_sin (rows: harmonics, columns: DOFs){}", w,
                         at_line(t)));
       }
-      o.force = force_pair(t, w, "force", basis, n, nh, fr.force_cos, fr.force_sin);
+      o.force =
+          force_pair(t, w, "force", basis, n, nh, fr.force_cos, fr.force_sin, c.output_points);
       Eigen::MatrixXd c1, s1, c2, s2;
       if (t.get("force_per_omega_cos") || t.get("force_per_omega_sin"))
-        o.force_per_omega = force_pair(t, w, "force_per_omega", basis, n, nh, c1, s1);
+        o.force_per_omega =
+            force_pair(t, w, "force_per_omega", basis, n, nh, c1, s1, c.output_points);
       if (t.get("force_per_omega2_cos") || t.get("force_per_omega2_sin"))
-        o.force_per_omega2 = force_pair(t, w, "force_per_omega2", basis, n, nh, c2, s2);
+        o.force_per_omega2 =
+            force_pair(t, w, "force_per_omega2", basis, n, nh, c2, s2, c.output_points);
       const auto* wn = t.get("omega");
       if (!wn) {
         throw InvalidInput(
@@ -641,7 +716,7 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     }
     dof = static_cast<Eigen::Index>(integer(t, "dof", w, 0, 0, n - 1));
     Eigen::MatrixXd fc, fs;
-    return force_pair(t, w, "force", basis, n, nh, fc, fs);
+    return force_pair(t, w, "force", basis, n, nh, fc, fs, c.output_points);
   };
   tables("amplitude_control", [&](const toml::table& t, const std::string& w) {
     check_keys(t, w, {"force_cos", "force_sin", "dof", "amplitude", "omega", "continuation"});
@@ -676,7 +751,7 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
     }
     SuperharmonicResonanceOptions o;
     Eigen::MatrixXd fc, fs;
-    o.force = force_pair(t, w, "force", basis, n, nh, fc, fs);
+    o.force = force_pair(t, w, "force", basis, n, nh, fc, fs, c.output_points);
     if (!t.get("harmonic")) {
       throw InvalidInput(
           fmt::format("{} needs harmonic, the order r of the r:1 resonance (2 .. {}){}", w,
@@ -704,7 +779,7 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
           "{} needs force_cos and/or force_sin (rows: harmonics, columns: DOFs){}", w, at_line(t)));
     }
     BackboneRomCase b;
-    b.force = force_pair(t, w, "force", basis, n, nh, b.force_cos, b.force_sin);
+    b.force = force_pair(t, w, "force", basis, n, nh, b.force_cos, b.force_sin, c.output_points);
     const auto nc = static_cast<Eigen::Index>(basis.coefficients());
     double f1 = 0.0;
     for (Eigen::Index d = 0; d < n; ++d) {

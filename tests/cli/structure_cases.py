@@ -156,6 +156,34 @@ points = 5
         return fail(f"vibration on the model: exit {p.returncode}: {p.stderr}")
     if "quasi_static_mode" not in json.loads(p.stdout):
         return fail("no quasi_static_mode")
+    # A force at the model's output point ("corner") along z: the same curve as the rows
+    # R_z^T f written out (the recovery rows' virtual work, force_pair's point form); the
+    # direction is normalised ([0, 0, 2] is z) and the force may carry units.
+    forced = open(case).read().replace("[quasi_static_mode]\nmode = 7\namplitude = { from = 1e-6, to = 1e-3 }\n"
+                          "points = 5\n", "")
+    sweep = 'omega = { from = "9 kHz", to = "9.2 kHz" }\n'
+    rz = m["R"][2]
+    at_point = write(tmp, "point.toml", forced + "[[frequency_response]]\n"
+                     'force_cos = { point = "corner", direction = [0, 0, 2], force = [0, "3 N"] }\n'
+                     + sweep)
+    rows = write(tmp, "rows.toml", forced + "[[frequency_response]]\nforce_cos = [["
+                 + ", ".join(["0.0"] * len(rz)) + "], [" + ", ".join(repr(float(3.0 * x)) for x in rz)
+                 + "]]\n" + sweep)
+    curves = []
+    for c in (at_point, rows):
+        p = run(exe, ["vibration", c, "--json"])
+        if p.returncode != 0:
+            return fail(f"point force: exit {p.returncode}: {p.stderr}")
+        curves.append(json.loads(p.stdout)["frequency_response"][0])
+    a, b = (np.array(c["output_amplitude"]) for c in curves)
+    if (a.shape != b.shape or len(a) < 3 or not np.abs(b).min() > 0
+            or np.abs(a - b).max() > 1e-12 * np.abs(b).max()):
+        return fail(f"a force at the point differs from its rows: {a} against {b}")
+    bad = write(tmp, "bad_point.toml", open(at_point).read().replace('point = "corner"',
+                                                                      'point = "tip"'))
+    p = run(exe, ["vibration", bad])
+    if p.returncode != 2 or 'force_cos.point = "tip": the model\'s output points are "corner"' not in p.stderr:
+        return fail(f"unknown point: exit {p.returncode}: {p.stderr}")
     # rough_contact on every interface element in contact at the rough prestress (the
     # surface and pressures come with the model file): the stuck structure's linear modes
     # are the structure run's linearised `rough` modes (two code paths: the prestress's

@@ -848,6 +848,10 @@ log10_force = { from = -2.0, to = 0.0 }
     "omega_ambiguous_units": (JENKINS + FRF.replace("from = 0.7", 'from = "0.7 s^-1"'), ["Hz", "rad/s"]),
     "force_wrong_columns": (JENKINS + FRF.replace("[[0.0], [0.1]]", "[[0.0, 0.0], [0.1, 0.0]]"),
                             ["force_cos", "column"]),
+    "force_at_point_without_model": (
+        JENKINS + FRF.replace("[[0.0], [0.1]]",
+                              '{ point = "tip", direction = [0, 0, 1], force = [0, "1 N"] }'),
+        ["frequency_response[1].force_cos", "a force at a point needs a reduced model"]),
     "force_sine_of_harmonic_0": (JENKINS + FRF.replace("omega", "force_sin = [[1.0]]\nomega"),
                                  ["harmonic 0", "sine"]),
     "nothing_to_run": (JENKINS, "nothing to run"),

@@ -74,6 +74,9 @@
 //   [[frequency_response]]      # any number
 //   force_cos = [[0.0], [3.3]]  # rows: harmonics in `harmonics` order (missing rows are
 //   force_sin = [[0.0], [0.0]]  #   zero); columns: DOFs [N]; harmonic 0 has no sine part
+//   # with a reduced model, force_cos / force_sin may be a force at an output point instead:
+//   #   force_cos = { point = "tip", direction = [0, 0, 1], force = [0, "2 N"] }
+//   #   (rows: harmonics; generalised forces f d^T R_point, the recovery rows' virtual work)
 //   force_per_omega_cos = ..    # optional, same layout: F_ex = force + omega force_per_omega
 //   force_per_omega2_cos = ..   #   + omega^2 force_per_omega2 (and _sin): base excitation,
 //                               #   e.g. y = Y sin(omega t) through k, c: force_sin = k Y,
