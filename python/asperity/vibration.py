@@ -1131,14 +1131,16 @@ def plot_mode(mode: Mapping, axes=None, label: str | None = None, quasi_static: 
 def force_label(curve: Mapping, force=None) -> str:
     """The legend of a forced-response curve: its forcing amplitude in N (the curve's
     ``force_amplitude``, from :func:`run_case`, or ``force_scale`` times the norm of
-    ``force``, the excitation at scale 1); ``force x SCALE`` when neither is known."""
+    ``force``, the excitation at scale 1), followed by ``at POINT`` for a force given at an
+    output point of a reduced model; ``force x SCALE`` when neither is known."""
     amp = curve.get("force_amplitude") if hasattr(curve, "get") else None
     if amp is None and force is not None:
         norm = float(np.linalg.norm(np.asarray(force, dtype=float)))
         amp = float(curve["force_scale"]) * norm
     if amp is None or not np.isfinite(amp) or amp <= 0:
         return f"force x {float(curve['force_scale']):g}"
-    return f"F = {amp:.4g} N"
+    point = curve.get("force_point") if hasattr(curve, "get") else None
+    return f"F = {amp:.4g} N" + (f" at {point}" if point else "")
 
 
 def plot_response(curves: Sequence[Mapping], output: int = 0, ax=None, *, force=None,
@@ -1192,11 +1194,17 @@ def _force_amplitudes(case: Mapping, curves) -> list:
     for c in curves:
         t = c.get("table", 0)  # counted from 1
         t = tables[t - 1] if isinstance(t, int) and 1 <= t <= len(tables) else {}
-        values = [x for key in ("force_cos", "force_sin") for row in t.get(key, [])
+        # Rows of DOFs, or a force at an output point ({point, direction, force}: the
+        # values given there, numbers [N] or quantity strings, as the CLI's legends).
+        values = [x for key in ("force_cos", "force_sin")
+                  for row in (t[key].get("force", []) if isinstance(t.get(key), Mapping)
+                              else t.get(key, []))
                   for x in (row if isinstance(row, list) else [row])]
         try:
-            norm = float(np.sqrt(sum(float(x) ** 2 for x in values))) if values else np.nan
-        except (TypeError, ValueError):
+            values = [_core.parse_quantity(x).value if isinstance(x, str) else float(x)
+                      for x in values]
+            norm = float(np.sqrt(sum(x ** 2 for x in values))) if values else np.nan
+        except (TypeError, ValueError, _core.InvalidInput):
             norm = np.nan
         out.append(norm * float(c["force_scale"]) if norm > 0 else np.nan)
     return out
@@ -1209,7 +1217,16 @@ def _with_force_amplitudes(result: Result, text: str) -> Result:
         case = tomllib.loads(text)
     except (tomllib.TOMLDecodeError, UnicodeDecodeError):
         return result
+    tables = case.get("frequency_response", [])
     for c, amp in zip(result["frequency_response"],
                       _force_amplitudes(case, result["frequency_response"])):
         c["force_amplitude"] = amp
+        # A force given at an output point: the legend names it, as the CLI's.
+        t = c.get("table", 0)
+        t = tables[t - 1] if isinstance(t, int) and 1 <= t <= len(tables) else {}
+        points = {t[k].get("point") for k in ("force_cos", "force_sin")
+                  if isinstance(t.get(k), Mapping)}
+        rows = any(k in t and not isinstance(t[k], Mapping) for k in ("force_cos", "force_sin"))
+        if len(points) == 1 and not rows:
+            c["force_point"] = points.pop()
     return result

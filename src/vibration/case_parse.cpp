@@ -257,7 +257,8 @@ Eigen::VectorXd force_vector(const HarmonicBasis& basis, Eigen::Index dofs,
 // f d^T R_p, R_p the point's 3 recovery rows (x, y, z): the virtual work of the force on
 // the model's displacement at the point, exact for the rows the model recovers it with.
 Eigen::MatrixXd point_force(const toml::table& pt, const std::string& field,
-                            const std::vector<OutputPoint>& points, Eigen::Index n) {
+                            const std::vector<OutputPoint>& points, Eigen::Index n,
+                            PointForceLabel* label) {
   check_keys(pt, field, {"point", "direction", "force"});
   if (points.empty()) {
     throw InvalidInput(fmt::format(
@@ -315,7 +316,9 @@ Eigen::MatrixXd point_force(const toml::table& pt, const std::string& field,
                       at_line(e)));
     }
     m.row(static_cast<Eigen::Index>(r)) = f * unit;
+    if (label) label->amplitude = std::hypot(label->amplitude, f);
   }
+  if (label) label->point = name;
   return m;
 }
 
@@ -325,15 +328,19 @@ Eigen::MatrixXd point_force(const toml::table& pt, const std::string& field,
 Eigen::VectorXd force_pair(const toml::table& t, const std::string& w, const std::string& prefix,
                            const HarmonicBasis& basis, Eigen::Index n, std::size_t nh,
                            Eigen::MatrixXd& cos_part, Eigen::MatrixXd& sin_part,
-                           const std::vector<OutputPoint>& points) {
+                           const std::vector<OutputPoint>& points,
+                           PointForceLabel* label = nullptr) {
   cos_part = Eigen::MatrixXd::Zero(0, n);
   sin_part = Eigen::MatrixXd::Zero(0, n);
+  PointForceLabel given;
+  bool rows = false;
   for (const std::string kind : {"_cos", "_sin"}) {
     const std::string key = prefix + kind;
     const auto* fnode = t.get(key);
     if (!fnode) continue;
+    rows = rows || !fnode->is_table();
     Eigen::MatrixXd m = fnode->is_table()
-                            ? point_force(*fnode->as_table(), w + "." + key, points, n)
+                            ? point_force(*fnode->as_table(), w + "." + key, points, n, &given)
                             : matrix(*fnode, w + "." + key, false);
     if (m.cols() != n) {
       throw InvalidInput(
@@ -355,6 +362,8 @@ Eigen::VectorXd force_pair(const toml::table& t, const std::string& w, const std
     }
     (kind == "_cos" ? cos_part : sin_part) = std::move(m);
   }
+  // Given at a point (every part given): the legend's force is the one at the point.
+  if (label && !rows) *label = given;
   return force_vector(basis, n, cos_part, sin_part);
 }
 
@@ -593,11 +602,11 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
                   "continuation", "stability"});
       FrequencyResponseCase fr;
       auto pair = [&](const std::string& prefix, Eigen::MatrixXd& cos_part,
-                      Eigen::MatrixXd& sin_part) {
-        return force_pair(t, w, prefix, basis, n, nh, cos_part, sin_part, c.output_points);
+                      Eigen::MatrixXd& sin_part, PointForceLabel* label = nullptr) {
+        return force_pair(t, w, prefix, basis, n, nh, cos_part, sin_part, c.output_points, label);
       };
       FrequencyResponseOptions& o = fr.options;
-      o.force = pair("force", fr.force_cos, fr.force_sin);
+      o.force = pair("force", fr.force_cos, fr.force_sin, &fr.at_point);
       if (!t.get("force_cos") && !t.get("force_sin")) {
         throw InvalidInput(
             fmt::format("{} needs force_cos and/or force_sin (rows: harmonics, columns: DOFs){}", w,
@@ -779,7 +788,8 @@ VibrationCase parse_case_text(const std::string& file_text, const std::string& p
           "{} needs force_cos and/or force_sin (rows: harmonics, columns: DOFs){}", w, at_line(t)));
     }
     BackboneRomCase b;
-    b.force = force_pair(t, w, "force", basis, n, nh, b.force_cos, b.force_sin, c.output_points);
+    b.force = force_pair(t, w, "force", basis, n, nh, b.force_cos, b.force_sin, c.output_points,
+                         &b.at_point);
     const auto nc = static_cast<Eigen::Index>(basis.coefficients());
     double f1 = 0.0;
     for (Eigen::Index d = 0; d < n; ++d) {

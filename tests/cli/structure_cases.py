@@ -179,6 +179,10 @@ points = 5
     if (a.shape != b.shape or len(a) < 3 or not np.abs(b).min() > 0
             or np.abs(a - b).max() > 1e-12 * np.abs(b).max()):
         return fail(f"a force at the point differs from its rows: {a} against {b}")
+    # The legend and the text name the force given at the point, not its generalised norm.
+    p = run(exe, ["vibration", at_point])
+    if p.returncode != 0 or "F = 3 N at corner" not in p.stdout:
+        return fail(f"point force label: exit {p.returncode}: {p.stdout}")
     bad = write(tmp, "bad_point.toml", open(at_point).read().replace('point = "corner"',
                                                                       'point = "tip"'))
     p = run(exe, ["vibration", bad])

@@ -1147,3 +1147,24 @@ def test_case_curves_carry_their_force_amplitude_in_newton():
     np.testing.assert_allclose(amps, [3.3, 0.05, 0.1, 0.2], rtol=1e-12)
     assert [vib.force_label(c) for c in r.frequency_response] == [
         "F = 3.3 N", "F = 0.05 N", "F = 0.1 N", "F = 0.2 N"]
+
+
+def test_a_force_at_an_output_point_is_labelled_in_newton_there():
+    # force_cos = { point, direction, force } (a reduced model's output point): the legend is
+    # the force given at the point (here 0.01 N of harmonic 1, as a quantity string, times
+    # the scale), named as the CLI names it; rows of DOFs keep the norm over DOFs and harmonics.
+    text = """
+[[frequency_response]]
+force_cos = { point = "tip", direction = [0, 0, 2], force = [0, "0.01 N"] }
+force_sin = { point = "tip", direction = [0, 0, 1], force = [0, 0.02] }
+[[frequency_response]]
+force_cos = [[0.0, 0.0], [3.0, 4.0]]
+"""
+    result = {"frequency_response": [{"table": 1, "force_scale": 2.0},
+                                     {"table": 2, "force_scale": 1.0}]}
+    vib._with_force_amplitudes(result, text)
+    at_point, rows = result["frequency_response"]
+    assert at_point["force_amplitude"] == pytest.approx(2.0 * math.hypot(0.01, 0.02), rel=1e-12)
+    assert vib.force_label(at_point) == f"F = {2.0 * math.hypot(0.01, 0.02):.4g} N at tip"
+    assert rows["force_amplitude"] == pytest.approx(5.0, rel=1e-12)
+    assert vib.force_label(rows) == "F = 5 N"

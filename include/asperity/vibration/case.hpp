@@ -154,10 +154,18 @@ using dynamics::SummaryValue;
 
 /// One [[frequency_response]] table: the force at scale 1 as given (harmonics in the
 /// order of `harmonics` x DOFs) and the options with the force in the unknowns' layout.
+/// A force given at an output point (force_cos = { point, direction, force }): the
+/// legends name it in N at the point, not as the norm of its generalised forces.
+struct PointForceLabel {
+  std::string point;       ///< "" when the force is given as rows of DOFs
+  double amplitude = 0.0;  ///< [N] the norm of the given values over harmonics (cos and sin)
+};
+
 struct FrequencyResponseCase {
   Eigen::MatrixXd force_cos;
   Eigen::MatrixXd force_sin;
   FrequencyResponseOptions options;
+  PointForceLabel at_point;
 };
 
 /// One [[force_response]] table: the force at scale 1 as given and the options.
@@ -171,6 +179,7 @@ struct ForceResponseCase {
 struct BackboneRomCase {
   Eigen::MatrixXd force_cos;
   Eigen::MatrixXd force_sin;
+  PointForceLabel at_point;
   Eigen::VectorXd force;
   std::vector<double> force_scales{1.0};
   int subdivisions = 16;
