@@ -70,7 +70,7 @@ Sparse block(const Sparse& A, Eigen::Index r0, Eigen::Index c0, Eigen::Index nr,
 }
 
 // Right-hand sides solved together: one pass over the factor serves them all.
-constexpr Eigen::Index kSolveBlock = 16;
+constexpr Eigen::Index kSolveBlock = 32;
 using SolveBlock = Eigen::Matrix<double, Eigen::Dynamic, kSolveBlock, Eigen::RowMajor>;
 
 // K^-1 Y in place for a block of right-hand sides (rows of Y), with the factors of
@@ -287,20 +287,26 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
         "the structure with its interfaces tied and a statically determinate support is "
         "singular: it has more rigid-body modes than a free-free structure allows (6)");
 
+  const Eigen::Index nt = nv + ng;
+  const auto ns = static_cast<Eigen::Index>(static_loads.size());
+  const int count = std::min<int>(options.fixed_interface_modes, static_cast<int>(nf) - 7);
+  const Eigen::Index nm = 6 + std::max(count, 0);
+  const Eigen::Index nr = ng + nm + ns;
+  cb.basis = Eigen::MatrixXd::Zero(nt, nr);
+
   // Fixed-interface (tied) modes from the same factorisation: the free-free tied
   // structure's flexibility with inertia relief, F = P K_ff^-1 P^T (P removes the
   // rigid-body part: loads are made self-equilibrated, displacements mass-orthogonal to
   // the rigid-body modes), whose eigenpairs under M are the elastic modes (1/omega^2);
   // the six rigid-body modes are added exactly.
-  {
-    const Eigen::MatrixXd Rv = Rt.topRows(nv);
-    const Eigen::MatrixXd MRv = Mvv * Rv;
-    const Eigen::MatrixXd G = (Rv.transpose() * MRv).inverse();
+  const Eigen::MatrixXd Rv = Rt.topRows(nv);
+  const Eigen::MatrixXd MRv = Mvv * Rv;
+  const Eigen::MatrixXd G = (Rv.transpose() * MRv).inverse();
+  auto tied_modes = [&] {
     InertiaReliefFlexibility op(ldlt, f_index, nf, Rv, MRv, G);
     Spectra::SparseSymMatProd<double> bop(Mvv);
-    const int count = std::min<int>(options.fixed_interface_modes, static_cast<int>(nf) - 7);
-    Eigen::MatrixXd shapes(nv, 6 + std::max(count, 0));
-    Eigen::VectorXd omega2 = Eigen::VectorXd::Zero(shapes.cols());
+    Eigen::MatrixXd shapes(nv, nm);
+    Eigen::VectorXd omega2 = Eigen::VectorXd::Zero(nm);
     // Rigid-body modes, mass-orthonormal (Cholesky of R^T M R).
     const Eigen::MatrixXd L = Eigen::LLT<Eigen::MatrixXd>(Rv.transpose() * MRv).matrixL();
     shapes.leftCols(6) = Rv * L.transpose().inverse();
@@ -325,29 +331,54 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
     cb.tied_omega2 = omega2;
     tied.omega2 = omega2;
     tied.shapes = std::move(shapes);
-  }
-  cb.phases.push_back(clock.lap("fixed-interface modes"));
-  const Eigen::Index nt = nv + ng;
-  const auto ns = static_cast<Eigen::Index>(static_loads.size());
-  const Eigen::Index nm = tied.omega2.size();
-  const Eigen::Index nr = ng + nm + ns;
-  cb.basis = Eigen::MatrixXd::Zero(nt, nr);
-  // One right-hand side -K_fg e_j per interface DOF, solved kSolveBlock at a time; the
-  // blocks are independent and go to the library's threads.
+  };
+  // Constraint modes: one right-hand side -K_fg e_j per interface DOF, solved kSolveBlock
+  // at a time.
+  auto constraint_modes = [&](Eigen::Index c0) {
+    const Eigen::Index nc = std::min(kSolveBlock, ng - c0);
+    SolveBlock Y = SolveBlock::Zero(nf, kSolveBlock);
+    for (Eigen::Index j = 0; j < nc; ++j)
+      for (Sparse::InnerIterator it(Kfg, c0 + j); it; ++it) Y(it.row(), j) = -it.value();
+    solve_in_place(ldlt, Y);
+    for (Eigen::Index i = 0; i < nv; ++i)
+      if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0)
+        cb.basis.row(i).segment(c0, nc) = Y.row(fi).head(nc);
+  };
+  // The static loads' responses K_ff^-1 f (g = 0), kSolveBlock at a time.
+  for (Eigen::Index s = 0; s < ns; ++s)
+    if (static_loads[static_cast<std::size_t>(s)].size() != n)
+      throw InvalidInput(fmt::format("reduction: static load {} has {} entries for {} DOFs", s,
+                                     static_loads[static_cast<std::size_t>(s)].size(), n));
+  Eigen::MatrixXd load_response = Eigen::MatrixXd::Zero(nt, ns);
+  auto load_responses = [&](Eigen::Index s0) {
+    const Eigen::Index nc = std::min(kSolveBlock, ns - s0);
+    SolveBlock Y = SolveBlock::Zero(nf, kSolveBlock);
+    for (Eigen::Index j = 0; j < nc; ++j) {
+      const Eigen::VectorXd ft = Tc.transpose() * static_loads[static_cast<std::size_t>(s0 + j)];
+      for (Eigen::Index i = 0; i < nv; ++i)
+        if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0) Y(fi, j) = ft[i];
+    }
+    solve_in_place(ldlt, Y);
+    for (Eigen::Index i = 0; i < nv; ++i)
+      if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0)
+        load_response.row(i).segment(s0, nc) = Y.row(fi).head(nc);
+  };
+  // All only read the factor: the Lanczos run (one solve at a time, bound by reading L)
+  // takes one thread while the blocks of constraint modes and load responses go to the
+  // others.
   {
     const auto blocks = static_cast<std::size_t>((ng + kSolveBlock - 1) / kSolveBlock);
-    core::parallel_for(blocks, [&](std::size_t k) {
-      const Eigen::Index c0 = static_cast<Eigen::Index>(k) * kSolveBlock;
-      const Eigen::Index nc = std::min(kSolveBlock, ng - c0);
-      SolveBlock Y = SolveBlock::Zero(nf, kSolveBlock);
-      for (Eigen::Index j = 0; j < nc; ++j)
-        for (Sparse::InnerIterator it(Kfg, c0 + j); it; ++it) Y(it.row(), j) = -it.value();
-      solve_in_place(ldlt, Y);
-      for (Eigen::Index i = 0; i < nv; ++i)
-        if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0)
-          cb.basis.row(i).segment(c0, nc) = Y.row(fi).head(nc);
+    const auto load_blocks = static_cast<std::size_t>((ns + kSolveBlock - 1) / kSolveBlock);
+    core::parallel_for(1 + blocks + load_blocks, [&](std::size_t k) {
+      if (k == 0)
+        tied_modes();
+      else if (k <= blocks)
+        constraint_modes(static_cast<Eigen::Index>(k - 1) * kSolveBlock);
+      else
+        load_responses(static_cast<Eigen::Index>(k - 1 - blocks) * kSolveBlock);
     });
   }
+  cb.phases.push_back(clock.lap("fixed-interface and constraint modes"));
   cb.basis.block(nv, 0, ng, ng).setIdentity();
   {
     const Eigen::MatrixXd MR = Mt.topLeftCorner(nt, nt) * Rt.topRows(nt).eval();
@@ -363,44 +394,50 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
   }
   cb.basis.block(0, ng, nv, nm) = tied.shapes;
   // Load-dependent Ritz vectors of the static loads (g = 0), M-orthogonal to the rigid-body
-  // and fixed-interface modes and to each other.
+  // and fixed-interface modes and to each other: classical Gram-Schmidt against the kept
+  // columns, all mass-normalised (the rigid-body modes among them), twice for round-off.
   for (Eigen::Index s = 0; s < ns; ++s) {
-    const auto& load = static_loads[static_cast<std::size_t>(s)];
-    if (load.size() != n)
-      throw InvalidInput(
-          fmt::format("reduction: static load {} has {} entries for {} DOFs", s, load.size(), n));
-    const Eigen::VectorXd ft = Tc.transpose() * load;
-    Eigen::VectorXd rhs_f(nf);
-    for (Eigen::Index i = 0; i < nv; ++i)
-      if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0) rhs_f[fi] = ft[i];
-    const Eigen::VectorXd y = ldlt.solve(rhs_f);
-    Eigen::VectorXd v = Eigen::VectorXd::Zero(nt);
-    for (Eigen::Index i = 0; i < nv; ++i)
-      if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0) v[i] = y[fi];
-    for (int pass = 0; pass < 2; ++pass) {  // Gram-Schmidt, twice for round-off
+    Eigen::VectorXd v = load_response.col(s);
+    const Eigen::Index kept = nm + s;
+    for (int pass = 0; pass < 2; ++pass) {
       const Eigen::VectorXd Mv = Mt * v;
-      for (int k = 0; k < 6; ++k) {
-        const Eigen::VectorXd r = Rt.col(k);
-        v -= (r.dot(Mv) / r.dot(Mt * r)) * r;
-      }
-      const Eigen::VectorXd Mv2 = Mt * v;
-      for (Eigen::Index k = ng; k < ng + nm + s; ++k) {
-        const Eigen::VectorXd phi = cb.basis.col(k);
-        v -= (phi.dot(Mv2) / phi.dot(Mt * phi)) * phi;
-      }
+      v -= cb.basis.middleCols(ng, kept) * (cb.basis.middleCols(ng, kept).transpose() * Mv);
     }
     const double norm = std::sqrt(v.dot(Mt * v));
     if (!(norm > 0))
       throw NumericalError(fmt::format(
           "reduction: static load {} has no response beyond the kept modes (a zero load?)", s));
-    cb.basis.col(ng + nm + s) = v / norm;
+    cb.basis.col(ng + kept) = v / norm;
   }
   cb.static_vectors = ns;
-  cb.phases.push_back(clock.lap("constraint modes and load vectors"));
+  cb.phases.push_back(clock.lap("load vectors"));
   // B^T K B and B^T M B, symmetric: the upper triangle a block of columns at a time (no
-  // n_t x n_r products kept), mirrored.
+  // n_t x n_r products kept), mirrored. K Psi vanishes on the rows solved for (K_ff Psi_f +
+  // K_fg = 0, and K R = 0 for the rigid-body part taken out), so the rows of B^T K B of the
+  // constraint modes Psi need K Psi only on the rest, Q: the interface DOFs and the six
+  // held ones (Craig-Bampton's K_bb - K_bi K_ii^-1 K_ib, Psi^T K B = (K Psi)_Q^T B_Q).
   cb.K.resize(nr, nr);
   cb.M.resize(nr, nr);
+  {
+    std::vector<Eigen::Index> q_index(static_cast<std::size_t>(nt), -1);
+    Eigen::Index nq = 0;
+    for (Eigen::Index i = 0; i < nt; ++i)
+      if (i >= nv || f_index[static_cast<std::size_t>(i)] < 0)
+        q_index[static_cast<std::size_t>(i)] = nq++;
+    std::vector<Eigen::Triplet<double>> tq;
+    Eigen::MatrixXd BQ(nq, nr);
+    for (Eigen::Index col = 0; col < Kt.outerSize(); ++col)
+      for (Sparse::InnerIterator it(Kt, col); it; ++it)
+        if (const auto qi = q_index[static_cast<std::size_t>(it.row())]; qi >= 0)
+          tq.emplace_back(qi, col, it.value());
+    for (Eigen::Index i = 0; i < nt; ++i)
+      if (const auto qi = q_index[static_cast<std::size_t>(i)]; qi >= 0)
+        BQ.row(qi) = cb.basis.row(i);
+    Sparse KQ(nq, nt);
+    KQ.setFromTriplets(tq.begin(), tq.end());
+    const Eigen::MatrixXd KPsiQ = KQ * cb.basis.leftCols(ng);
+    cb.K.topRows(ng).noalias() = KPsiQ.transpose() * BQ;
+  }
   {
     constexpr Eigen::Index kProductBlock = 64;
     const auto blocks = static_cast<std::size_t>((nr + kProductBlock - 1) / kProductBlock);
@@ -408,10 +445,16 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
       const Eigen::Index c0 = static_cast<Eigen::Index>(k) * kProductBlock;
       const Eigen::Index nc = std::min(kProductBlock, nr - c0);
       const auto upper = cb.basis.leftCols(c0 + nc).transpose();
-      const Eigen::MatrixXd KB = Kt * cb.basis.middleCols(c0, nc);
-      cb.K.block(0, c0, c0 + nc, nc).noalias() = upper * KB;
       const Eigen::MatrixXd MB = Mt * cb.basis.middleCols(c0, nc);
       cb.M.block(0, c0, c0 + nc, nc).noalias() = upper * MB;
+      // Rows >= ng of K (the tied modes' and load vectors' columns).
+      const Eigen::Index k0 = std::max(c0, ng);
+      if (k0 < c0 + nc) {
+        const Eigen::Index kc = c0 + nc - k0;
+        const Eigen::MatrixXd KB = Kt * cb.basis.middleCols(k0, kc);
+        cb.K.block(ng, k0, k0 + kc - ng, kc).noalias() =
+            cb.basis.middleCols(ng, k0 + kc - ng).transpose() * KB;
+      }
     });
   }
   for (Eigen::Index j = 0; j < nr; ++j)
