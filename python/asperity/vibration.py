@@ -1184,39 +1184,48 @@ def plot_response(curves: Sequence[Mapping], output: int = 0, ax=None, *, force=
     return ax
 
 
-def _force_amplitudes(case: Mapping, curves) -> list:
-    """Each curve's forcing amplitude [N]: the norm of its ``[[frequency_response]]``
-    table's harmonic force vector (``force_cos`` and ``force_sin``, every harmonic and
-    DOF) times the curve's force scale; for one forced DOF and one harmonic, the force
-    amplitude itself. NaN when the table gives no force (base excitation)."""
-    tables = case.get("frequency_response", []) if isinstance(case, Mapping) else []
-    out = []
-    for c in curves:
-        t = c.get("table", 0)  # counted from 1
-        t = tables[t - 1] if isinstance(t, int) and 1 <= t <= len(tables) else {}
-        # Rows of DOFs, or a force at an output point ({point, direction, force}: the
-        # values given there, numbers [N] or quantity strings, as the CLI's legends).
-        values = [x for key in ("force_cos", "force_sin")
-                  for row in (t[key].get("force", []) if isinstance(t.get(key), Mapping)
-                              else t.get(key, []))
-                  for x in (row if isinstance(row, list) else [row])]
-        try:
-            values = [_core.parse_quantity(x).value if isinstance(x, str) else float(x)
-                      for x in values]
-            norm = float(np.sqrt(sum(x ** 2 for x in values))) if values else np.nan
-        except (TypeError, ValueError, _core.InvalidInput):
-            norm = np.nan
-        out.append(norm * float(c["force_scale"]) if norm > 0 else np.nan)
-    return out
+def _table_force(t: Mapping) -> tuple[float, str | None]:
+    """A ``[[frequency_response]]`` table's forcing amplitude at scale 1 [N]: the norm of
+    its harmonic force vector (``force_cos`` and ``force_sin``, every harmonic and DOF; for
+    one forced DOF and one harmonic, the force amplitude itself), NaN when it gives no force
+    (base excitation); and the output point when the force is given at one
+    (``{point, direction, force}``: the values given there, numbers [N] or quantity
+    strings, as the CLI's legends), else None."""
+    values = [x for key in ("force_cos", "force_sin")
+              for row in (t[key].get("force", []) if isinstance(t.get(key), Mapping)
+                          else t.get(key, []))
+              for x in (row if isinstance(row, list) else [row])]
+    try:
+        values = [_core.parse_quantity(x).value if isinstance(x, str) else float(x)
+                  for x in values]
+        norm = float(np.sqrt(sum(x ** 2 for x in values))) if values else np.nan
+    except (TypeError, ValueError, _core.InvalidInput):
+        norm = np.nan
+    points = {t[k].get("point") for k in ("force_cos", "force_sin")
+              if isinstance(t.get(k), Mapping)}
+    rows = any(k in t and not isinstance(t[k], Mapping) for k in ("force_cos", "force_sin"))
+    return norm, (points.pop() if len(points) == 1 and not rows else None)
 
 
 def _with_force_amplitudes(result: Result, text: str) -> Result:
+    """Each curve's ``force_amplitude`` [N] (its table's, :func:`_table_force`, times the
+    curve's force scale; NaN without a force) and, for a force at an output point,
+    ``force_point``: what :func:`force_label` writes."""
     import tomllib
 
     try:
         case = tomllib.loads(text)
     except (tomllib.TOMLDecodeError, UnicodeDecodeError):
         return result
+    tables = case.get("frequency_response", [])
+    for c in result["frequency_response"]:
+        t = c.get("table", 0)  # counted from 1
+        t = tables[t - 1] if isinstance(t, int) and 1 <= t <= len(tables) else {}
+        norm, point = _table_force(t)
+        c["force_amplitude"] = norm * float(c["force_scale"]) if norm > 0 else np.nan
+        if point is not None:
+            c["force_point"] = point
+    return result
     tables = case.get("frequency_response", [])
     for c, amp in zip(result["frequency_response"],
                       _force_amplitudes(case, result["frequency_response"])):

@@ -45,14 +45,18 @@ std::string num(double x) {
 // the norm of the table's harmonic force vector over DOFs and harmonics (for one forced
 // DOF and one harmonic, that force's amplitude), or of the values given at an output point
 // ("F = 0.1 N at tip"); as vibration.force_label in Python.
-std::string force_label(const VibrationCase& c, std::size_t table, double scale) {
-  if (table >= c.frequency_responses.size()) return fmt::format("force x {:.4g}", scale);
-  const auto& t = c.frequency_responses[table];
+template <class ForcedTable>
+std::string force_legend(const ForcedTable& t, double scale) {
   if (!t.at_point.point.empty())
     return fmt::format("F = {:.4g} N at {}", scale * t.at_point.amplitude, t.at_point.point);
   const double norm = std::sqrt(t.force_cos.squaredNorm() + t.force_sin.squaredNorm());
   if (!(norm > 0.0)) return fmt::format("force x {:.4g}", scale);
   return fmt::format("F = {:.4g} N", scale * norm);
+}
+
+std::string force_label(const VibrationCase& c, std::size_t table, double scale) {
+  if (table >= c.frequency_responses.size()) return fmt::format("force x {:.4g}", scale);
+  return force_legend(c.frequency_responses[table], scale);
 }
 
 // One CSV: a header line and one line per row, every value with 12 significant digits.
@@ -561,14 +565,9 @@ std::vector<std::string> write_files(const VibrationCase& c, const VibrationResu
       }
       for (std::size_t k = 0; k < r.backbone_rom.size(); ++k) {
         const auto& m = r.backbone_rom[k];
-        // The legend's force in N, as force_label: the scale times the table's force norm.
-        const auto& t = c.backbone_roms[r.backbone_rom_table[k]];
-        const double norm = t.at_point.point.empty()
-                                ? std::sqrt(t.force_cos.squaredNorm() + t.force_sin.squaredNorm())
-                                : t.at_point.amplitude;
         Series rom = positive_series(
-            fmt::format("ROM, F = {:.4g} N{}", r.backbone_rom_force_scale[k] * norm,
-                        t.at_point.point.empty() ? std::string() : " at " + t.at_point.point),
+            "ROM, " + force_legend(c.backbone_roms[r.backbone_rom_table[k]],
+                                   r.backbone_rom_force_scale[k]),
             m.omega / two_pi, m.output_amplitude.col(oi), true, "points pt 6 ps 0.8");
         // About 60 open circles per curve, so the harmonic-balance line shows through them.
         const std::size_t stride = std::max<std::size_t>(1, rom.x.size() / 60);

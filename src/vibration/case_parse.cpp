@@ -272,8 +272,10 @@ Eigen::MatrixXd point_force(const toml::table& pt, const std::string& field,
   if (at == points.end()) {
     std::string names;
     for (const auto& p : points) names += (names.empty() ? "\"" : ", \"") + p.name + "\"";
-    throw InvalidInput(fmt::format("{}.point = \"{}\": the model's output points are {}{}", field,
-                                   name, names, at_line(pt)));
+    const std::string given =
+        pt.contains("point") ? fmt::format(".point = \"{}\"", name) : ".point is missing";
+    throw InvalidInput(
+        fmt::format("{}{}: the model's output points are {}{}", field, given, names, at_line(pt)));
   }
   const auto* dn = pt.get("direction");
   const auto* da = dn ? dn->as_array() : nullptr;

@@ -188,6 +188,10 @@ points = 5
     p = run(exe, ["vibration", bad])
     if p.returncode != 2 or 'force_cos.point = "tip": the model\'s output points are "corner"' not in p.stderr:
         return fail(f"unknown point: exit {p.returncode}: {p.stderr}")
+    bad = write(tmp, "no_point.toml", open(at_point).read().replace('point = "corner", ', ''))
+    p = run(exe, ["vibration", bad])
+    if p.returncode != 2 or "force_cos.point is missing: the model's output points are" not in p.stderr:
+        return fail(f"missing point: exit {p.returncode}: {p.stderr}")
     # rough_contact on every interface element in contact at the rough prestress (the
     # surface and pressures come with the model file): the stuck structure's linear modes
     # are the structure run's linearised `rough` modes (two code paths: the prestress's
