@@ -1226,16 +1226,3 @@ def _with_force_amplitudes(result: Result, text: str) -> Result:
         if point is not None:
             c["force_point"] = point
     return result
-    tables = case.get("frequency_response", [])
-    for c, amp in zip(result["frequency_response"],
-                      _force_amplitudes(case, result["frequency_response"])):
-        c["force_amplitude"] = amp
-        # A force given at an output point: the legend names it, as the CLI's.
-        t = c.get("table", 0)
-        t = tables[t - 1] if isinstance(t, int) and 1 <= t <= len(tables) else {}
-        points = {t[k].get("point") for k in ("force_cos", "force_sin")
-                  if isinstance(t.get(k), Mapping)}
-        rows = any(k in t and not isinstance(t[k], Mapping) for k in ("force_cos", "force_sin"))
-        if len(points) == 1 and not rows:
-            c["force_point"] = points.pop()
-    return result
