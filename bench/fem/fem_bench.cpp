@@ -5,8 +5,9 @@
 //  - the assembly of K and M (what a reduction costs in assemblies);
 //  - one sparse factorisation of the tied structure's stiffness (SimplicialLDLT, AMD),
 //    what any reduction needs at least once.
-// Each reduction's phases (reduction.cpp: ordering, factorisation, fixed-interface and
-// constraint modes, load vectors, reduced matrices) are printed from its last run.
+// Each reduction's phases (reduction.cpp: ordering, factorisation, constraint solves,
+// interface flexibility, fixed-interface modes and load responses, load vectors, reduced
+// matrices) are printed from its last run.
 // The Brake-Reuss beam (95,247 DOFs, 200 patches) takes minutes and is not run here:
 //   /usr/bin/time -v build/ci/src/cli/asperity structure examples/brb/brb.toml
 //     --out /tmp/brb --json > /tmp/brb.json   (one command line)

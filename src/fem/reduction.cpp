@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
-#include <unordered_map>
 
 #include <fmt/format.h>
 #include <Eigen/SparseCholesky>
@@ -20,19 +19,48 @@ namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
 
-// The flexibility of a free-free structure with inertia relief (Spectra operator, shift 0):
-// y = P K_ff^-1 P^T x on the DOFs v, K_ff the stiffness on a statically determinate
-// support (f_index: v -> free index, -1 for the six held DOFs). P^T x removes the load's
-// rigid-body resultant (x - M R G R^T x), P makes the displacement M-orthogonal to the
-// rigid-body modes R (y - R G (M R)^T y), G = (R^T M R)^-1.
+// The tied structure's flexibility on a statically determinate support: u = F_c f with
+// K~ u + C^T lambda = f, C u = 0, u_held = 0 (K~ = K + the stabilisation, equal to K on
+// C u = 0). With z = K~_ff^-1 f and the constraint modes Psi0 = X S^-1 (X = K~_ff^-1 C^T,
+// S = C X): lambda = S^-1 C z, u = z - Psi0 (C z).
+class TiedFlexibility {
+ public:
+  TiedFlexibility(const Eigen::SimplicialLDLT<Sparse>& ldlt,
+                  const std::vector<Eigen::Index>& f_index, Eigen::Index nf, const Sparse& C,
+                  Eigen::Ref<const Eigen::MatrixXd> Psi0)
+      : ldlt_(ldlt), f_index_(f_index), nf_(nf), C_(C), Psi0_(Psi0) {}
+  [[nodiscard]] Eigen::VectorXd apply(const Eigen::VectorXd& f) const {
+    const Eigen::Index n = f.size();
+    Eigen::VectorXd ff(nf_);
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (const auto fi = f_index_[static_cast<std::size_t>(i)]; fi >= 0) ff[fi] = f[i];
+    const Eigen::VectorXd zf = ldlt_.solve(ff);
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (const auto fi = f_index_[static_cast<std::size_t>(i)]; fi >= 0) z[i] = zf[fi];
+    const Eigen::VectorXd Cz = C_ * z;
+    z.noalias() -= Psi0_ * Cz;
+    return z;
+  }
+
+ private:
+  const Eigen::SimplicialLDLT<Sparse>& ldlt_;
+  const std::vector<Eigen::Index>& f_index_;
+  Eigen::Index nf_;
+  const Sparse& C_;
+  Eigen::Ref<const Eigen::MatrixXd> Psi0_;  // a view of the basis's first columns
+};
+
+// The flexibility of the free-free tied structure with inertia relief (Spectra operator,
+// shift 0): y = P F_c P^T x. P^T x removes the load's rigid-body resultant
+// (x - M R G R^T x), P makes the displacement M-orthogonal to the rigid-body modes R
+// (y - R G (M R)^T y), G = (R^T M R)^-1.
 class InertiaReliefFlexibility {
  public:
   using Scalar = double;
-  InertiaReliefFlexibility(const Eigen::SimplicialLDLT<Sparse>& ldlt,
-                           const std::vector<Eigen::Index>& f_index, Eigen::Index nf,
-                           const Eigen::MatrixXd& R, const Eigen::MatrixXd& MR,
-                           const Eigen::MatrixXd& G)
-      : ldlt_(ldlt), f_index_(f_index), nf_(nf), R_(R), MR_(MR), G_(G) {}
+  InertiaReliefFlexibility(const TiedFlexibility& tied, const Eigen::MatrixXd& R,
+                           const Eigen::MatrixXd& MR, const Eigen::MatrixXd& G)
+      : tied_(tied), R_(R), MR_(MR), G_(G) {}
   [[nodiscard]] Eigen::Index rows() const { return R_.rows(); }
   [[nodiscard]] Eigen::Index cols() const { return R_.rows(); }
   void set_shift(double) {}
@@ -40,21 +68,12 @@ class InertiaReliefFlexibility {
     const Eigen::Index n = R_.rows();
     Eigen::Map<const Eigen::VectorXd> xv(x, n);
     Eigen::Map<Eigen::VectorXd> yv(y, n);
-    const Eigen::VectorXd load = xv - MR_ * (G_ * (R_.transpose() * xv));
-    Eigen::VectorXd lf(nf_);
-    for (Eigen::Index i = 0; i < n; ++i)
-      if (const auto f = f_index_[static_cast<std::size_t>(i)]; f >= 0) lf[f] = load[i];
-    const Eigen::VectorXd zf = ldlt_.solve(lf);
-    Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
-    for (Eigen::Index i = 0; i < n; ++i)
-      if (const auto f = f_index_[static_cast<std::size_t>(i)]; f >= 0) z[i] = zf[f];
+    const Eigen::VectorXd z = tied_.apply(xv - MR_ * (G_ * (R_.transpose() * xv)));
     yv = z - R_ * (G_ * (MR_.transpose() * z));
   }
 
  private:
-  const Eigen::SimplicialLDLT<Sparse>& ldlt_;
-  const std::vector<Eigen::Index>& f_index_;
-  Eigen::Index nf_;
+  const TiedFlexibility& tied_;
   const Eigen::MatrixXd& R_;
   const Eigen::MatrixXd& MR_;
   const Eigen::MatrixXd& G_;
@@ -64,10 +83,6 @@ struct LowestModes {
   Eigen::VectorXd omega2;
   Eigen::MatrixXd shapes;
 };
-
-Sparse block(const Sparse& A, Eigen::Index r0, Eigen::Index c0, Eigen::Index nr, Eigen::Index nc) {
-  return Sparse(A.block(r0, c0, nr, nc));
-}
 
 // Right-hand sides solved together: one pass over the factor serves them all.
 constexpr Eigen::Index kSolveBlock = 32;
@@ -148,9 +163,10 @@ Eigen::MatrixXd rigid_body_modes(const Eigen::Matrix3Xd& nodes) {
 }
 
 Eigen::RowVectorXd CraigBampton::reduce_row(const Eigen::SparseVector<double>& row) const {
-  const Eigen::SparseMatrix<double> r = Eigen::SparseMatrix<double>(row).transpose();
-  const Eigen::SparseMatrix<double> rt = r * elimination;
-  return Eigen::RowVectorXd(rt * basis);
+  Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(basis.cols());
+  for (Eigen::SparseVector<double>::InnerIterator it(row); it; ++it)
+    r += it.value() * basis.row(it.index());
+  return r;
 }
 
 CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix3Xd& nodes,
@@ -160,76 +176,75 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
   options.validate();
   PhaseClock clock;
   const Eigen::Index n = K.rows();
+  const auto ns = static_cast<Eigen::Index>(static_loads.size());
+  for (Eigen::Index s = 0; s < ns; ++s)
+    if (static_loads[static_cast<std::size_t>(s)].size() != n)
+      throw InvalidInput(fmt::format("reduction: static load {} has {} entries for {} DOFs", s,
+                                     static_loads[static_cast<std::size_t>(s)].size(), n));
+
+  // The constraint C u = g: every interface's patch relative displacements in the patches'
+  // local frames (interface.hpp), stacked.
   std::vector<const InterfacePatch*> patches;
-  for (const auto& itf : interfaces)
+  std::vector<Eigen::Triplet<double>> tc;
+  Eigen::Index ng = 0;
+  std::vector<Eigen::Index> stabilised;  // three spread-out patches per interface
+  for (const auto& itf : interfaces) {
+    const Sparse L = itf.local_operator(n);
+    for (Eigen::Index col = 0; col < L.outerSize(); ++col)
+      for (Sparse::InnerIterator it(L, col); it; ++it)
+        tc.emplace_back(ng + it.row(), col, it.value());
+    const auto first = static_cast<Eigen::Index>(patches.size());
+    const auto count = static_cast<Eigen::Index>(itf.patches.size());
     for (const auto& p : itf.patches) patches.push_back(&p);
-  const auto np = static_cast<Eigen::Index>(patches.size());
-  const Eigen::Index ng = 3 * np, nv = n - ng;
+    ng += L.rows();
+    if (count == 0) continue;
+    auto centroid = [&](Eigen::Index p) -> const Eigen::Vector3d& {
+      return patches[static_cast<std::size_t>(first + p)]->centroid;
+    };
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (Eigen::Index p = 0; p < count; ++p) mean += centroid(p) / static_cast<double>(count);
+    Eigen::Index pa = 0, pb = 0, pc = 0;
+    for (Eigen::Index p = 0; p < count; ++p)
+      if ((centroid(p) - mean).norm() > (centroid(pa) - mean).norm()) pa = p;
+    for (Eigen::Index p = 0; p < count; ++p)
+      if ((centroid(p) - centroid(pa)).norm() > (centroid(pb) - centroid(pa)).norm()) pb = p;
+    const Eigen::Vector3d ab = centroid(pb) - centroid(pa);
+    for (Eigen::Index p = 0; p < count; ++p)
+      if (ab.cross(centroid(p) - centroid(pa)).norm() >
+          ab.cross(centroid(pc) - centroid(pa)).norm())
+        pc = p;
+    for (const auto p : {pa, pb, pc})
+      if (std::find(stabilised.begin(), stabilised.end(), first + p) == stabilised.end())
+        stabilised.push_back(first + p);
+  }
+  Sparse C(ng, n);
+  C.setFromTriplets(tc.begin(), tc.end());
 
-  // One interior node of side B per patch (used by no other patch) is eliminated.
-  std::unordered_map<std::int32_t, int> uses;
+  // K~ = K + w C_s^T C_s over the stabilised patches' rows C_s. On C u = g it adds the
+  // constant w |g_s|^2 / 2 to the strain energy, so the constraint modes and the tied
+  // structure (C u = 0) are those of K; it joins bodies that only the interface joins (no
+  // bolt), so that K~ on a 3-2-1 support is nonsingular. w: the mean diagonal of K.
+  const double w = K.diagonal().cwiseAbs().mean();
+  Sparse Ks = K;
+  for (const auto p : stabilised) {
+    const Sparse Cp = C.middleRows(3 * p, 3);
+    Ks += w * Sparse(Cp.transpose() * Cp);
+  }
+
+  // Statically determinate 3-2-1 support on nodes outside the interfaces' patches.
+  std::vector<char> in_patch(static_cast<std::size_t>(nodes.cols()), 0);
   for (const auto* p : patches)
-    for (const auto& w : p->weights) ++uses[w.node_a], ++uses[w.node_b];
-  std::vector<std::int32_t> master(patches.size(), -1);
-  std::vector<double> master_weight(patches.size(), 0.0);
-  std::vector<char> is_master(static_cast<std::size_t>(nodes.cols()), 0);
-  for (std::size_t p = 0; p < patches.size(); ++p) {
-    for (const auto& w : patches[p]->weights)
-      if (uses[w.node_b] == 1 && w.node_a != w.node_b && w.weight > master_weight[p])
-        master[p] = w.node_b, master_weight[p] = w.weight;
-    if (master[p] < 0)
-      throw InvalidInput(fmt::format(
-          "interface patch {} (centroid ({:.4g}, {:.4g}, {:.4g}) m) has no node of its own: too "
-          "many `patches` for the interface mesh; give fewer patches or refine the interface",
-          p, patches[p]->centroid.x(), patches[p]->centroid.y(), patches[p]->centroid.z()));
-    is_master[static_cast<std::size_t>(master[p])] = 1;
-  }
-  std::vector<Eigen::Index> v_index(static_cast<std::size_t>(n), -1);
-  {
-    Eigen::Index next = 0;
-    for (Eigen::Index d = 0; d < n; ++d)
-      if (!is_master[static_cast<std::size_t>(d / 3)])
-        v_index[static_cast<std::size_t>(d)] = next++;
-  }
-  std::vector<Eigen::Triplet<double>> t;
-  for (Eigen::Index d = 0; d < n; ++d)
-    if (v_index[static_cast<std::size_t>(d)] >= 0)
-      t.emplace_back(d, v_index[static_cast<std::size_t>(d)], 1.0);
-  for (std::size_t p = 0; p < patches.size(); ++p) {
-    const double cm = master_weight[p];
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Index row = 3 * Eigen::Index{master[p]} + k;
-      t.emplace_back(row, nv + 3 * static_cast<Eigen::Index>(p) + k, 1.0 / cm);
-      for (const auto& w : patches[p]->weights) {
-        if (w.node_b != master[p])
-          t.emplace_back(row, v_index[static_cast<std::size_t>(3 * Eigen::Index{w.node_b} + k)],
-                         -w.weight / cm);
-        t.emplace_back(row, v_index[static_cast<std::size_t>(3 * Eigen::Index{w.node_a} + k)],
-                       w.weight / cm);
-      }
-    }
-  }
-  CraigBampton cb;
-  cb.interface_dofs = ng;
-  cb.elimination.resize(n, n);
-  cb.elimination.setFromTriplets(t.begin(), t.end());
-  const Sparse& Tc = cb.elimination;
-  const Sparse Kt = Sparse(Tc.transpose() * K * Tc);
-  const Sparse Mt = Sparse(Tc.transpose() * M * Tc);
-  const Sparse Mvv = block(Mt, 0, 0, nv, nv);
-
-  // Rigid-body modes (the constraint holds for them: no relative motion).
-  const Eigen::MatrixXd R = rigid_body_modes(nodes);
-  Eigen::MatrixXd Rt = Eigen::MatrixXd::Zero(n, 6);
-  for (Eigen::Index d = 0; d < n; ++d)
-    if (const auto j = v_index[static_cast<std::size_t>(d)]; j >= 0) Rt.row(j) = R.row(d);
-
-  LowestModes tied;
-  // Constraint modes: static response to unit g on a statically determinate 3-2-1 support.
-  auto node_ok = [&](Eigen::Index i) { return !is_master[static_cast<std::size_t>(i)]; };
+    for (const auto& nw : p->weights)
+      in_patch[static_cast<std::size_t>(nw.node_a)] =
+          in_patch[static_cast<std::size_t>(nw.node_b)] = 1;
+  auto node_ok = [&](Eigen::Index i) { return !in_patch[static_cast<std::size_t>(i)]; };
   Eigen::Index a = -1;
   for (Eigen::Index i = 0; i < nodes.cols(); ++i)
     if (node_ok(i) && (a < 0 || nodes(0, i) < nodes(0, a))) a = i;
+  if (a < 0)
+    throw InvalidInput(
+        "reduction: every node of the mesh is on an interface patch; the "
+        "bodies need nodes off the interfaces");
   Eigen::Index b = a;
   for (Eigen::Index i = 0; i < nodes.cols(); ++i)
     if (node_ok(i) && (nodes.col(i) - nodes.col(a)).norm() > (nodes.col(b) - nodes.col(a)).norm())
@@ -250,66 +265,113 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
   for (Eigen::Index k = 0; k < 3; ++k)
     if (k != free_b) support.push_back(3 * b + k);
   support.push_back(3 * c + fix_c);
-  std::vector<char> held(static_cast<std::size_t>(nv), 0);
-  for (const auto d : support)
-    held[static_cast<std::size_t>(v_index[static_cast<std::size_t>(d)])] = 1;
-  std::vector<Eigen::Index> f_index(static_cast<std::size_t>(nv), -1);
+  std::vector<Eigen::Index> f_index(static_cast<std::size_t>(n), 0);
+  for (const auto d : support) f_index[static_cast<std::size_t>(d)] = -1;
   Eigen::Index nf = 0;
-  for (Eigen::Index i = 0; i < nv; ++i)
-    if (!held[static_cast<std::size_t>(i)]) f_index[static_cast<std::size_t>(i)] = nf++;
-  std::vector<Eigen::Triplet<double>> tf, tg;
-  for (Eigen::Index col = 0; col < Kt.outerSize(); ++col)
-    for (Sparse::InnerIterator it(Kt, col); it; ++it) {
-      const Eigen::Index r = it.row();
-      if (r >= nv) continue;
-      const Eigen::Index fr = f_index[static_cast<std::size_t>(r)];
-      if (fr < 0) continue;
-      if (col < nv) {
-        const Eigen::Index fc = f_index[static_cast<std::size_t>(col)];
-        if (fc >= 0) tf.emplace_back(fr, fc, it.value());
-      } else {
-        tg.emplace_back(fr, col - nv, it.value());
-      }
-    }
-  Sparse Kff(nf, nf), Kfg(nf, ng);
+  for (auto& f : f_index)
+    if (f >= 0) f = nf++;
+  std::vector<Eigen::Triplet<double>> tf;
+  for (Eigen::Index col = 0; col < Ks.outerSize(); ++col)
+    if (const auto fc = f_index[static_cast<std::size_t>(col)]; fc >= 0)
+      for (Sparse::InnerIterator it(Ks, col); it; ++it)
+        if (const auto fr = f_index[static_cast<std::size_t>(it.row())]; fr >= 0)
+          tf.emplace_back(fr, fc, it.value());
+  Sparse Kff(nf, nf);
   Kff.setFromTriplets(tf.begin(), tf.end());
-  Kfg.setFromTriplets(tg.begin(), tg.end());
-  cb.phases.push_back(clock.lap("transformation and support"));
+  // C_f^T: column j is the interface DOF j's constraint row on the free DOFs.
+  std::vector<Eigen::Triplet<double>> tct;
+  for (Eigen::Index col = 0; col < C.outerSize(); ++col)
+    if (const auto fc = f_index[static_cast<std::size_t>(col)]; fc >= 0)
+      for (Sparse::InnerIterator it(C, col); it; ++it) tct.emplace_back(fc, it.row(), it.value());
+  Sparse CfT(nf, ng);
+  CfT.setFromTriplets(tct.begin(), tct.end());
+  CraigBampton cb;
+  cb.interface_dofs = ng;
+  cb.phases.push_back(clock.lap("stabilisation and support"));
   Eigen::SimplicialLDLT<Sparse> ldlt;
   ldlt.analyzePattern(Kff);
   cb.phases.push_back(clock.lap("ordering"));
   ldlt.factorize(Kff);
   cb.phases.push_back(clock.lap("factorisation"));
   cb.factor_nonzeros = ldlt.matrixL().nestedExpression().nonZeros() + nf;
-  const auto D = ldlt.vectorD();
-  if (ldlt.info() != Eigen::Success || D.minCoeff() <= 1e-12 * D.maxCoeff())
+  const auto& D = ldlt.vectorD();
+  if (ldlt.info() != Eigen::Success || D.size() == 0 || D.minCoeff() <= 1e-12 * D.maxCoeff())
     throw InvalidInput(
         "the structure with its interfaces tied and a statically determinate support is "
         "singular: it has more rigid-body modes than a free-free structure allows (6)");
 
-  const Eigen::Index nt = nv + ng;
-  const auto ns = static_cast<Eigen::Index>(static_loads.size());
   const int count = std::min<int>(options.fixed_interface_modes, static_cast<int>(nf) - 7);
   const Eigen::Index nm = 6 + std::max(count, 0);
   const Eigen::Index nr = ng + nm + ns;
-  cb.basis = Eigen::MatrixXd::Zero(nt, nr);
+  cb.basis = Eigen::MatrixXd::Zero(n, nr);
+  auto scatter = [&](const SolveBlock& Y, Eigen::Index nc, auto&& target) {
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0)
+        target.row(i) = Y.row(fi).head(nc);
+  };
 
-  // Fixed-interface (tied) modes from the same factorisation: the free-free tied
-  // structure's flexibility with inertia relief, F = P K_ff^-1 P^T (P removes the
-  // rigid-body part: loads are made self-equilibrated, displacements mass-orthogonal to
-  // the rigid-body modes), whose eigenpairs under M are the elastic modes (1/omega^2);
-  // the six rigid-body modes are added exactly.
-  const Eigen::MatrixXd Rv = Rt.topRows(nv);
-  const Eigen::MatrixXd MRv = Mvv * Rv;
-  const Eigen::MatrixXd G = (Rv.transpose() * MRv).inverse();
+  // X = K~_ff^-1 C_f^T, kSolveBlock right-hand sides per pass over the factor.
+  {
+    const auto blocks = static_cast<std::size_t>((ng + kSolveBlock - 1) / kSolveBlock);
+    core::parallel_for(blocks, [&](std::size_t k) {
+      const Eigen::Index c0 = static_cast<Eigen::Index>(k) * kSolveBlock;
+      const Eigen::Index nc = std::min(kSolveBlock, ng - c0);
+      SolveBlock Y = SolveBlock::Zero(nf, kSolveBlock);
+      for (Eigen::Index j = 0; j < nc; ++j)
+        for (Sparse::InnerIterator it(CfT, c0 + j); it; ++it) Y(it.row(), j) = it.value();
+      solve_in_place(ldlt, Y);
+      scatter(Y, nc, cb.basis.middleCols(c0, nc));
+    });
+  }
+  cb.phases.push_back(clock.lap("constraint solves"));
+  // The interface flexibility S = C X (symmetric positive definite when the patches'
+  // averages are independent); the constraint modes Psi0 = X S^-1 (C Psi0 = I), and
+  // Psi0^T K~ = S^-1 C (K~ Psi0 = C^T S^-1: the support carries no reaction, C^T S^-1 being
+  // self-equilibrated), so Psi0^T K Psi0 = S^-1 - w C_s^T C_s-part and Psi0^T K Phi = 0
+  // for every Phi with C Phi = 0 (Craig-Bampton's K_bb - K_bi K_ii^-1 K_ib).
+  Eigen::MatrixXd S = C * cb.basis.leftCols(ng);
+  S = (0.5 * (S + S.transpose())).eval();
+  const Eigen::LLT<Eigen::MatrixXd> llt(S);
+  if (llt.info() != Eigen::Success ||
+      llt.matrixLLT().diagonal().minCoeff() <= 1e-7 * llt.matrixLLT().diagonal().maxCoeff()) {
+    throw InvalidInput(
+        "the interface patches' relative displacements are not independent (their "
+        "flexibility C K^-1 C^T is singular): too many `patches` for the interface mesh; "
+        "give fewer patches or refine the interface");
+  }
+  const Eigen::MatrixXd S_inv = llt.solve(Eigen::MatrixXd::Identity(ng, ng));
+  {
+    constexpr Eigen::Index kRowBlock = 4096;
+    const auto blocks = static_cast<std::size_t>((n + kRowBlock - 1) / kRowBlock);
+    core::parallel_for(blocks, [&](std::size_t k) {
+      const Eigen::Index r0 = static_cast<Eigen::Index>(k) * kRowBlock;
+      const Eigen::Index nrb = std::min(kRowBlock, n - r0);
+      const Eigen::MatrixXd rows = cb.basis.block(r0, 0, nrb, ng) * S_inv;
+      cb.basis.block(r0, 0, nrb, ng) = rows;
+    });
+  }
+  // Made mass-orthogonal to the rigid-body modes (which do not change g: C R = 0).
+  const Eigen::MatrixXd R = rigid_body_modes(nodes);
+  const Eigen::MatrixXd MR = M * R;
+  const Eigen::MatrixXd G = (R.transpose() * MR).inverse();
+  cb.basis.leftCols(ng) -= R * (G * (MR.transpose() * cb.basis.leftCols(ng)));
+  cb.phases.push_back(clock.lap("interface flexibility"));
+
+  // Fixed-interface (tied) modes: the free-free tied structure's flexibility with inertia
+  // relief, whose eigenpairs under M are the elastic modes (1/omega^2); the six rigid-body
+  // modes are added exactly. The static loads' responses F_c f (g = 0), kSolveBlock at a
+  // time. Both only read the factor and Psi: the Lanczos run (one solve at a time, bound by
+  // reading L) takes one thread, the load blocks the others.
+  const TiedFlexibility tied_flexibility(ldlt, f_index, nf, C, cb.basis.leftCols(ng));
+  LowestModes tied;
   auto tied_modes = [&] {
-    InertiaReliefFlexibility op(ldlt, f_index, nf, Rv, MRv, G);
-    Spectra::SparseSymMatProd<double> bop(Mvv);
-    Eigen::MatrixXd shapes(nv, nm);
+    InertiaReliefFlexibility op(tied_flexibility, R, MR, G);
+    Spectra::SparseSymMatProd<double> bop(M);
+    Eigen::MatrixXd shapes(n, nm);
     Eigen::VectorXd omega2 = Eigen::VectorXd::Zero(nm);
     // Rigid-body modes, mass-orthonormal (Cholesky of R^T M R).
-    const Eigen::MatrixXd L = Eigen::LLT<Eigen::MatrixXd>(Rv.transpose() * MRv).matrixL();
-    shapes.leftCols(6) = Rv * L.transpose().inverse();
+    const Eigen::MatrixXd L = Eigen::LLT<Eigen::MatrixXd>(R.transpose() * MR).matrixL();
+    shapes.leftCols(6) = R * L.transpose().inverse();
     if (count > 0) {
       const int ncv =
           static_cast<int>(std::min<Eigen::Index>(nf - 6, std::max(2 * count + 1, count + 20)));
@@ -322,7 +384,7 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
         throw NumericalError(fmt::format(
             "the {} lowest modes of the tied structure ({} DOFs) did not converge (Spectra "
             "Lanczos on the inertia-relief flexibility, {} vectors, 1000 restarts)",
-            count, nv, ncv));
+            count, n, ncv));
       omega2.tail(count) = eigs.eigenvalues();
       cb.eigensolver_operations = eigs.num_operations();
       shapes.rightCols(count) = eigs.eigenvectors();
@@ -332,112 +394,63 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
     tied.omega2 = omega2;
     tied.shapes = std::move(shapes);
   };
-  // Constraint modes: one right-hand side -K_fg e_j per interface DOF, solved kSolveBlock
-  // at a time.
-  auto constraint_modes = [&](Eigen::Index c0) {
-    const Eigen::Index nc = std::min(kSolveBlock, ng - c0);
-    SolveBlock Y = SolveBlock::Zero(nf, kSolveBlock);
-    for (Eigen::Index j = 0; j < nc; ++j)
-      for (Sparse::InnerIterator it(Kfg, c0 + j); it; ++it) Y(it.row(), j) = -it.value();
-    solve_in_place(ldlt, Y);
-    for (Eigen::Index i = 0; i < nv; ++i)
-      if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0)
-        cb.basis.row(i).segment(c0, nc) = Y.row(fi).head(nc);
-  };
-  // The static loads' responses K_ff^-1 f (g = 0), kSolveBlock at a time.
-  for (Eigen::Index s = 0; s < ns; ++s)
-    if (static_loads[static_cast<std::size_t>(s)].size() != n)
-      throw InvalidInput(fmt::format("reduction: static load {} has {} entries for {} DOFs", s,
-                                     static_loads[static_cast<std::size_t>(s)].size(), n));
-  Eigen::MatrixXd load_response = Eigen::MatrixXd::Zero(nt, ns);
+  Eigen::MatrixXd load_response = Eigen::MatrixXd::Zero(n, ns);
   auto load_responses = [&](Eigen::Index s0) {
     const Eigen::Index nc = std::min(kSolveBlock, ns - s0);
     SolveBlock Y = SolveBlock::Zero(nf, kSolveBlock);
-    for (Eigen::Index j = 0; j < nc; ++j) {
-      const Eigen::VectorXd ft = Tc.transpose() * static_loads[static_cast<std::size_t>(s0 + j)];
-      for (Eigen::Index i = 0; i < nv; ++i)
-        if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0) Y(fi, j) = ft[i];
-    }
+    for (Eigen::Index j = 0; j < nc; ++j)
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0)
+          Y(fi, j) = static_loads[static_cast<std::size_t>(s0 + j)][i];
     solve_in_place(ldlt, Y);
-    for (Eigen::Index i = 0; i < nv; ++i)
-      if (const auto fi = f_index[static_cast<std::size_t>(i)]; fi >= 0)
-        load_response.row(i).segment(s0, nc) = Y.row(fi).head(nc);
+    auto Z = load_response.middleCols(s0, nc);
+    scatter(Y, nc, Z);
+    const Eigen::MatrixXd CZ = C * Z;
+    Z.noalias() -= cb.basis.leftCols(ng) * CZ;
   };
-  // All only read the factor: the Lanczos run (one solve at a time, bound by reading L)
-  // takes one thread while the blocks of constraint modes and load responses go to the
-  // others.
   {
-    const auto blocks = static_cast<std::size_t>((ng + kSolveBlock - 1) / kSolveBlock);
     const auto load_blocks = static_cast<std::size_t>((ns + kSolveBlock - 1) / kSolveBlock);
-    core::parallel_for(1 + blocks + load_blocks, [&](std::size_t k) {
+    core::parallel_for(1 + load_blocks, [&](std::size_t k) {
       if (k == 0)
         tied_modes();
-      else if (k <= blocks)
-        constraint_modes(static_cast<Eigen::Index>(k - 1) * kSolveBlock);
       else
-        load_responses(static_cast<Eigen::Index>(k - 1 - blocks) * kSolveBlock);
+        load_responses(static_cast<Eigen::Index>(k - 1) * kSolveBlock);
     });
   }
-  cb.phases.push_back(clock.lap("fixed-interface and constraint modes"));
-  cb.basis.block(nv, 0, ng, ng).setIdentity();
-  {
-    const Eigen::MatrixXd MR = Mt.topLeftCorner(nt, nt) * Rt.topRows(nt).eval();
-    const Eigen::MatrixXd A = Rt.topRows(nt).transpose() * MR;
-    const Eigen::MatrixXd coef = A.ldlt().solve(MR.transpose() * cb.basis.leftCols(ng));
-    cb.basis.leftCols(ng) -= Rt.topRows(nt) * coef;
-  }
-  // The patches' DOFs in their local frames: g_global = F^T g_local.
-  for (std::size_t p = 0; p < patches.size(); ++p) {
-    const auto c0 = 3 * static_cast<Eigen::Index>(p);
-    const Eigen::MatrixXd cols = cb.basis.middleCols(c0, 3) * patches[p]->frame.transpose();
-    cb.basis.middleCols(c0, 3) = cols;
-  }
-  cb.basis.block(0, ng, nv, nm) = tied.shapes;
+  cb.phases.push_back(clock.lap("tied modes and load responses"));
+  cb.basis.middleCols(ng, nm) = tied.shapes;
   // Load-dependent Ritz vectors of the static loads (g = 0), M-orthogonal to the rigid-body
   // and fixed-interface modes and to each other: classical Gram-Schmidt against the kept
   // columns, all mass-normalised (the rigid-body modes among them), twice for round-off.
+  // A load whose response is already in the basis to 1e-8 (relative, M-norm) is refused: the
+  // vector left would be round-off, and its constraint C v = 0 would hold to round-off of
+  // the response, not of itself.
   for (Eigen::Index s = 0; s < ns; ++s) {
     Eigen::VectorXd v = load_response.col(s);
+    const double norm0 = std::sqrt(v.dot(M * v));
     const Eigen::Index kept = nm + s;
     for (int pass = 0; pass < 2; ++pass) {
-      const Eigen::VectorXd Mv = Mt * v;
+      const Eigen::VectorXd Mv = M * v;
       v -= cb.basis.middleCols(ng, kept) * (cb.basis.middleCols(ng, kept).transpose() * Mv);
     }
-    const double norm = std::sqrt(v.dot(Mt * v));
-    if (!(norm > 0))
-      throw NumericalError(fmt::format(
-          "reduction: static load {} has no response beyond the kept modes (a zero load?)", s));
+    const double norm = std::sqrt(v.dot(M * v));
+    if (!(norm > 1e-8 * norm0))
+      throw InvalidInput(fmt::format(
+          "reduction: static load {} adds nothing to the basis: its response is, to {:.1e} "
+          "relative, a combination of the kept modes and the earlier loads (a zero load, or a "
+          "multiple of an earlier one)",
+          s, norm0 > 0 ? norm / norm0 : 0.0));
     cb.basis.col(ng + kept) = v / norm;
   }
   cb.static_vectors = ns;
   cb.phases.push_back(clock.lap("load vectors"));
   // B^T K B and B^T M B, symmetric: the upper triangle a block of columns at a time (no
-  // n_t x n_r products kept), mirrored. K Psi vanishes on the rows solved for (K_ff Psi_f +
-  // K_fg = 0, and K R = 0 for the rigid-body part taken out), so the rows of B^T K B of the
-  // constraint modes Psi need K Psi only on the rest, Q: the interface DOFs and the six
-  // held ones (Craig-Bampton's K_bb - K_bi K_ii^-1 K_ib, Psi^T K B = (K Psi)_Q^T B_Q).
-  cb.K.resize(nr, nr);
+  // n x n_r products kept), mirrored. The constraint modes' rows of K from S (above).
+  cb.K = Eigen::MatrixXd::Zero(nr, nr);
   cb.M.resize(nr, nr);
-  {
-    std::vector<Eigen::Index> q_index(static_cast<std::size_t>(nt), -1);
-    Eigen::Index nq = 0;
-    for (Eigen::Index i = 0; i < nt; ++i)
-      if (i >= nv || f_index[static_cast<std::size_t>(i)] < 0)
-        q_index[static_cast<std::size_t>(i)] = nq++;
-    std::vector<Eigen::Triplet<double>> tq;
-    Eigen::MatrixXd BQ(nq, nr);
-    for (Eigen::Index col = 0; col < Kt.outerSize(); ++col)
-      for (Sparse::InnerIterator it(Kt, col); it; ++it)
-        if (const auto qi = q_index[static_cast<std::size_t>(it.row())]; qi >= 0)
-          tq.emplace_back(qi, col, it.value());
-    for (Eigen::Index i = 0; i < nt; ++i)
-      if (const auto qi = q_index[static_cast<std::size_t>(i)]; qi >= 0)
-        BQ.row(qi) = cb.basis.row(i);
-    Sparse KQ(nq, nt);
-    KQ.setFromTriplets(tq.begin(), tq.end());
-    const Eigen::MatrixXd KPsiQ = KQ * cb.basis.leftCols(ng);
-    cb.K.topRows(ng).noalias() = KPsiQ.transpose() * BQ;
-  }
+  cb.K.topLeftCorner(ng, ng) = S_inv;
+  for (const auto p : stabilised)
+    for (Eigen::Index k = 0; k < 3; ++k) cb.K(3 * p + k, 3 * p + k) -= w;
   {
     constexpr Eigen::Index kProductBlock = 64;
     const auto blocks = static_cast<std::size_t>((nr + kProductBlock - 1) / kProductBlock);
@@ -445,13 +458,13 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
       const Eigen::Index c0 = static_cast<Eigen::Index>(k) * kProductBlock;
       const Eigen::Index nc = std::min(kProductBlock, nr - c0);
       const auto upper = cb.basis.leftCols(c0 + nc).transpose();
-      const Eigen::MatrixXd MB = Mt * cb.basis.middleCols(c0, nc);
+      const Eigen::MatrixXd MB = M * cb.basis.middleCols(c0, nc);
       cb.M.block(0, c0, c0 + nc, nc).noalias() = upper * MB;
       // Rows >= ng of K (the tied modes' and load vectors' columns).
       const Eigen::Index k0 = std::max(c0, ng);
       if (k0 < c0 + nc) {
         const Eigen::Index kc = c0 + nc - k0;
-        const Eigen::MatrixXd KB = Kt * cb.basis.middleCols(k0, kc);
+        const Eigen::MatrixXd KB = K * cb.basis.middleCols(k0, kc);
         cb.K.block(ng, k0, k0 + kc - ng, kc).noalias() =
             cb.basis.middleCols(ng, k0 + kc - ng).transpose() * KB;
       }

@@ -299,31 +299,47 @@ TEST(FemReduction, ReducedModesMatchTheFullModelInTheRetainedRange) {
   EXPECT_LT(worst[2], 1e-3);
 }
 
-// The reduced matrices are the Galerkin products B^T K B and B^T M B of the basis in mesh
-// DOFs (the reduction forms the constraint modes' rows of B^T K B from K Psi on the
-// interface and held DOFs only: Craig-Bampton's static condensation, exact up to the
-// factorisation's round-off). Entries relative to sqrt(K_ii K_jj) with K + omega_1^2 M,
-// omega_1 the first elastic tied mode, so the rigid-body columns are measured too; the
-// reduced K spans 12 decades (interface stiffness against modal stiffness), 1e-9 is many
-// digits above round-off of the products (~1e-13 here) and far below a missing term.
-TEST(FemReduction, ReducedMatricesAreTheBasissGalerkinProducts) {
-  const Assembled a = assemble_stack({8, 4, 2}, 8, 1000.0);
-  const CraigBampton cb =
-      craig_bampton(a.K, a.M, a.mesh.nodes, {a.itf}, {.fixed_interface_modes = 20},
-                    {-Eigen::VectorXd(a.bolt.elongation), Eigen::VectorXd(a.bolt.elongation)});
-  const Eigen::MatrixXd B = cb.elimination * cb.basis;
-  const Eigen::MatrixXd K = B.transpose() * (a.K * B), M = B.transpose() * (a.M * B);
-  ASSERT_EQ(K.rows(), cb.K.rows());
+// Largest differences between the reduced matrices and the Galerkin products B^T K B,
+// B^T M B formed explicitly from the basis in mesh DOFs. Entries relative to
+// sqrt(k_ii k_jj), k = K + omega_1^2 M with omega_1 the first elastic tied mode, so the
+// rigid-body columns are measured too.
+struct GalerkinDifference {
+  double k = 0.0, m = 0.0;
+};
+GalerkinDifference galerkin_difference(const CraigBampton& cb,
+                                       const Eigen::SparseMatrix<double>& Kf,
+                                       const Eigen::SparseMatrix<double>& Mf) {
+  const Eigen::MatrixXd& B = cb.basis;
+  const Eigen::MatrixXd K = B.transpose() * (Kf * B), M = B.transpose() * (Mf * B);
+  EXPECT_EQ(K.rows(), cb.K.rows());
   const double omega2 = cb.tied_omega2[6];
-  ASSERT_GT(omega2, 0.0);
+  EXPECT_GT(omega2, 0.0);
   const Eigen::VectorXd scale = (K + omega2 * M).diagonal().cwiseSqrt();
-  double worst_k = 0, worst_m = 0;
+  GalerkinDifference d;
   for (Eigen::Index i = 0; i < K.rows(); ++i)
     for (Eigen::Index j = 0; j < K.cols(); ++j) {
       const double s = scale[i] * scale[j];
-      worst_k = std::max(worst_k, std::abs(cb.K(i, j) - K(i, j)) / s);
-      worst_m = std::max(worst_m, omega2 * std::abs(cb.M(i, j) - M(i, j)) / s);
+      d.k = std::max(d.k, std::abs(cb.K(i, j) - K(i, j)) / s);
+      d.m = std::max(d.m, omega2 * std::abs(cb.M(i, j) - M(i, j)) / s);
     }
+  return d;
+}
+
+// The reduced matrices are the Galerkin products B^T K B and B^T M B of the basis in mesh
+// DOFs (the reduction takes the constraint modes' rows of B^T K B from the interface
+// flexibility, Psi^T K Psi = S^-1 and Psi^T K Phi = 0: Craig-Bampton's static
+// condensation, exact up to the factorisation's round-off). The reduced K spans 12 decades
+// (interface stiffness against modal stiffness); 1e-9 is many digits above round-off of the
+// products (5.7e-14 here) and far below a missing term.
+TEST(FemReduction, ReducedMatricesAreTheBasissGalerkinProducts) {
+  const Assembled a = assemble_stack({8, 4, 2}, 8, 1000.0);
+  // Two static loads: the bolt's pretension and the weight (M times a unit z translation).
+  Eigen::VectorXd uz = Eigen::VectorXd::Zero(a.M.rows());
+  for (Eigen::Index i = 2; i < uz.size(); i += 3) uz[i] = 1.0;
+  const Eigen::VectorXd bolt = -Eigen::VectorXd(a.bolt.elongation), weight = a.M * uz;
+  const CraigBampton cb =
+      craig_bampton(a.K, a.M, a.mesh.nodes, {a.itf}, {.fixed_interface_modes = 20}, {bolt, weight});
+  const auto [worst_k, worst_m] = galerkin_difference(cb, a.K, a.M);
   EXPECT_LT(worst_k, 1e-9);
   EXPECT_LT(worst_m, 1e-9);
   // Symmetric as stored, and the basis mass-orthonormal on the kept modes and load vectors.
@@ -333,6 +349,13 @@ TEST(FemReduction, ReducedMatricesAreTheBasissGalerkinProducts) {
       (cb.M.bottomRightCorner(nk, nk) - Eigen::MatrixXd::Identity(nk, nk)).cwiseAbs().maxCoeff(),
       1e-9);
   std::printf("Galerkin products: largest scaled difference K %.3e, M %.3e\n", worst_k, worst_m);
+  // A load whose response the basis already holds (a multiple of an earlier one) is refused.
+  EXPECT_THAT(
+      [&] {
+        (void)craig_bampton(a.K, a.M, a.mesh.nodes, {a.itf}, {.fixed_interface_modes = 20},
+                            {bolt, -2.0 * bolt});
+      },
+      ::testing::ThrowsMessage<InvalidInput>(HasSubstr("static load 1 adds nothing")));
 }
 
 TEST(FemReduction, BoltPretensionIsInEquilibriumWithTheInterfacePressure) {
@@ -413,6 +436,20 @@ TEST(FemReduction, RoughPrestressCarriesTheBoltLoad) {
               ::testing::ThrowsMessage<InvalidInput>(HasSubstr("gap map has 3 values")));
 }
 
+// Two patches with the same nodes and weights constrain the same average twice: the
+// interface flexibility C K^-1 C^T is singular and the reduction says why.
+TEST(FemReduction, DependentPatchesAreRefused) {
+  Assembled a = assemble_stack({8, 4, 2}, 8, 1000.0);
+  a.itf.patches.push_back(a.itf.patches.front());
+  EXPECT_THAT(
+      [&] {
+        (void)craig_bampton(a.K, a.M, a.mesh.nodes, {a.itf}, {.fixed_interface_modes = 5},
+                            {-Eigen::VectorXd(a.bolt.elongation)});
+      },
+      ::testing::ThrowsMessage<InvalidInput>(
+          HasSubstr("relative displacements are not independent")));
+}
+
 TEST(FemReduction, MoreRigidBodyModesThanFreeFreeIsRefused) {
   // No bolt and the interface open: the bodies fly apart (12 rigid-body modes).
   Assembled a = assemble_stack({8, 4, 1}, 4, 0.0);
@@ -421,6 +458,11 @@ TEST(FemReduction, MoreRigidBodyModesThanFreeFreeIsRefused) {
   auto km = assemble(a.mesh, mats);
   const CraigBampton cb =
       craig_bampton(km.K, km.M, a.mesh.nodes, {a.itf}, {.fixed_interface_modes = 5});
+  // Only the interface joins the bodies: the stabilised patches make the factorised K~
+  // regular and leave the reduced matrices those of K (reduction.hpp).
+  const auto [worst_k, worst_m] = galerkin_difference(cb, km.K, km.M);
+  EXPECT_LT(worst_k, 1e-9);
+  EXPECT_LT(worst_m, 1e-9);
   ReducedModel m = reduced(a, cb);
   m.bolt_load.setZero();
   EXPECT_THAT(
