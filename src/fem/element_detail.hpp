@@ -15,6 +15,10 @@ struct Gauss1d {
 /// exact to degree 2 n - 1).
 [[nodiscard]] Gauss1d gauss_legendre(int n);
 
+/// The corners of each mid-edge node of a tet10 (mesh.hpp: 4 (0-1), 5 (1-2), 6 (2-0),
+/// 7 (0-3), 8 (1-3), 9 (2-3)).
+inline constexpr int kTetEdges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+
 [[nodiscard]] Eigen::VectorXd tet10_shape_functions(const Eigen::Vector3d& xi);
 [[nodiscard]] Eigen::MatrixX3d tet10_shape_derivatives(const Eigen::Vector3d& xi);
 [[nodiscard]] Eigen::Matrix3Xd tet10_natural_nodes();

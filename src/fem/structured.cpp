@@ -10,6 +10,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
 #include "asperity/fem/elasticity.hpp"
+#include "element_detail.hpp"
 
 namespace asperity::fem {
 
@@ -20,7 +21,6 @@ namespace {
 // swapped for a positive volume).
 constexpr int kPermutations[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1},
                                      {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
-constexpr int kTetEdges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
 
 }  // namespace
 
@@ -84,7 +84,7 @@ Mesh structured_box_mesh(const Eigen::Vector3d& corner, const Eigen::Vector3d& s
           const bool odd = (&p - &kPermutations[0]) >= 3;
           if (odd) std::swap(v[1], v[2]);
           for (const auto& vertex : v) element_grid_nodes.push_back(grid(vertex));
-          for (const auto& edge : kTetEdges) {
+          for (const auto& edge : detail::kTetEdges) {
             std::array<std::int64_t, 3> mid{};
             for (std::size_t c = 0; c < 3; ++c) {
               mid[c] = (v[static_cast<std::size_t>(edge[0])][c] +

@@ -44,10 +44,6 @@ Gauss1d gauss_legendre(int n) {
 
 namespace {
 
-// Volume coordinates L0..L3 of (r, s, t) and the corners of each mid-edge node
-// (mesh.hpp: 4 (0-1), 5 (1-2), 6 (2-0), 7 (0-3), 8 (1-3), 9 (2-3)).
-constexpr int kTetEdges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
-
 // dL_i / d(r, s, t).
 const Eigen::Vector3d& volume_coordinate_gradient(int i) {
   static const Eigen::Vector3d g[4] = {Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 0, 0),
@@ -63,7 +59,8 @@ Eigen::VectorXd tet10_shape_functions(const Eigen::Vector3d& xi) {
   const double L[4] = {1.0 - xi[0] - xi[1] - xi[2], xi[0], xi[1], xi[2]};
   Eigen::VectorXd N(10);
   for (int i = 0; i < 4; ++i) N[i] = L[i] * (2.0 * L[i] - 1.0);
-  for (int k = 0; k < 6; ++k) N[4 + k] = 4.0 * L[kTetEdges[k][0]] * L[kTetEdges[k][1]];
+  for (int k = 0; k < 6; ++k)
+    N[4 + k] = 4.0 * L[detail::kTetEdges[k][0]] * L[detail::kTetEdges[k][1]];
   return N;
 }
 
@@ -74,8 +71,8 @@ Eigen::MatrixX3d tet10_shape_derivatives(const Eigen::Vector3d& xi) {
     dN.row(i) = (4.0 * L[i] - 1.0) * volume_coordinate_gradient(i).transpose();
   }
   for (int k = 0; k < 6; ++k) {
-    const int a = kTetEdges[k][0];
-    const int b = kTetEdges[k][1];
+    const int a = detail::kTetEdges[k][0];
+    const int b = detail::kTetEdges[k][1];
     dN.row(4 + k) =
         4.0 *
         (L[b] * volume_coordinate_gradient(a) + L[a] * volume_coordinate_gradient(b)).transpose();
@@ -89,15 +86,15 @@ Eigen::Matrix3Xd tet10_natural_nodes() {
       0, 0, 1, 0,                 //
       0, 0, 0, 1;
   for (int k = 0; k < 6; ++k) {
-    x.col(4 + k) = 0.5 * (x.col(kTetEdges[k][0]) + x.col(kTetEdges[k][1]));
+    x.col(4 + k) = 0.5 * (x.col(detail::kTetEdges[k][0]) + x.col(detail::kTetEdges[k][1]));
   }
   return x;
 }
 
 bool tet10_straight_sided(const Eigen::Matrix3Xd& x) {
   for (int k = 0; k < 6; ++k) {
-    const Eigen::Vector3d a = x.col(kTetEdges[k][0]);
-    const Eigen::Vector3d b = x.col(kTetEdges[k][1]);
+    const Eigen::Vector3d a = x.col(detail::kTetEdges[k][0]);
+    const Eigen::Vector3d b = x.col(detail::kTetEdges[k][1]);
     if ((x.col(4 + k) - 0.5 * (a + b)).norm() > 1e-10 * (b - a).norm()) return false;
   }
   return true;

@@ -15,7 +15,7 @@ namespace asperity::surface::detail {
 
 namespace {
 
-constexpr double kTailExponent = 45.0;  // exp(-45) = 3e-20: far below the 1e-13 sums
+constexpr double kFastSumTailExponent = 45.0;  // exp(-45) = 3e-20: far below the 1e-13 sums
 constexpr int kGridPerSegment = 256;
 constexpr double kChunkWidth = 1.0;  // in units of sigma_a
 
@@ -85,7 +85,7 @@ FastLoadingSum::FastLoadingSum(const RoughFlat& flat, double d_star)
       wc_(flat.omega_c_star()),
       g_(4.0 * flat.parameters().G_over_E),
       elastic_scaling_(flat.parameters().slip_scaling == SlipScaling::elastic) {
-  auto range = height_range(table_, d_, s_a_, kTailExponent);
+  auto range = height_range(table_, d_, s_a_, kFastSumTailExponent);
   u_max_ = range.u_max;
   table_nodes_ = std::move(range.nodes);
   for (double w : flat.laws().break_points()) {

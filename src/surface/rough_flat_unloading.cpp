@@ -18,8 +18,8 @@ namespace asperity::surface {
 
 namespace {
 
-constexpr double kTailExponent = 60.0;  // as the loading sums (rough_flat.cpp)
-constexpr double kQuadratureTol = 1e-13;
+constexpr double kUnloadingTailExponent = 60.0;  // as the loading sums (rough_flat.cpp)
+constexpr double kUnloadingQuadratureTol = 1e-13;
 
 }  // namespace
 
@@ -38,7 +38,8 @@ double RoughFlat::normal_load_after_set_star(double d_star, double d_set_star) c
     return norm * std::exp(-0.5 * t * t);
   };
   const double z0 = std::max(std::min(d_star, d_set_star), 0.0);
-  const double z_max = table ? table->top() : std::sqrt(z0 * z0 + 2.0 * kTailExponent * s_a * s_a);
+  const double z_max =
+      table ? table->top() : std::sqrt(z0 * z0 + 2.0 * kUnloadingTailExponent * s_a * s_a);
   const std::vector<double> nodes =
       table ? table->nodes_between(-std::numeric_limits<double>::infinity(), table->top())
             : std::vector<double>{};
@@ -68,7 +69,8 @@ double RoughFlat::normal_load_after_set_star(double d_star, double d_set_star) c
   const auto integrate = [&](auto g, std::vector<double> breaks) {
     std::sort(breaks.begin(), breaks.end());
     const auto tanh_sinh = [](const auto& f, double a, double b) {
-      return core::integrate_tanh_sinh(f, a, b, kQuadratureTol, "rough-flat unloading sum").value;
+      return core::integrate_tanh_sinh(f, a, b, kUnloadingQuadratureTol, "rough-flat unloading sum")
+          .value;
     };
     return detail::integrate_between_nodes(g, tanh_sinh, breaks, nodes);
   };

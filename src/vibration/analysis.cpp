@@ -16,29 +16,18 @@
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
+#include "common.hpp"
 
 namespace asperity::vibration {
 
 namespace {
 
-constexpr double kLn10 = 2.302585092994045684;
-
-// Smallest prominence of a reported peak, relative to its amplitude, and of a reported
-// fold, relative to the frequency range. On the hardening-contact case of issue 23 the
+// Smallest prominence of a reported peak, relative to its amplitude (that of a fold:
+// detail::kFoldProminence, common.hpp). On the hardening-contact case of issue 23 the
 // Z's of sample-located contact reach 2.0e-2 in amplitude and stay below 1e-2 of the range
 // in frequency; its resonance peaks have prominences 0.24 to 0.97 and its folds 0.06 to
 // 0.2 of the range.
 constexpr double kPeakProminence = 5e-2;
-constexpr double kFoldProminence = 1e-2;
-
-void require_outputs(const HarmonicBalance& hb, const std::vector<Eigen::Index>& outputs) {
-  for (std::size_t k = 0; k < outputs.size(); ++k) {
-    if (outputs[k] < 0 || outputs[k] >= hb.dofs()) {
-      throw InvalidInput(fmt::format("output_dofs[{}] = {}: DOFs are numbered 0 .. {}", k + 1,
-                                     outputs[k], hb.dofs() - 1));
-    }
-  }
-}
 
 // The stuck structure's mode `mode` (1-based), mass-normalized.
 struct StuckMode {
@@ -135,7 +124,7 @@ NonlinearModeResult nonlinear_mode(const HarmonicBalance& hb, const NonlinearMod
                                    const std::vector<Eigen::Index>& outputs,
                                    const ProgressFunction& progress) {
   opt.validate();
-  require_outputs(hb, outputs);
+  detail::require_outputs(hb, outputs);
   const HarmonicBasis& basis = hb.basis();
   const Eigen::Index n = hb.dofs();
   const Eigen::Index nu = hb.unknowns();
@@ -181,7 +170,7 @@ NonlinearModeResult nonlinear_mode(const HarmonicBalance& hb, const NonlinearMod
     J->topLeftCorner(nu, nu) = A + dF;
     J->block(0, nu, nu, 1) = hb.dynamic_stiffness_derivative(omega, Ceff) * Psi + dF_dw / a;
     J->block(0, nu + 1, nu, 1) = -omega * (MD * Psi);
-    J->block(0, nu + 2, nu, 1) = kLn10 * (dF * Psi - F / a);
+    J->block(0, nu + 2, nu, 1) = std::numbers::ln10 * (dF * Psi - F / a);
     const Eigen::VectorXd Mp1c = M * p1c, Mp1s = M * p1s;
     for (Eigen::Index d = 0; d < n; ++d) {
       (*J)(nu, d * nc + i1c) = res_scale * 2.0 * Mp1c(d);
@@ -279,7 +268,7 @@ std::vector<FrequencyResponseCurve> frequency_response(const HarmonicBalance& hb
                                                        const std::vector<Eigen::Index>& outputs,
                                                        const ProgressFunction& progress) {
   opt.validate(hb.unknowns());
-  require_outputs(hb, outputs);
+  detail::require_outputs(hb, outputs);
   const Eigen::Index nu = hb.unknowns();
   const Eigen::MatrixXd Ks = hb.stuck_stiffness();
   const auto& harmonics = hb.basis().harmonics();
@@ -367,12 +356,13 @@ std::vector<FrequencyResponseCurve> frequency_response(const HarmonicBalance& hb
     // Peaks of each output and folds, refined between the computed points. Contact and
     // slip located at samples fold the curve into Z's one sample wide (issue 23): those
     // are left out by their prominence, below kPeakProminence of the amplitude for a
-    // peak and kFoldProminence of the frequency range for a fold.
+    // peak and detail::kFoldProminence of the frequency range for a fold.
     const auto& pts = c.continuation.points;
     const auto first_harmonic = [&](const Eigen::VectorXd& y, Eigen::Index dof) {
       return hb.harmonic_amplitude(y.head(nu), dof, 1);
     };
-    const double fold_prominence = kFoldProminence * std::abs(opt.omega_to - opt.omega_from);
+    const double fold_prominence =
+        detail::kFoldProminence * std::abs(opt.omega_to - opt.omega_from);
     std::vector<std::pair<std::size_t, double>> fold_at;  // point, +1 max / -1 min of omega
     for (const double sense_w : {1.0, -1.0}) {
       std::vector<double> w(pts.size());

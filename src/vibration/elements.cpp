@@ -10,6 +10,7 @@
 #include "asperity/core/validate.hpp"
 #include "asperity/hysteresis/backbones.hpp"
 #include "asperity/hysteresis/table_backbone.hpp"
+#include "common.hpp"
 #include "masing_memory.hpp"
 
 namespace asperity::vibration {
@@ -37,10 +38,6 @@ void prepare(PeriodicResponse& out, Eigen::Index n, Eigen::Index dirs, bool tang
     out.du.resize(0, 0);
     out.dv.resize(0, 0);
   }
-}
-
-int sign_of(double x) {
-  return (x > 0.0) - (x < 0.0);
 }
 
 // The sample index of pass-local step s (0 .. 2N-1) in one period.
@@ -121,7 +118,7 @@ void MasingElement::periodic_response(const Eigen::MatrixXd& u, const Eigen::Mat
   for (std::size_t step = 0; step < 2 * n; ++step) {
     const std::uint32_t i = sample_of(step, n);
     const double x = u(static_cast<Eigen::Index>(i), 0);
-    const int d = sign_of(x - x_prev);
+    const int d = detail::sign_of(x - x_prev);
     double Q = Q_prev;
     double kt = 0.0;
     if (d == 0) {

@@ -9,17 +9,11 @@
 
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
+#include "common.hpp"
 
 namespace asperity::vibration {
 
-namespace {
-
-// Smallest prominence of a reported fold relative to the lambda range, as for the
-// frequency response's folds (analysis.cpp): the Z's of sample-located contact and slip
-// stay below it.
-constexpr double kFoldProminence = 1e-2;
-
-}  // namespace
+namespace {}  // namespace
 
 void ForceResponseOptions::validate(Eigen::Index unknowns) const {
   const auto check = [&](const Eigen::VectorXd& v, const char* name, bool required) {
@@ -129,7 +123,7 @@ ForceResponseCurve force_response(const HarmonicBalance& hb, const ForceResponse
     std::vector<double> s(pts.size());
     for (std::size_t k = 0; k < pts.size(); ++k) s[k] = sense * pts[k](nu);
     for (const std::size_t k :
-         prominent_maxima(s, [&](double) { return kFoldProminence * range; })) {
+         prominent_maxima(s, [&](double) { return detail::kFoldProminence * range; })) {
       fold_at.emplace_back(k, sense);
     }
   }

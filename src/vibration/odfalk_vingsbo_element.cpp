@@ -42,6 +42,7 @@
 #include "asperity/core/validate.hpp"
 #include "asperity/hysteresis/odfalk_vingsbo.hpp"
 #include "asperity/vibration/elements.hpp"
+#include "common.hpp"
 #include "masing_memory.hpp"
 
 namespace asperity::vibration {
@@ -49,10 +50,6 @@ namespace asperity::vibration {
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
-
-int sign_of(double x) {
-  return (x > 0.0) - (x < 0.0);
-}
 
 // Plastic slip of one monotone force step Q_old -> Q_new (OdfalkVingsboSlip::peek) and its
 // partial derivatives. `envelope` = +inf in steady state (the virgin rate 1/(2 k_p) beyond
@@ -99,7 +96,7 @@ Flow plastic_flow(const hysteresis::OdfalkVingsboParameters& p, double Q_old, do
   return {};
 }
 
-struct Reversal {
+struct SlipReversal {
   double x = 0.0;  // elastic displacement x_e at the reversal
   double Q = 0.0;
   double direction = 0.0;
@@ -142,7 +139,7 @@ class Path {
   }
 
   void step(double x, Eigen::Index sample) {
-    const int d = sign_of(x - x_prev_);
+    const int d = detail::sign_of(x - x_prev_);
     if (d == 0) return;  // no motion: the force and its dependence stay
     if (dir_prev_ != 0.0 && d != static_cast<int>(dir_prev_)) push_reversal(d);
     dir_prev_ = d;
@@ -163,7 +160,7 @@ class Path {
     if (m_ > 0) {
       Eigen::VectorXd dQ_rev = Eigen::VectorXd::Zero(m_);
       if (br.k > 0) {
-        const Reversal& r = stack_[br.k - 1];
+        const SlipReversal& r = stack_[br.k - 1];
         dQ_rev = r.g_Q - br.kt * r.g_xe;
       }
       Eigen::VectorXd rest = s.d_old * g_Q_;
@@ -197,7 +194,7 @@ class Path {
  private:
   void push_reversal(int d) {
     dir_prev_ = d;
-    Reversal r;
+    SlipReversal r;
     r.x = xe_;
     r.Q = Q_;
     r.direction = d;
@@ -220,7 +217,7 @@ class Path {
   // The active Masing branch at xe (Hysteresis::active_branch), without changing the stack.
   [[nodiscard]] Branch branch(double xe) const {
     const std::size_t k =
-        detail::masing_active_depth(stack_, xe, [](const Reversal& r) { return r.permanent; });
+        detail::masing_active_depth(stack_, xe, [](const SlipReversal& r) { return r.permanent; });
     Branch br;
     br.k = k;
     if (k == 0) {
@@ -228,7 +225,7 @@ class Path {
       br.Q = std::copysign(b_.force(ax), xe);
       br.kt = b_.stiffness(ax);
     } else {
-      const Reversal& r = stack_[k - 1];
+      const SlipReversal& r = stack_[k - 1];
       const double half = r.direction * (xe - r.x) * 0.5;  // < 0 only past a permanent top
       br.Q = r.Q + r.direction * 2.0 * std::copysign(b_.force(std::abs(half)), half);
       br.kt = b_.stiffness(std::abs(half));
@@ -243,7 +240,7 @@ class Path {
   bool slipped_ = false;
   double x_prev_ = 0.0, xe_ = 0.0, Q_ = 0.0, dp_ = 0.0, envelope_ = 0.0, dir_prev_ = 0.0;
   Eigen::VectorXd g_xe_, g_Q_, g_dp_, g_env_;
-  std::vector<Reversal> stack_;
+  std::vector<SlipReversal> stack_;
 };
 
 class OdfalkVingsboElement final : public Element {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 #include <Eigen/LU>
@@ -9,12 +10,11 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
 #include "asperity/vibration/structure.hpp"
+#include "common.hpp"
 
 namespace asperity::vibration {
 
 namespace {
-
-constexpr double kLn10 = 2.302585092994045684;
 
 void require_force(const HarmonicBalance& hb, const Eigen::VectorXd& force, const char* what) {
   if (force.size() != hb.unknowns()) {
@@ -32,15 +32,6 @@ void require_dof(const HarmonicBalance& hb, Eigen::Index dof, const char* what) 
   if (dof < 0 || dof >= hb.dofs()) {
     throw InvalidInput(
         fmt::format("{}.dof = {}: DOFs are numbered 0 .. {}", what, dof, hb.dofs() - 1));
-  }
-}
-
-void require_outputs(const HarmonicBalance& hb, const std::vector<Eigen::Index>& outputs) {
-  for (std::size_t k = 0; k < outputs.size(); ++k) {
-    if (outputs[k] < 0 || outputs[k] >= hb.dofs()) {
-      throw InvalidInput(fmt::format("output_dofs[{}] = {}: DOFs are numbered 0 .. {}", k + 1,
-                                     outputs[k], hb.dofs() - 1));
-    }
   }
 }
 
@@ -95,7 +86,7 @@ AmplitudeControlResult amplitude_controlled_response(const HarmonicBalance& hb,
                                                      const std::vector<Eigen::Index>& outputs,
                                                      const ProgressFunction& progress) {
   opt.validate(hb);
-  require_outputs(hb, outputs);
+  detail::require_outputs(hb, outputs);
   const Eigen::Index nu = hb.unknowns();
   const auto [ic, is] = first_harmonic(hb, opt.dof);
   const double A = opt.amplitude;
@@ -207,7 +198,7 @@ PhaseResonanceResult phase_resonance(const HarmonicBalance& hb, const PhaseReson
                                      const std::vector<Eigen::Index>& outputs,
                                      const ProgressFunction& progress) {
   opt.validate(hb);
-  require_outputs(hb, outputs);
+  detail::require_outputs(hb, outputs);
   const Eigen::Index nu = hb.unknowns();
   const auto [ic, is] = first_harmonic(hb, opt.dof);
   // Phase of the force at the DOF, and the in-phase and lagging directions in (cos, sin).
@@ -258,7 +249,7 @@ PhaseResonanceResult phase_resonance(const HarmonicBalance& hb, const PhaseReson
       J->topLeftCorner(nu, nu) = dR;
       J->block(0, iw, nu, 1) = dRw / a;
       J->block(0, imu, nu, 1) = -opt.force;
-      J->block(0, ip, nu, 1) = kLn10 * (dR * Psi - mu * opt.force - R.head(nu));
+      J->block(0, ip, nu, 1) = std::numbers::ln10 * (dR * Psi - mu * opt.force - R.head(nu));
       (*J)(nu, ic) = residual_scale * eF(0);
       (*J)(nu, is) = residual_scale * eF(1);
       (*J)(nu + 1, ic) = residual_scale * eLag(0);
@@ -387,7 +378,7 @@ void superharmonic_resonance_system(const HarmonicBalance& hb,
   J->setZero(nu + 1, nu + 2);
   J->topLeftCorner(nu, nu) = dR;
   J->block(0, iw, nu, 1) = dRw / lambda;
-  J->block(0, ip, nu, 1) = kLn10 * (dR * Psi - opt.force - R.head(nu));
+  J->block(0, ip, nu, 1) = std::numbers::ln10 * (dR * Psi - opt.force - R.head(nu));
   const Eigen::VectorXd dc_dF = X / (nF * nX) - c * F / (nF * nF);
   const Eigen::VectorXd dc_dX = F / (nF * nX) - c * X / (nX * nX);
   // F = -S_r G(U_low): dF/dPsi_low = -S_r dG lambda, dF/domega = -S_r dG_w,
@@ -398,7 +389,7 @@ void superharmonic_resonance_system(const HarmonicBalance& hb,
     for (const Eigen::Index j : low) row(j) -= dc_dF(i) * dG(gi, j) * lambda;
     row(gi) += dc_dX(i);
     (*J)(nu, iw) -= residual_scale * dc_dF(i) * dGw(gi);
-    (*J)(nu, ip) -= residual_scale * dc_dF(i) * kLn10 * dG.row(gi).dot(Ul);
+    (*J)(nu, ip) -= residual_scale * dc_dF(i) * std::numbers::ln10 * dG.row(gi).dot(Ul);
   }
   J->block(nu, 0, 1, nu) = residual_scale * row.transpose();
 }
@@ -408,7 +399,7 @@ SuperharmonicResonanceResult superharmonic_resonance(const HarmonicBalance& hb,
                                                      const std::vector<Eigen::Index>& outputs,
                                                      const ProgressFunction& progress) {
   opt.validate(hb);
-  require_outputs(hb, outputs);
+  detail::require_outputs(hb, outputs);
   const Eigen::Index nu = hb.unknowns(), n = hb.dofs();
   const int r = opt.harmonic;
   const HarmonicSplit split(hb, r);

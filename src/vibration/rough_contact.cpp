@@ -12,6 +12,7 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/parallel.hpp"
 #include "asperity/core/validate.hpp"
+#include "common.hpp"
 #include "masing_memory.hpp"
 
 namespace asperity::vibration {
@@ -39,28 +40,25 @@ surface::RoughFlat make_flat(const RoughInterfaceParameters& c) {
                                            c.model, c.friction, c.summit_sigma, c.summit_heights);
 }
 
-void require_finite_samples(const Eigen::MatrixXd& u) {
+void require_finite_displacements(const Eigen::MatrixXd& u) {
   if (!u.allFinite()) {
     throw InvalidInput("rough_contact element: displacement samples hold a NaN or infinity");
   }
 }
 
-int sign_of(double x) {
-  return (x > 0.0) - (x < 0.0);
-}
-
 // d f*/d coord*(sample j, direction c): the sparse dependence of one force value.
-struct Term {
+struct ContactTerm {
   std::uint32_t j;
   std::uint16_t c;
   double v;
 };
-using Deriv = std::vector<Term>;
+using Deriv = std::vector<ContactTerm>;
 
 // Sorted by (j, c) with duplicates summed: bounds a list by the number of sample values.
 void compress(Deriv& d) {
-  std::sort(d.begin(), d.end(),
-            [](const Term& a, const Term& b) { return a.j != b.j ? a.j < b.j : a.c < b.c; });
+  std::sort(d.begin(), d.end(), [](const ContactTerm& a, const ContactTerm& b) {
+    return a.j != b.j ? a.j < b.j : a.c < b.c;
+  });
   std::size_t out = 0;
   for (std::size_t k = 0; k < d.size(); ++k) {
     if (out > 0 && d[out - 1].j == d[k].j && d[out - 1].c == d[k].c) {
@@ -72,7 +70,7 @@ void compress(Deriv& d) {
   d.resize(out);
 }
 
-struct Reversal {
+struct ContactReversal {
   double x;          // displacement* at the reversal
   double f;          // force* there
   double direction;  // of the branch that starts here
@@ -330,7 +328,7 @@ RoughContactElement::Pressure RoughContactElement::pressure(double u_n) const {
 
 void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eigen::MatrixXd& /*v*/,
                                             bool tangent, PeriodicResponse& out) const {
-  require_finite_samples(u);
+  require_finite_displacements(u);
   if (u.cols() != 3) {
     throw InvalidInput(
         fmt::format("{}: rough_contact takes 3 directions (t1, t2, n), got {}", name_, u.cols()));
@@ -350,7 +348,7 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
   const double stiffness_scale = force_scale / sig;
 
   struct Direction {
-    std::vector<Reversal> stack;
+    std::vector<ContactReversal> stack;
     double x_prev = 0.0, f_prev = 0.0, dir_prev = 0.0;
     double origin = 0.0;  // centre of the virgin curve: 0, or where the element last separated
     std::uint32_t origin_sample = 0;
@@ -377,8 +375,8 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
         a.dp_at_prev != b.dp_at_prev || !same_terms(a.D_prev, b.D_prev))
       return false;
     for (std::size_t k = 0; k < a.stack.size(); ++k) {
-      const Reversal& x = a.stack[k];
-      const Reversal& y = b.stack[k];
+      const ContactReversal& x = a.stack[k];
+      const ContactReversal& y = b.stack[k];
       if (x.x != y.x || x.f != y.f || x.direction != y.direction || x.closes_at != y.closes_at ||
           x.sample != y.sample || x.p != y.p || x.dp != y.dp || !same_terms(x.D, y.D))
         return false;
@@ -390,7 +388,7 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
   // `origin`, on the backbone at pressure* q: M_0 = sign Q_l(|x_0 - origin|), then
   // M_j = M_{j-1} + 2 d_{j-1} Q_l(|x_j - x_{j-1}|/2) (Eq. 4.11-4.13). dq: dM/dq; into D
   // (when given) its x-derivatives times `weight`.
-  const auto memory_value = [&](const std::vector<Reversal>& stack, double origin, double q,
+  const auto memory_value = [&](const std::vector<ContactReversal>& stack, double origin, double q,
                                 const Blend& B, double& dq, Deriv* D, double weight, int c,
                                 const std::uint32_t* origin_sample) {
     const auto cc = static_cast<std::uint16_t>(c);
@@ -404,8 +402,8 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
       if (origin_sample) D->push_back({*origin_sample, cc, -weight * t0.Qx});
     }
     for (std::size_t j = 1; j < stack.size(); ++j) {
-      const Reversal& a = stack[j - 1];
-      const Reversal& b = stack[j];
+      const ContactReversal& a = stack[j - 1];
+      const ContactReversal& b = stack[j];
       const Tangential t = tangential_at(0.5 * std::abs(b.x - a.x), q, B);
       M += a.direction * 2.0 * t.Q;
       dq += a.direction * 2.0 * t.Qp;
@@ -475,17 +473,17 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
         s.x_prev = x;
         continue;
       }
-      const int d = sign_of(x - s.x_prev);
+      const int d = detail::sign_of(x - s.x_prev);
       if (d != 0) {
         if (s.dir_prev != 0.0 && d != static_cast<int>(s.dir_prev)) {
-          Reversal r{s.x_prev,
-                     s.f_prev,
-                     static_cast<double>(d),
-                     s.stack.empty() ? 2.0 * s.origin - s.x_prev : s.stack.back().x,
-                     s.s_prev,
-                     {},
-                     s.p_at_prev,
-                     s.dp_at_prev};
+          ContactReversal r{s.x_prev,
+                            s.f_prev,
+                            static_cast<double>(d),
+                            s.stack.empty() ? 2.0 * s.origin - s.x_prev : s.stack.back().x,
+                            s.s_prev,
+                            {},
+                            s.p_at_prev,
+                            s.dp_at_prev};
           if (tangent && s.prev_has_sample) {
             r.D = s.D_prev;
             compress(r.D);
@@ -507,7 +505,7 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
           D.push_back({i, 2, sgn * t.Qp * pr.dp});
         }
       } else {
-        Reversal& r = s.stack.back();
+        ContactReversal& r = s.stack.back();
         const Tangential t = tangential_at(0.5 * std::abs(x - r.x), p, B);
         g[c] = r.f + r.direction * 2.0 * t.Q;
         if (tangent) {
@@ -555,7 +553,7 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
           for (int b = 0; b < 2; ++b) {
             const double m = ratio * ((a == b ? 1.0 : 0.0) - e[a] * e[b]);
             if (m == 0.0) continue;
-            for (const Term& term : g_D[b]) D_f[a].push_back({term.j, term.c, m * term.v});
+            for (const ContactTerm& term : g_D[b]) D_f[a].push_back({term.j, term.c, m * term.v});
           }
           D_f[a].push_back({i, 2, e[a] * lim.Qp * pr.dp});
         }
@@ -586,7 +584,7 @@ void RoughContactElement::periodic_response(const Eigen::MatrixXd& u, const Eige
     if (!tangent) continue;
     out.du(ii, 2 + 3 * 2) = stiffness_scale * pr.dp;
     for (int c = 0; c < 2; ++c) {
-      for (const Term& term : D_f[c]) {
+      for (const ContactTerm& term : D_f[c]) {
         const double v = stiffness_scale * term.v;
         if (term.j == i) {
           out.du(ii, c + 3 * term.c) += v;
