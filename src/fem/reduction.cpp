@@ -4,6 +4,7 @@
 #include <Spectra/SymGEigsShiftSolver.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -138,6 +139,24 @@ class PhaseClock {
   std::clock_t cpu_ = std::clock();
 };
 
+// Three spread-out points among point(i), i < count, with ok(i): the one of smallest x,
+// the farthest from it, the farthest from the line through both (first: -1 when none is ok).
+template <class Point, class Ok>
+std::array<Eigen::Index, 3> spread_points(Eigen::Index count, Point point, Ok ok) {
+  Eigen::Index a = -1;
+  for (Eigen::Index i = 0; i < count; ++i)
+    if (ok(i) && (a < 0 || point(i).x() < point(a).x())) a = i;
+  if (a < 0) return {-1, -1, -1};
+  Eigen::Index b = a;
+  for (Eigen::Index i = 0; i < count; ++i)
+    if (ok(i) && (point(i) - point(a)).norm() > (point(b) - point(a)).norm()) b = i;
+  const Eigen::Vector3d ab = point(b) - point(a);
+  Eigen::Index c = a;
+  for (Eigen::Index i = 0; i < count; ++i)
+    if (ok(i) && ab.cross(point(i) - point(a)).norm() > ab.cross(point(c) - point(a)).norm()) c = i;
+  return {a, b, c};
+}
+
 }  // namespace
 
 void ReductionOptions::validate() const {
@@ -198,21 +217,12 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
     for (const auto& p : itf.patches) patches.push_back(&p);
     ng += L.rows();
     if (count == 0) continue;
-    auto centroid = [&](Eigen::Index p) -> const Eigen::Vector3d& {
-      return patches[static_cast<std::size_t>(first + p)]->centroid;
-    };
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (Eigen::Index p = 0; p < count; ++p) mean += centroid(p) / static_cast<double>(count);
-    Eigen::Index pa = 0, pb = 0, pc = 0;
-    for (Eigen::Index p = 0; p < count; ++p)
-      if ((centroid(p) - mean).norm() > (centroid(pa) - mean).norm()) pa = p;
-    for (Eigen::Index p = 0; p < count; ++p)
-      if ((centroid(p) - centroid(pa)).norm() > (centroid(pb) - centroid(pa)).norm()) pb = p;
-    const Eigen::Vector3d ab = centroid(pb) - centroid(pa);
-    for (Eigen::Index p = 0; p < count; ++p)
-      if (ab.cross(centroid(p) - centroid(pa)).norm() >
-          ab.cross(centroid(pc) - centroid(pa)).norm())
-        pc = p;
+    const auto [pa, pb, pc] = spread_points(
+        count,
+        [&](Eigen::Index p) -> const Eigen::Vector3d& {
+          return patches[static_cast<std::size_t>(first + p)]->centroid;
+        },
+        [](Eigen::Index) { return true; });
     for (const auto p : {pa, pb, pc})
       if (std::find(stabilised.begin(), stabilised.end(), first + p) == stabilised.end())
         stabilised.push_back(first + p);
@@ -238,25 +248,13 @@ CraigBampton craig_bampton(const Sparse& K, const Sparse& M, const Eigen::Matrix
       in_patch[static_cast<std::size_t>(nw.node_a)] =
           in_patch[static_cast<std::size_t>(nw.node_b)] = 1;
   auto node_ok = [&](Eigen::Index i) { return !in_patch[static_cast<std::size_t>(i)]; };
-  Eigen::Index a = -1;
-  for (Eigen::Index i = 0; i < nodes.cols(); ++i)
-    if (node_ok(i) && (a < 0 || nodes(0, i) < nodes(0, a))) a = i;
+  const auto [a, b, c] = spread_points(
+      nodes.cols(), [&](Eigen::Index i) { return nodes.col(i); }, node_ok);
   if (a < 0)
     throw InvalidInput(
-        "reduction: every node of the mesh is on an interface patch; the "
-        "bodies need nodes off the interfaces");
-  Eigen::Index b = a;
-  for (Eigen::Index i = 0; i < nodes.cols(); ++i)
-    if (node_ok(i) && (nodes.col(i) - nodes.col(a)).norm() > (nodes.col(b) - nodes.col(a)).norm())
-      b = i;
+        "reduction: every node of the mesh is on an interface patch; the bodies need nodes "
+        "off the interfaces");
   const Eigen::Vector3d ab = nodes.col(b) - nodes.col(a);
-  Eigen::Index c = a;
-  double cd = -1;
-  for (Eigen::Index i = 0; i < nodes.cols(); ++i) {
-    if (!node_ok(i)) continue;
-    const double d = ab.cross(nodes.col(i) - nodes.col(a)).norm();
-    if (d > cd) cd = d, c = i;
-  }
   Eigen::Index free_b;
   ab.cwiseAbs().maxCoeff(&free_b);
   Eigen::Index fix_c;

@@ -10,13 +10,12 @@
 #include "asperity/core/error.hpp"
 #include "asperity/core/validate.hpp"
 #include "gw_fast_sum.hpp"
+#include "rough_flat_tolerances.hpp"
 
 namespace asperity::surface {
 
 namespace {
 
-// Beyond a patch's end, Q_max - Q_l < kPatchSaturation * Q_max (as rough_flat_backbone.cpp).
-constexpr double kPatchSaturation = 1e-12;
 // Patches whose d* agree to this (relative) share one sum.
 constexpr double kSameSeparation = 1e-12;
 
@@ -86,10 +85,10 @@ PatchedRoughFlatBackbone::Built PatchedRoughFlatBackbone::build(
           core::format_value(g.d_star), core::format_value(g.Q_max),
           contact::to_string(flat.parameters().model)));
     }
-    // The patch's own end (as RoughFlatBackbone): Q_l = Q_max to kPatchSaturation beyond.
+    // The patch's own end (as RoughFlatBackbone): Q_l = Q_max to detail::kSaturation beyond.
     g.x_end = g.Q_max / g.k0;
     for (int i = 0;; ++i) {
-      if (1.0 - g.sum->at(g.x_end).Q / g.Q_max < kPatchSaturation) break;
+      if (1.0 - g.sum->at(g.x_end).Q / g.Q_max < detail::kSaturation) break;
       g.x_end *= 1.5;
       if (i > 200) throw NumericalError("patched backbone: a patch's loading does not saturate");
     }

@@ -12,15 +12,12 @@
 #include "asperity/core/numerics.hpp"
 #include "asperity/core/validate.hpp"
 #include "detail/piecewise_quadrature.hpp"
+#include "rough_flat_tolerances.hpp"
 
 namespace asperity::surface {
 
 namespace {
 
-// Heights beyond exp(-kTailExponent) of the density at max(d*, 0) are left out.
-constexpr double kTailExponent = 60.0;
-// Relative tolerance of every statistical-sum quadrature.
-constexpr double kQuadratureTol = 1e-13;
 // Lowest separation accepted, in units of sigma_a.
 constexpr double kMinSeparationSigmaA = -5.0;
 
@@ -51,7 +48,7 @@ class Kernel {
         d_(d_star),
         s_a_(flat.sigma_a_over_sigma()),
         wc_(flat.omega_c_star()) {
-    auto range = detail::height_range(table_, d_, s_a_, kTailExponent);
+    auto range = detail::height_range(table_, d_, s_a_, detail::kTailExponent);
     u_max_ = range.u_max;
     table_breaks_ = std::move(range.nodes);
     for (double w : flat.laws().break_points()) {
@@ -166,7 +163,9 @@ class Kernel {
       return v;
     };
     const auto tanh_sinh = [](const auto& f, double a, double b) {
-      return core::integrate_tanh_sinh(f, a, b, kQuadratureTol, "rough-flat statistical sum").value;
+      return core::integrate_tanh_sinh(f, a, b, detail::kQuadratureTol,
+                                       "rough-flat statistical sum")
+          .value;
     };
     return detail::integrate_between_nodes(checked, tanh_sinh, breaks, table_breaks_);
   }

@@ -8,13 +8,11 @@
 #include "asperity/core/validate.hpp"
 #include "asperity/surface/rough_flat.hpp"
 #include "gw_fast_sum.hpp"
+#include "rough_flat_tolerances.hpp"
 
 namespace asperity::surface {
 
 namespace {
-
-// Beyond the table's end, Q_max - Q_l < kSaturation * Q_max.
-constexpr double kSaturation = 1e-12;
 
 hysteresis::BackboneTabulation tabulation(const RoughFlat& flat, double d_star, double rel_tol) {
   core::require_finite("separation d*", d_star);
@@ -31,11 +29,11 @@ hysteresis::BackboneTabulation tabulation(const RoughFlat& flat, double d_star, 
         core::format_value(d_star), core::format_value(in.limit),
         contact::to_string(flat.parameters().model)));
   }
-  // Table end: where the virgin curve has saturated at Q_max to kSaturation (it reaches
+  // Table end: where the virgin curve has saturated at Q_max to detail::kSaturation (it reaches
   // Q_max exactly once every asperity slips fully: the same rule then sums the same terms).
   in.x_end = in.limit / in.initial_stiffness;
   for (int i = 0;; ++i) {
-    if (1.0 - sum->at(in.x_end).Q / in.limit < kSaturation) break;
+    if (1.0 - sum->at(in.x_end).Q / in.limit < detail::kSaturation) break;
     in.x_end *= 1.5;
     if (i > 200) throw NumericalError("rough-flat backbone: the loading curve does not saturate");
   }

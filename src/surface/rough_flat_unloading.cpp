@@ -13,15 +13,11 @@
 #include "asperity/core/validate.hpp"
 #include "asperity/surface/rough_flat.hpp"
 #include "detail/piecewise_quadrature.hpp"
+#include "rough_flat_tolerances.hpp"
 
 namespace asperity::surface {
 
-namespace {
-
-constexpr double kUnloadingTailExponent = 60.0;  // as the loading sums (rough_flat.cpp)
-constexpr double kUnloadingQuadratureTol = 1e-13;
-
-}  // namespace
+namespace {}  // namespace
 
 double RoughFlat::normal_load_after_set_star(double d_star, double d_set_star) const {
   core::require_finite("separation d*", d_star);
@@ -39,7 +35,7 @@ double RoughFlat::normal_load_after_set_star(double d_star, double d_set_star) c
   };
   const double z0 = std::max(std::min(d_star, d_set_star), 0.0);
   const double z_max =
-      table ? table->top() : std::sqrt(z0 * z0 + 2.0 * kUnloadingTailExponent * s_a * s_a);
+      table ? table->top() : std::sqrt(z0 * z0 + 2.0 * detail::kTailExponent * s_a * s_a);
   const std::vector<double> nodes =
       table ? table->nodes_between(-std::numeric_limits<double>::infinity(), table->top())
             : std::vector<double>{};
@@ -69,7 +65,7 @@ double RoughFlat::normal_load_after_set_star(double d_star, double d_set_star) c
   const auto integrate = [&](auto g, std::vector<double> breaks) {
     std::sort(breaks.begin(), breaks.end());
     const auto tanh_sinh = [](const auto& f, double a, double b) {
-      return core::integrate_tanh_sinh(f, a, b, kUnloadingQuadratureTol, "rough-flat unloading sum")
+      return core::integrate_tanh_sinh(f, a, b, detail::kQuadratureTol, "rough-flat unloading sum")
           .value;
     };
     return detail::integrate_between_nodes(g, tanh_sinh, breaks, nodes);
